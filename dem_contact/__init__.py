@@ -1,0 +1,14 @@
+"""dem_contact: validated, fast contact laws for spheres (Hertz, Thornton, Mindlin-Deresiewicz) and
+the oblique sphere-wall impact they govern."""
+from .errors import InputError, NumericalError
+from .impact import DEFAULT_STEPS_PER_CONTACT, EnergyBudget, ImpactResult, impact
+from .materials import STEEL, Material, PairProperties, Sphere, Wall, pair_properties
+from .model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "DEFAULT_STEPS_PER_CONTACT", "EnergyBudget", "ImpactResult", "InputError", "Material",
+    "NORMAL_LAWS", "NumericalError", "PairProperties", "STEEL", "Scene", "Sphere", "TANGENTIAL_LAWS",
+    "Wall", "impact", "pair_properties",
+]

@@ -1,0 +1,89 @@
+"""Closed-form results used to set up and to check simulations (physics.md sections 2-4).
+
+Plain Python functions of SI quantities; none of them integrates anything.
+"""
+import math
+
+from scipy.optimize import brentq
+
+from .errors import InputError
+
+#: t_c = HERTZ_TC_FACTOR * delta_max / V  (physics.md section 2)
+HERTZ_TC_FACTOR = 2.9433
+
+
+def hertz_max_overlap(E_star, R_star, m_star, v):
+    """delta_max = (15 m* V^2 / (16 E* sqrt(R*)))^(2/5) [m] for an elastic impact at normal speed v."""
+    return (15.0 * m_star * v * v / (16.0 * E_star * math.sqrt(R_star))) ** 0.4
+
+
+def hertz_contact_time(E_star, R_star, m_star, v):
+    """t_c = 2.9433 delta_max / V [s] (Johnson 1985)."""
+    return HERTZ_TC_FACTOR * hertz_max_overlap(E_star, R_star, m_star, v) / v
+
+
+def hertz_max_force(E_star, R_star, m_star, v):
+    """F_max = (4/3) E* sqrt(R*) delta_max^(3/2) [N]."""
+    return 4.0 / 3.0 * E_star * math.sqrt(R_star) * hertz_max_overlap(E_star, R_star, m_star, v) ** 1.5
+
+
+def thornton_yield_overlap(E_star, R_star, p_y):
+    """delta_y = R* (pi p_y / (2 E*))^2 [m] (physics.md section 3)."""
+    return R_star * (math.pi * p_y / (2.0 * E_star)) ** 2
+
+
+def thornton_yield_force(E_star, R_star, p_y):
+    """F_y = pi^3 p_y^3 R*^2 / (6 E*^2) [N]."""
+    return math.pi**3 * p_y**3 * R_star**2 / (6.0 * E_star**2)
+
+
+def thornton_yield_velocity(E_star, R_star, m_star, p_y):
+    """V_y = sqrt(pi^5 p_y^5 R*^3 / (30 E*^4 m*)) [m/s]: normal speed at which yield starts."""
+    return math.sqrt(math.pi**5 * p_y**5 * R_star**3 / (30.0 * E_star**4 * m_star))
+
+
+def thornton_yield_pressure_for_velocity(E_star, R_star, m_star, v_y):
+    """Inverse of ``thornton_yield_velocity``: p_y [Pa] giving yield velocity v_y."""
+    return (30.0 * E_star**4 * m_star * v_y * v_y / (math.pi**5 * R_star**3)) ** 0.2
+
+
+def thornton_restitution_ratio(r):
+    """Thornton (1997) e_n as a function of r = V_y / V_i (e_n = 1 for r >= 1)."""
+    if r >= 1.0:
+        return 1.0
+    return (math.sqrt(6.0 * math.sqrt(3.0) / 5.0 * (1.0 - r * r / 6.0))
+            * (r / (r + 2.0 * math.sqrt(6.0 / 5.0 - r * r / 5.0))) ** 0.25)
+
+
+def thornton_restitution(E_star, R_star, m_star, p_y, v):
+    """Thornton's closed-form e_n [-] at normal impact speed v [m/s]."""
+    return thornton_restitution_ratio(thornton_yield_velocity(E_star, R_star, m_star, p_y) / v)
+
+
+def thornton_yield_pressure_for_restitution(E_star, R_star, m_star, e_n, v):
+    """Calibrate p_y [Pa] so that Thornton's law gives restitution ``e_n`` at normal speed ``v``
+    (inverts the closed form; 0 < e_n < 1)."""
+    if not 0.0 < e_n < 1.0:
+        raise InputError(f"e_n = {e_n:g} cannot be calibrated with the thornton law: valid range (0, 1)")
+    r = brentq(lambda r: thornton_restitution_ratio(r) - e_n, 1e-12, 1.0, xtol=1e-15, rtol=1e-15)
+    return thornton_yield_pressure_for_velocity(E_star, R_star, m_star, r * v)
+
+
+def linear_damping_ratio(e_n):
+    """gamma of the unclamped linear spring-dashpot for restitution e_n: e_n = exp(-gamma pi / sqrt(1-gamma^2))."""
+    if e_n >= 1.0:
+        return 0.0
+    if e_n <= 0.0:
+        return 1.0
+    L = math.log(e_n)
+    return -L / math.sqrt(math.pi**2 + L * L)
+
+
+def linear_restitution(gamma):
+    """e_n of the unclamped linear spring-dashpot with damping ratio gamma < 1."""
+    return math.exp(-gamma * math.pi / math.sqrt(1.0 - gamma * gamma))
+
+
+def linear_contact_time(k_n, m_star, gamma=0.0):
+    """Contact duration pi / (omega0 sqrt(1 - gamma^2)) of the linear spring-dashpot [s]."""
+    return math.pi / (math.sqrt(k_n / m_star) * math.sqrt(1.0 - gamma * gamma))

@@ -1,0 +1,1 @@
+"""Subcommands of the ``dem-contact`` command line (one module each)."""

@@ -1,0 +1,59 @@
+"""``dem-contact impact``: one oblique impact of a sphere on a wall."""
+from __future__ import annotations
+
+import warnings
+
+from ..impact import impact
+from .common import add_scene_options, angle_to_vt, dump_json, scene_from_args, time_options
+
+
+def add_parser(sub):
+    p = sub.add_parser("impact", help="simulate one oblique sphere-wall impact",
+                       description="Simulate one impact of a sphere on a flat wall and print e_n, e_t, the "
+                                   "impulse ratio f, Theta, Psi_r, Omega_r, the contact time and the energy "
+                                   "budget. SI units.")
+    add_scene_options(p)
+    g = p.add_argument_group("incident motion")
+    g.add_argument("--vt", type=float, default=None,
+                   help="tangential velocity of the centre [m/s] (default: from --angle)")
+    g.add_argument("--angle", type=float, default=None,
+                   help="impact angle from the wall normal [deg], vt = vn tan(angle) (default 20)")
+    g.add_argument("--spin", type=float, default=0.0, help="initial angular velocity [rad/s] (default 0)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--series", action="store_true", help="with --json: include the time series")
+    p.set_defaults(run=run)
+
+
+def run(args) -> int:
+    scene = scene_from_args(args)
+    if args.vt is not None and args.angle is not None:
+        from ..errors import InputError
+        raise InputError("give either --vt or --angle, not both")
+    vt = args.vt if args.vt is not None else angle_to_vt(args.vn, 20.0 if args.angle is None else args.angle)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the warnings are reported in the result
+        r = impact(scene, args.vn, vt, args.spin, series=args.series, **time_options(args))
+    if args.json:
+        print(dump_json(r.to_dict(series=args.series)))
+        return 0
+    m = r.model
+    print(f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, "
+          f"kappa = {m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} "
+          f"steps per contact (dt = {r.dt:.4g} s)")
+    print(f"incident: vn = {r.vn_i:g} m/s, vt = {r.vt_i:g} m/s, spin = {r.omega_i:g} rad/s "
+          f"(angle {r.theta_i_deg:.4g} deg, Theta = {r.Theta:.6g})")
+    rows = [
+        ("e_n", r.e_n, ""), ("e_t", r.e_t, ""), ("f", r.f, ""), ("f/mu", r.f_over_mu, ""),
+        ("Psi_r", r.Psi_r, ""), ("Omega_r", r.Omega_r, ""), ("omega_r", r.omega_r, "rad/s"),
+        ("rebound angle", r.rebound_angle_deg, "deg"), ("contact time", r.contact_time, "s"),
+        ("max overlap", r.max_overlap, "m"), ("max force", r.max_force, "N"),
+    ]
+    for name, val, unit in rows:
+        print(f"  {name:15s} {val:.8g} {unit}")
+    print(f"  persistent sliding: {'yes' if r.persistent_sliding else 'no'}; steps: {r.steps}")
+    e = r.energy
+    print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "
+          f"normal {e.normal:.6g}, balance error {e.error:.3g}")
+    for w in r.warnings:
+        print(f"warning: {w}")
+    return 0

@@ -1,0 +1,238 @@
+"""One oblique impact: set-up, integration, and the rebound quantities of Wu, Thornton & Li (2009).
+
+``impact(scene, vn, vt, spin)`` returns an ``ImpactResult`` with e_n, e_t, the impulse ratio f, the
+dimensionless groups Theta, Psi_r, Omega_i, Omega_r (physics.md section 0, eqs 2.1-2.20 and 7.1) and
+the energy budget.
+"""
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from .errors import InputError, NumericalError
+from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
+                         O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
+                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact)
+from .materials import Sphere, check_finite
+from .model import Scene
+
+#: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed.
+DEFAULT_STEPS_PER_CONTACT = 1000
+#: Fewer steps per contact than this cannot resolve a contact: rejected.
+MIN_STEPS_PER_CONTACT = 2.0
+#: The contact must end within this many elastic contact times.
+MAX_CONTACT_TIMES = 50.0
+#: Relative tolerance (of the initial kinetic energy) above which energy counts as created.
+ENERGY_CREATION_TOL = 1e-6
+
+SCHEMES = ("located", "standard")
+
+
+@dataclass
+class EnergyBudget:
+    """Energy of the impact [J]. friction and normal are the works absorbed by the tangential and normal
+    forces along the path (trapezoid rule); error = initial - final - friction - normal."""
+
+    initial: float
+    final: float
+    friction: float
+    normal: float
+    error: float
+
+
+@dataclass
+class ImpactResult:
+    """Outcome of one impact. Velocities in m/s, spins in rad/s, times in s, lengths in m, forces in N.
+
+    Sign conventions (physics.md section 0): vn > 0 towards the wall; v_t = V_t + R omega; e_t and
+    Theta use the contact-patch velocity when there is initial spin (eq. 7.1). rebound_angle_deg is
+    the angle of the rebound velocity of the centre from the normal, positive in the direction of the
+    incident tangential velocity; patch_rebound_angle_deg the same for the contact-patch velocity.
+    """
+
+    vn_i: float
+    vt_i: float
+    omega_i: float
+    vn_r: float
+    vt_r: float
+    omega_r: float
+    theta_i_deg: float
+    e_n: float
+    e_t: float
+    f: float
+    f_over_mu: float
+    Theta: float
+    Psi_r: float
+    Omega_i: float
+    Omega_r: float
+    rebound_angle_deg: float
+    patch_rebound_angle_deg: float
+    normal_impulse: float
+    tangential_impulse: float
+    contact_time: float
+    max_overlap: float
+    max_force: float
+    persistent_sliding: bool
+    steps: int
+    dt: float
+    energy: EnergyBudget
+    energy_created: bool
+    coulomb_violation: float
+    warnings: list = field(default_factory=list)
+    model: dict = field(default_factory=dict)
+    settings: dict = field(default_factory=dict)
+    omega2_r: float = 0.0
+    series: dict | None = None
+
+    def to_dict(self, series: bool = False) -> dict:
+        """JSON-ready dict (NaN and inf become None)."""
+        d = asdict(self)
+        if not series:
+            d.pop("series")
+        elif self.series is not None:
+            d["series"] = {k: v.tolist() for k, v in self.series.items()}
+        return _json_safe(d)
+
+
+def _json_safe(x):
+    if isinstance(x, dict):
+        return {k: _json_safe(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_json_safe(v) for v in x]
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, np.bool_):
+        return bool(x)
+    return x
+
+
+def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, dt: float | None = None):
+    """Validated time step [s] and the steps per contact it gives."""
+    tc = scene.contact_time(vn)
+    if dt is not None and steps_per_contact is not None:
+        raise InputError("give either dt or steps_per_contact, not both")
+    if dt is not None:
+        dt = check_finite("dt (time step, s)", dt, lo=0.0)
+        spc = tc / dt
+        if spc < MIN_STEPS_PER_CONTACT:
+            raise InputError(f"dt = {dt:g} s cannot resolve the contact: it must be <= t_c / "
+                             f"{MIN_STEPS_PER_CONTACT:g} = {tc / MIN_STEPS_PER_CONTACT:g} s (t_c = {tc:g} s)")
+        return dt, spc
+    spc = DEFAULT_STEPS_PER_CONTACT if steps_per_contact is None else steps_per_contact
+    spc = check_finite("steps_per_contact", spc, lo=MIN_STEPS_PER_CONTACT, lo_open=False)
+    return tc / spc, spc
+
+
+def check_incident(vn, vt, spin):
+    vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
+    vt = check_finite("vt (tangential velocity, m/s)", vt)
+    spin = check_finite("spin (initial angular velocity, rad/s)", spin)
+    return vn, vt, spin
+
+
+def body_inertia(scene: Scene):
+    """(1/m*, R1, R2, 1/I1, 1/I2) of the scene; a wall has R2 = 0 and 1/I2 = 0."""
+    s1 = scene.sphere
+    if isinstance(scene.body2, Sphere):
+        return 1.0 / scene.pair.m_star, s1.radius, scene.body2.radius, 1.0 / s1.inertia, 1.0 / scene.body2.inertia
+    return 1.0 / scene.pair.m_star, s1.radius, 0.0, 1.0 / s1.inertia, 0.0
+
+
+def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2: float = 0.0,
+           steps_per_contact: float | None = None, dt: float | None = None, scheme: str = "located",
+           series: bool = False) -> ImpactResult:
+    """Simulate one impact of the scene's sphere.
+
+    vn: normal speed towards the wall or the other sphere, > 0 [m/s]; vt: tangential velocity of the
+    centre [m/s]; spin: initial angular velocity omega [rad/s] (v_t = vt + R omega); spin2: of body 2
+    (sphere-sphere only). Time step: ``steps_per_contact`` per elastic contact time (default
+    DEFAULT_STEPS_PER_CONTACT) or an explicit ``dt`` [s]. scheme: "located" (separation located inside
+    the last step) or "standard" (the contact ends at the first step without overlap, as in LIGGGHTS and
+    LAMMPS). series: also return the time histories.
+    """
+    vn, vt, spin = check_incident(vn, vt, spin)
+    spin2 = check_finite("spin2 (initial angular velocity of body 2, rad/s)", spin2)
+    if scheme not in SCHEMES:
+        raise InputError(f"scheme {scheme!r} is unknown; choose one of: {', '.join(SCHEMES)}")
+    dt, spc = time_step(scene, vn, steps_per_contact, dt)
+    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    max_steps = int(math.ceil(MAX_CONTACT_TIMES * spc)) + 10
+    out = np.zeros(N_OUT)
+    ser = np.zeros((max_steps if series else 0, N_SERIES))
+    h = scene.new_history()
+    integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, vn, vt, spin, spin2,
+                     inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", out, ser)
+    return build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser)
+
+
+def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> ImpactResult:
+    """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure)."""
+    status = int(out[O_STATUS])
+    if status == STATUS_MAX_STEPS:
+        raise NumericalError(f"the contact did not end within {int(out[O_STEPS])} steps "
+                             f"({MAX_CONTACT_TIMES:g} elastic contact times)")
+    if status == STATUS_NONFINITE:
+        raise NumericalError(f"non-finite state (NaN or overflow) after {int(out[O_STEPS])} steps: the "
+                             f"{scene.normal}/{scene.tangential} laws blew up at dt = {dt:g} s")
+    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    m = 1.0 / inv_m
+    mu = scene.mu
+    vn_r, vt_r, w_r, w2_r = out[O_VN], out[O_VT], out[O_W1], out[O_W2]
+    PN, PT = out[O_PN], out[O_PT]
+    e_n = -vn_r / vn
+    v_ti = vt + R1 * spin + R2 * spin2
+    v_tr = vt_r + R1 * w_r + R2 * w2_r
+    f = PT / PN if PN > 0 else math.nan
+    fm = f / mu if mu > 0 else math.nan
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = (1.0 + e_n) * mu * vn
+        Theta = 2.0 * v_ti / denom if mu > 0 else math.inf
+        Psi_r = 2.0 * v_tr / denom if mu > 0 else math.inf
+        Omega_i = 2.0 * R1 * spin / (5.0 * denom) if mu > 0 else math.nan
+        Omega_r = 2.0 * R1 * w_r / (5.0 * denom) if mu > 0 else math.nan
+    e_t = vt_r / vt if vt != 0 else math.nan
+    I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
+    I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
+    E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
+    E1 = 0.5 * m * (vn_r**2 + vt_r**2) + 0.5 * I1 * w_r**2 + 0.5 * I2 * w2_r**2
+    WN, WT = out[O_WN], out[O_WT]
+    energy = EnergyBudget(initial=E0, final=E1, friction=WT, normal=WN, error=E0 - E1 - WT - WN)
+    # A passive tangential law stores or dissipates: its running work can never be negative.
+    created = bool(out[O_MINWT] < -ENERGY_CREATION_TOL * E0)
+    msgs = []
+    if created:
+        msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
+                    f"(running work reached {out[O_MINWT]:.3e} J)")
+    coul = out[O_COULOMB]
+    if coul > 1e-9 * max(mu * out[O_FMAX], 1e-300):
+        msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
+    if spc < 10:
+        msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
+    for msg in msgs:
+        warnings.warn(msg, RuntimeWarning, stacklevel=3)
+    series_dict = None
+    if ser is not None and ser.shape[0] > 0:
+        n = int(out[O_STEPS])
+        names = {S_T: "t", S_DELTA: "overlap", S_N: "normal_force", S_TANG: "tangential_force",
+                 S_A: "contact_radius", S_VN: "vn", S_VSLIP: "v_slip"}
+        series_dict = {name: np.concatenate([[0.0 if col != S_VN and col != S_VSLIP else
+                                              (vn if col == S_VN else v_ti)], ser[:n, col]])
+                       for col, name in names.items()}
+    return ImpactResult(
+        vn_i=vn, vt_i=vt, omega_i=spin, vn_r=vn_r, vt_r=vt_r, omega_r=w_r,
+        theta_i_deg=math.degrees(math.atan2(vt, vn)),
+        e_n=e_n, e_t=e_t, f=f, f_over_mu=fm, Theta=Theta, Psi_r=Psi_r, Omega_i=Omega_i, Omega_r=Omega_r,
+        rebound_angle_deg=math.degrees(math.atan2(vt_r, -vn_r)),
+        patch_rebound_angle_deg=math.degrees(math.atan2(v_tr, -vn_r)),
+        normal_impulse=PN, tangential_impulse=PT, contact_time=out[O_TC], max_overlap=out[O_DMAX],
+        max_force=out[O_FMAX], persistent_sliding=bool(out[O_SLID] > 0.5), steps=int(out[O_STEPS]), dt=dt,
+        energy=energy, energy_created=created, coulomb_violation=max(coul, 0.0), warnings=msgs,
+        model=scene.describe(),
+        settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "vn": vn, "vt": vt, "spin": spin},
+        omega2_r=w2_r, series=series_dict)

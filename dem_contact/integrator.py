@@ -1,0 +1,204 @@
+"""Impact integrator: one contact between body 1 and body 2 (a wall or a sphere) in the impact plane.
+
+Three kinds of motion, relative to the contact: the normal approach (overlap delta, rate vn, effective
+mass m*), the tangential motion of the centres (vt, mass m*) and the spins w1, w2 of the bodies. The
+contact-patch slip velocity is v_t = vt + R1 w1 + R2 w2 (physics.md section 0: rolling without slip has
+v_t = 0). The tangential force T acts against v_t:
+    m* dvn/dt = -N,  m* dvt/dt = -T,  I_i dw_i/dt = -R_i T.
+For a wall, R2 = 0 and 1/I2 = 0.
+
+Velocity Verlet (kick-drift-kick) with constant dt. The contact starts exactly at delta = 0 with the
+incident state. Two ways to end it:
+
+- located separation (``locate=True``): in the step where the contact ends, the step length is cut to
+  the root of the law's gap function (regula falsi, Illinois variant), so e_n, the impulses and the
+  contact time carry no error of order dt from the last step;
+- standard DEM scheme (``locate=False``, as LIGGGHTS and LAMMPS): the contact ends at the first full
+  step with no overlap, where the force is zero.
+
+Impulses are accumulated from the very kicks that change the velocities, so the momentum identities
+(2.21)-(2.23) hold to rounding error.
+"""
+import math
+
+import numpy as np
+from numba import njit
+
+from .laws.contact import contact_step, normal_gap
+from .laws.slots import P_MU
+
+# slots of the output row
+O_VN = 0        # final normal approach velocity, V_nr (negative: moving away) [m/s]
+O_VT = 1        # final tangential velocity of the centre of body 1 relative to body 2 [m/s]
+O_W1 = 2        # final spin of body 1 [rad/s]
+O_W2 = 3        # final spin of body 2 [rad/s]
+O_PN = 4        # normal impulse [N s]
+O_PT = 5        # tangential impulse (against v_t) [N s]
+O_TC = 6        # contact time [s]
+O_DMAX = 7      # maximum overlap [m]
+O_FMAX = 8      # maximum normal force [N]
+O_SLID = 9      # 1 if |T| = mu N at every step of the contact
+O_STEPS = 10    # number of steps
+O_WN = 11       # work absorbed by the normal force, integral N d(delta) (trapezoid) [J]
+O_WT = 12       # work absorbed by the tangential force, integral T d(delta_t) (trapezoid) [J]
+O_COULOMB = 13  # max over steps of |T| - mu N [N] (<= 0 when Coulomb holds)
+O_STATUS = 14   # 0 ended, 1 step limit reached, 2 non-finite state
+O_MINWT = 15    # minimum over time of the running tangential work [J]
+N_OUT = 16
+
+# columns of the optional time series
+S_T, S_DELTA, S_N, S_TANG, S_A, S_VN, S_VSLIP = range(7)
+N_SERIES = 7
+
+STATUS_OK = 0
+STATUS_MAX_STEPS = 1
+STATUS_NONFINITE = 2
+
+SLIDE_TOL = 1e-9
+
+
+@njit(cache=True)
+def _end_fraction(nid, p, h, delta, vn, N, inv_m, dt):
+    """Fraction s in [0, 1] of the step at which the gap function reaches 0 (Illinois regula falsi).
+    Drift of a partial step of length s dt: delta + (vn - N s dt / (2 m*)) s dt. Returns the point on
+    the contact side of the root (the force there is the limit from inside the contact)."""
+    s_lo = 0.0
+    g_lo = normal_gap(nid, p, h, delta, vn)
+    if g_lo <= 0.0:
+        return 0.0
+    s_hi = 1.0
+    v = vn - 0.5 * dt * N * inv_m
+    g_hi = normal_gap(nid, p, h, delta + v * dt, v)
+    side = 0
+    for it in range(200):
+        if s_hi - s_lo <= 1e-15:
+            break
+        if it < 60:
+            s = (s_lo * g_hi - s_hi * g_lo) / (g_hi - g_lo)
+            if not (s > s_lo and s < s_hi):
+                s = 0.5 * (s_lo + s_hi)
+        else:
+            s = 0.5 * (s_lo + s_hi)
+        v = vn - 0.5 * s * dt * N * inv_m
+        g = normal_gap(nid, p, h, delta + v * s * dt, v)
+        if g > 0.0:
+            s_lo, g_lo = s, g
+            if side == 1:
+                g_hi *= 0.5
+            side = 1
+        else:
+            s_hi, g_hi = s, g
+            if side == -1:
+                g_lo *= 0.5
+            side = -1
+    return s_lo
+
+
+@njit(cache=True)
+def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
+                     dt, max_steps, locate, out, series):
+    """Integrate one impact from first touch (delta = 0) to separation.
+
+    nid, tid: normal and tangential law ids; p: parameter row; h: history row (zeroed by the caller);
+    vn0 > 0: incident normal approach speed [m/s]; vt0: incident tangential velocity of the centres
+    [m/s]; w10, w20: incident spins [rad/s]; inv_m = 1/m* [1/kg]; R1, R2 [m]; inv_I1, inv_I2 [1/(kg m^2)];
+    dt [s]; max_steps; locate: located separation (True) or the standard DEM end (False);
+    out: float64[N_OUT] written with the results; series: float64[n, N_SERIES], the first n steps are
+    recorded (pass shape (0, N_SERIES) for none).
+    """
+    mu = p[P_MU]
+    delta = 0.0
+    vn = vn0
+    vt = vt0
+    w1 = w10
+    w2 = w20
+    N = 0.0
+    T = 0.0
+    t = 0.0
+    PN = 0.0
+    PT = 0.0
+    WN = 0.0
+    WT = 0.0
+    minWT = 0.0
+    dmax = 0.0
+    fmax = 0.0
+    slid = 1.0
+    coulomb = -np.inf
+    status = STATUS_MAX_STEPS
+    nser = series.shape[0]
+    steps = 0
+    for k in range(max_steps):
+        hdt = dt
+        vn_h = vn - 0.5 * hdt * N * inv_m
+        delta_new = delta + vn_h * hdt
+        ended = normal_gap(nid, p, h, delta_new, vn_h) <= 0.0
+        if ended and locate:
+            hdt = dt * _end_fraction(nid, p, h, delta, vn, N, inv_m, dt)
+            vn_h = vn - 0.5 * hdt * N * inv_m
+            delta_new = delta + vn_h * hdt
+        vt_h = vt - 0.5 * hdt * T * inv_m
+        w1_h = w1 - 0.5 * hdt * R1 * T * inv_I1
+        w2_h = w2 - 0.5 * hdt * R2 * T * inv_I2
+        v_slip = vt_h + R1 * w1_h + R2 * w2_h
+        dd = v_slip * hdt
+        if ended and not locate:
+            Nn = 0.0
+            a = 0.0
+            Tn = 0.0
+        else:
+            Nn, a, Tn = contact_step(nid, tid, p, h, delta_new, vn_h, dd)
+        PN += 0.5 * hdt * (N + Nn)
+        PT += 0.5 * hdt * (T + Tn)
+        WN += 0.5 * (N + Nn) * (delta_new - delta)
+        WT += 0.5 * (T + Tn) * dd
+        if WT < minWT:
+            minWT = WT
+        vn = vn_h - 0.5 * hdt * Nn * inv_m
+        vt = vt_h - 0.5 * hdt * Tn * inv_m
+        w1 = w1_h - 0.5 * hdt * R1 * Tn * inv_I1
+        w2 = w2_h - 0.5 * hdt * R2 * Tn * inv_I2
+        t += hdt
+        delta = delta_new
+        N = Nn
+        T = Tn
+        steps += 1
+        Np = N if N > 0.0 else 0.0
+        if delta > dmax:
+            dmax = delta
+        if N > fmax:
+            fmax = N
+        if abs(T) < mu * Np * (1.0 - SLIDE_TOL):
+            slid = 0.0
+        if abs(T) - mu * Np > coulomb:
+            coulomb = abs(T) - mu * Np
+        if k < nser:
+            series[k, S_T] = t
+            series[k, S_DELTA] = delta
+            series[k, S_N] = N
+            series[k, S_TANG] = T
+            series[k, S_A] = a
+            series[k, S_VN] = vn
+            series[k, S_VSLIP] = vt + R1 * w1 + R2 * w2
+        if not (math.isfinite(vn) and math.isfinite(vt) and math.isfinite(w1) and math.isfinite(delta)
+                and math.isfinite(T) and math.isfinite(N)):
+            status = STATUS_NONFINITE
+            break
+        if ended:
+            status = STATUS_OK
+            break
+    out[O_VN] = vn
+    out[O_VT] = vt
+    out[O_W1] = w1
+    out[O_W2] = w2
+    out[O_PN] = PN
+    out[O_PT] = PT
+    out[O_TC] = t
+    out[O_DMAX] = dmax
+    out[O_FMAX] = fmax
+    out[O_SLID] = slid
+    out[O_STEPS] = steps
+    out[O_WN] = WN
+    out[O_WT] = WT
+    out[O_COULOMB] = coulomb
+    out[O_STATUS] = status
+    out[O_MINWT] = minWT

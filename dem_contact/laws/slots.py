@@ -1,0 +1,59 @@
+"""Named slots of the parameter row and of the history row (float64 arrays).
+
+Parameter row (one per pair type), read by every kernel:
+
+====================  =====================================================================
+slot                  meaning [unit]
+====================  =====================================================================
+P_ESTAR               effective Young's modulus E* [Pa]
+P_GSTAR               effective shear modulus G* [Pa]
+P_RSTAR               effective radius R* [m]
+P_MSTAR               effective mass m* [kg]
+P_MU                  friction coefficient mu [-]
+P_PY                  limiting contact pressure p_y [Pa] (thornton)
+P_DELTA_Y             yield overlap delta_y [m] (thornton)
+P_F_Y                 yield force F_y [N] (thornton)
+P_GAMMA               dashpot ratio gamma [-] (hertz_damped, linear)
+P_KN                  linear normal stiffness [N/m] (linear)
+P_KT                  linear tangential stiffness [N/m] (tangential linear)
+P_NSPRING             number of springs of the MDR reference (mdr)
+P_DX                  spring spacing of the MDR reference [m] (mdr)
+====================  =====================================================================
+
+History row (one per contact), updated in place: a header, then the normal slots, then the
+tangential slots. ``H_TANG_EXTRA`` is where laws with a variable-length state (the MDR springs) start.
+"""
+
+# parameter row
+P_ESTAR = 0
+P_GSTAR = 1
+P_RSTAR = 2
+P_MSTAR = 3
+P_MU = 4
+P_PY = 5
+P_DELTA_Y = 6
+P_F_Y = 7
+P_GAMMA = 8
+P_KN = 9
+P_KT = 10
+P_NSPRING = 11
+P_DX = 12
+N_PARAMS = 16
+
+# history row: header
+H_N = 0        # normal force after the last step [N] (clamped at >= 0)
+H_A = 1        # contact radius after the last step [m]
+# normal law slots (thornton)
+H_DSTAR = 2    # largest overlap reached, delta* [m]
+H_FSTAR = 3    # force at delta*, F* [N]
+H_RP = 4       # radius of the unloading curve, R_p [m] (0 until yield)
+H_DP = 5       # plastic overlap delta_p [m]
+# tangential law slots
+H_T = 6        # tangential force T (in the direction of the tangential displacement) [N]
+H_TS = 7       # unloading reversal point T* (canonical frame, md) [N]
+H_TSS = 8      # reloading reversal point T** (canonical frame, md) [N]
+H_REGIME = 9   # md regime: 0 loading, 1 unloading, 2 reloading
+H_SIGN = 10    # md loading direction, +1 or -1 (0 before the first move)
+H_XI = 11      # tangential spring displacement for total-displacement laws [m]
+H_TANG_EXTRA = 12
+N_HIST_BASE = 12

@@ -1,0 +1,217 @@
+"""A contact model bound to a pair of bodies: the laws, their parameter row, and its calibration.
+
+``Scene`` validates everything once and computes the effective properties and the parameter row that
+the kernels read (see ``laws.slots``).
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from . import closed_forms as cf
+from .errors import InputError
+from .integrator import N_OUT, N_SERIES, O_STATUS, O_VN, integrate_impact
+from .laws import contact as C
+from .laws.slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
+                         P_MSTAR, P_MU, P_PY, P_RSTAR)
+from .materials import Sphere, Wall, check_finite, pair_properties
+
+NORMAL_LAWS = {
+    "hertz": C.HERTZ,
+    "thornton": C.THORNTON,
+    "hertz_damped": C.HERTZ_DAMPED,
+    "linear": C.LINEAR_NORMAL,
+}
+TANGENTIAL_LAWS = {
+    "md": C.MD,
+    "md_rescale": C.MD_RESCALE,
+    "mindlin_total": C.MINDLIN_TOTAL,
+    "mindlin_incremental": C.MINDLIN_INCREMENTAL,
+    "mindlin_rescale": C.MINDLIN_RESCALE,
+    "linear": C.LINEAR_TANGENTIAL,
+    "ddm": C.DDM,
+}
+
+NORMAL_LAW_SOURCES = {
+    "hertz": "Hertz (Johnson 1985), elastic",
+    "thornton": "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p_y",
+    "hertz_damped": "Hertz + dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, force clamped at 0, gamma calibrated for e_n",
+    "linear": "linear spring-dashpot, stiffness matched to the Hertz contact time at v_ref, closed-form e_n",
+}
+TANGENTIAL_LAW_SOURCES = {
+    "md": "Thornton & Yin (1991) incremental Mindlin-Deresiewicz",
+    "md_rescale": "md with a_new/a_old scaling when the contact shrinks (Thornton, Cummins & Cleary 2013)",
+    "mindlin_total": "total-displacement no-slip Hertz-Mindlin (LIGGGHTS tangential history, EDEM, LAMMPS mindlin)",
+    "mindlin_incremental": "incremental Hertz-Mindlin force (Yade, LAMMPS mindlin/force)",
+    "mindlin_rescale": "incremental Hertz-Mindlin with a/a_old rescaling (LAMMPS mindlin_rescale/force)",
+    "linear": "Cundall-Strack linear spring, k_t = kappa k_n(linear, matched at v_ref)",
+    "ddm": "Di Renzo & Di Maio (2005): total displacement, k_t = (2/3) 8 G* a",
+}
+
+#: Steps per Hertz contact time used to calibrate the damped-Hertz dashpot.
+CALIBRATION_STEPS = 4000
+
+
+def _law(name: str, table: dict, what: str) -> int:
+    if name not in table:
+        raise InputError(f"{what} law {name!r} is unknown; choose one of: {', '.join(table)}")
+    return table[name]
+
+
+@functools.lru_cache(maxsize=256)
+def hertz_damping_for_restitution(e_n: float) -> float:
+    """Dashpot ratio gamma of ``hertz_damped`` that gives restitution ``e_n`` (0 < e_n <= 1).
+
+    e_n of the clamped damped-Hertz law depends on gamma alone, so gamma is found once by root finding
+    on simulated normal impacts of a unit problem (E* = R* = m* = V = 1)."""
+    from scipy.optimize import brentq
+
+    if e_n >= 1.0:
+        return 0.0
+    p = np.zeros(N_PARAMS)
+    p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
+    dt = cf.hertz_contact_time(1.0, 1.0, 1.0, 1.0) / CALIBRATION_STEPS
+    out = np.zeros(N_OUT)
+    series = np.zeros((0, N_SERIES))
+
+    def restitution(gamma):
+        p[P_GAMMA] = gamma
+        h = np.zeros(N_HIST_BASE)
+        integrate_impact(C.HERTZ_DAMPED, C.MD, p, h, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0,
+                         dt, 100 * CALIBRATION_STEPS, True, out, series)
+        if out[O_STATUS] != 0:
+            raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
+        return -out[O_VN]
+
+    hi = 1.0
+    while restitution(hi) > e_n:
+        hi *= 2.0
+        if hi > 1e3:
+            raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
+    return brentq(lambda g: restitution(g) - e_n, 0.0, hi, xtol=1e-13, rtol=1e-12)
+
+
+class Scene:
+    """A sphere against a wall or a second sphere, with a normal and a tangential law.
+
+    Parameters
+    ----------
+    sphere : Sphere (body 1)
+    body2 : Wall or Sphere
+    mu : friction coefficient, >= 0
+    normal : one of ``NORMAL_LAWS``; tangential : one of ``TANGENTIAL_LAWS``
+    e_n : target normal restitution: sets the dashpot of ``hertz_damped`` and ``linear``; for
+        ``thornton`` calibrates p_y at speed ``v_ref`` when the materials give no yield pressure
+    v_ref : reference normal speed [m/s], needed by ``linear`` laws (stiffness matched to the Hertz
+        contact time at v_ref) and by the thornton calibration from e_n
+    """
+
+    def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = "hertz",
+                 tangential: str = "md", e_n: float | None = None, v_ref: float | None = None):
+        if not isinstance(sphere, Sphere):
+            raise InputError("sphere must be a Sphere")
+        if not isinstance(body2, (Sphere, Wall)):
+            raise InputError("body2 must be a Wall or a Sphere")
+        self.sphere = sphere
+        self.body2 = body2
+        self.mu = check_finite("mu (friction coefficient)", mu, lo=0.0, lo_open=False)
+        self.normal = normal
+        self.tangential = tangential
+        self.normal_id = _law(normal, NORMAL_LAWS, "normal")
+        self.tangential_id = _law(tangential, TANGENTIAL_LAWS, "tangential")
+        self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0)
+        self.v_ref = None if v_ref is None else check_finite("v_ref (reference normal speed, m/s)", v_ref, lo=0.0)
+        self.pair = pr = pair_properties(sphere, body2)
+        p = np.zeros(N_PARAMS)
+        p[P_ESTAR] = pr.E_star
+        p[P_GSTAR] = pr.G_star
+        p[P_RSTAR] = pr.R_star
+        p[P_MSTAR] = pr.m_star
+        p[P_MU] = self.mu
+        self.p_y = None
+        if normal == "thornton":
+            if pr.p_y is not None:
+                self.p_y = pr.p_y
+                self.p_y_source = "material"
+            elif self.e_n is not None:
+                if self.e_n in (0.0, 1.0):
+                    raise InputError("e_n for thornton calibration must be in (0, 1)")
+                v = self._need_v_ref("the thornton calibration from e_n")
+                self.p_y = cf.thornton_yield_pressure_for_restitution(pr.E_star, pr.R_star, pr.m_star, self.e_n, v)
+                self.p_y_source = f"calibrated for e_n = {self.e_n:g} at {v:g} m/s"
+            else:
+                raise InputError("the thornton law needs a yield: give yield_pressure or yield_stress of a "
+                                 "material, or e_n (with v_ref) to calibrate p_y")
+            p[P_PY] = self.p_y
+            p[P_DELTA_Y] = cf.thornton_yield_overlap(pr.E_star, pr.R_star, self.p_y)
+            p[P_F_Y] = cf.thornton_yield_force(pr.E_star, pr.R_star, self.p_y)
+        if normal == "hertz_damped":
+            if self.e_n == 0.0:
+                raise InputError("e_n = 0 cannot be reached by the hertz_damped law: valid range (0, 1]")
+            p[P_GAMMA] = hertz_damping_for_restitution(1.0 if self.e_n is None else self.e_n)
+        if normal == "linear":
+            p[P_GAMMA] = cf.linear_damping_ratio(1.0 if self.e_n is None else self.e_n)
+            if p[P_GAMMA] >= 1.0:
+                raise InputError("e_n = 0 cannot be reached by the linear law: valid range (0, 1]")
+        if normal == "linear" or tangential == "linear":
+            v = self._need_v_ref(f"the linear {'normal' if normal == 'linear' else 'tangential'} law")
+            p[P_KN] = pr.m_star * (math.pi / cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, v)) ** 2
+            p[P_KT] = pr.kappa * p[P_KN]
+        self.params = p
+
+    def _need_v_ref(self, what: str) -> float:
+        if self.v_ref is None:
+            raise InputError(f"v_ref (reference normal speed, m/s, > 0) is required by {what}")
+        return self.v_ref
+
+    @property
+    def history_size(self) -> int:
+        return N_HIST_BASE
+
+    def new_history(self) -> np.ndarray:
+        """A zeroed history row for one contact."""
+        return np.zeros(self.history_size)
+
+    def contact_time(self, vn: float) -> float:
+        """Elastic contact duration at normal speed vn [s]: Hertz, or the linear spring's closed form."""
+        pr = self.pair
+        if self.normal == "linear":
+            return cf.linear_contact_time(self.params[P_KN], pr.m_star, self.params[P_GAMMA])
+        return cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
+
+    def describe(self) -> dict:
+        """The model and its derived parameters, for reports."""
+        pr = self.pair
+        p = self.params
+        d = {
+            "normal_law": self.normal,
+            "normal_law_source": NORMAL_LAW_SOURCES[self.normal],
+            "tangential_law": self.tangential,
+            "tangential_law_source": TANGENTIAL_LAW_SOURCES[self.tangential],
+            "mu": self.mu,
+            "E_star": pr.E_star, "G_star": pr.G_star, "R_star": pr.R_star, "m_star": pr.m_star,
+            "kappa": pr.kappa,
+            "sphere": {"radius": self.sphere.radius, **_material_dict(self.sphere.material)},
+        }
+        if isinstance(self.body2, Wall):
+            d["wall"] = _material_dict(self.body2.material)
+        else:
+            d["sphere2"] = {"radius": self.body2.radius, **_material_dict(self.body2.material)}
+        if self.normal == "thornton":
+            d.update(p_y=self.p_y, p_y_source=self.p_y_source, delta_y=p[P_DELTA_Y], F_y=p[P_F_Y])
+        if self.normal in ("hertz_damped", "linear"):
+            d.update(e_n_target=1.0 if self.e_n is None else self.e_n, gamma=p[P_GAMMA])
+        if p[P_KN] > 0:
+            d.update(k_n_linear=p[P_KN], k_t_linear=p[P_KT], v_ref=self.v_ref)
+        return d
+
+
+def _material_dict(m) -> dict:
+    if m.is_rigid:
+        return {"rigid": True, "rho": m.rho}
+    d = {"E": m.E, "nu": m.nu, "rho": m.rho}
+    if m.p_y is not None:
+        d["p_y"] = m.p_y
+    return d
