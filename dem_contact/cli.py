@@ -1,18 +1,26 @@
 """Command-line interface: ``dem-contact SUBCOMMAND`` (also ``python -m dem_contact``).
 
-Each subcommand lives in ``dem_contact.commands.<name>`` with ``add_parser(subparsers)`` and
-``run(args) -> int``. Invalid input prints one line on stderr and exits with code 2.
+Each subcommand lives in its own module ``dem_contact.commands.<name>`` with ``add_parser(subparsers)``
+(which sets ``run``) and ``run(args) -> int``; modules are found automatically and listed by ``ORDER``. Invalid input prints one line on stderr and exits with code 2.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
+import pkgutil
 import sys
 
 from .errors import InputError, NumericalError
 
-#: Subcommand modules, in the order ``--help`` lists them.
-COMMANDS = ["impact"]
+
+
+def command_modules():
+    """The subcommand modules of ``dem_contact.commands``, ordered by their ``ORDER``."""
+    from . import commands
+
+    mods = [importlib.import_module(f"{commands.__name__}.{m.name}")
+            for m in pkgutil.iter_modules(commands.__path__) if m.name != "common"]
+    return sorted(mods, key=lambda m: getattr(m, "ORDER", 100))
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -30,8 +38,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "Mindlin-Deresiewicz tangential traction; oblique sphere-wall impacts, sweeps and "
                     "fits. All quantities in SI units.")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
-    for name in COMMANDS:
-        importlib.import_module(f".commands.{name}", __package__).add_parser(sub)
+    for mod in command_modules():
+        mod.add_parser(sub)
     return parser
 
 

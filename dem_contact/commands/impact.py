@@ -6,6 +6,8 @@ import warnings
 from ..impact import impact
 from .common import add_scene_options, angle_to_vt, dump_json, scene_from_args, time_options
 
+ORDER = 1
+
 
 def add_parser(sub):
     p = sub.add_parser("impact", help="simulate one oblique sphere-wall impact",
