@@ -87,3 +87,27 @@ def linear_restitution(gamma):
 def linear_contact_time(k_n, m_star, gamma=0.0):
     """Contact duration pi / (omega0 sqrt(1 - gamma^2)) of the linear spring-dashpot [s]."""
     return math.pi / (math.sqrt(k_n / m_star) * math.sqrt(1.0 - gamma * gamma))
+
+
+def thornton_max_overlap(E_star, R_star, m_star, p_y, v):
+    """Largest overlap delta* [m] of a Thornton impact at normal speed v, from the energy balance
+    m* V^2 / 2 = (2/5) F_y delta_y + F_y x + pi p_y R* x^2 / 2 with x = delta* - delta_y (Hertz below V_y)."""
+    d_y = thornton_yield_overlap(E_star, R_star, p_y)
+    F_y = thornton_yield_force(E_star, R_star, p_y)
+    if v <= thornton_yield_velocity(E_star, R_star, m_star, p_y):
+        return hertz_max_overlap(E_star, R_star, m_star, v)
+    A = 0.5 * math.pi * p_y * R_star
+    C = 0.4 * F_y * d_y - 0.5 * m_star * v * v
+    return d_y + (-F_y + math.sqrt(F_y * F_y - 4.0 * A * C)) / (2.0 * A)
+
+
+def thornton_unloading(E_star, R_star, p_y, delta_star):
+    """(F*, R_p, delta_p) of Thornton's unloading curve from the largest overlap delta* > delta_y:
+    F* = F_y + pi p_y R* (delta* - delta_y), R_p = (4 E*/(3 F*)) ((2 F* + F_y)/(2 pi p_y))^(3/2),
+    delta_p = delta* - (3 F* / (4 E* sqrt(R_p)))^(2/3)."""
+    d_y = thornton_yield_overlap(E_star, R_star, p_y)
+    F_y = thornton_yield_force(E_star, R_star, p_y)
+    F = F_y + math.pi * p_y * R_star * (delta_star - d_y)
+    R_p = 4.0 * E_star / (3.0 * F) * ((2.0 * F + F_y) / (2.0 * math.pi * p_y)) ** 1.5
+    d_p = delta_star - (3.0 * F / (4.0 * E_star * math.sqrt(R_p))) ** (2.0 / 3.0)
+    return F, R_p, d_p

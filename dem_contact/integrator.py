@@ -24,8 +24,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .laws.contact import contact_step, normal_gap
-from .laws.slots import P_MU
+from .laws.contact import contact_step, normal_force, normal_gap
+from .laws.slots import H_N, P_MU
 
 # slots of the output row
 O_VN = 0        # final normal approach velocity, V_nr (negative: moving away) [m/s]
@@ -55,20 +55,23 @@ STATUS_MAX_STEPS = 1
 STATUS_NONFINITE = 2
 
 SLIDE_TOL = 1e-9
+#: Overlap at which the force just after first touch is evaluated [m].
+TOUCH_OVERLAP = 1e-300
 
 
 @njit(cache=True)
 def _end_fraction(nid, p, h, delta, vn, N, inv_m, dt):
     """Fraction s in [0, 1] of the step at which the gap function reaches 0 (Illinois regula falsi).
     Drift of a partial step of length s dt: delta + (vn - N s dt / (2 m*)) s dt. Returns the point on
-    the contact side of the root (the force there is the limit from inside the contact)."""
+    the contact side of the root (the force there is the limit from inside the contact). The rate seen
+    by the gap function is the predicted end-of-step velocity, as in ``integrate_impact``."""
     s_lo = 0.0
     g_lo = normal_gap(nid, p, h, delta, vn)
     if g_lo <= 0.0:
         return 0.0
     s_hi = 1.0
     v = vn - 0.5 * dt * N * inv_m
-    g_hi = normal_gap(nid, p, h, delta + v * dt, v)
+    g_hi = normal_gap(nid, p, h, delta + v * dt, v - 0.5 * dt * N * inv_m)
     side = 0
     for it in range(200):
         if s_hi - s_lo <= 1e-15:
@@ -80,7 +83,7 @@ def _end_fraction(nid, p, h, delta, vn, N, inv_m, dt):
         else:
             s = 0.5 * (s_lo + s_hi)
         v = vn - 0.5 * s * dt * N * inv_m
-        g = normal_gap(nid, p, h, delta + v * s * dt, v)
+        g = normal_gap(nid, p, h, delta + v * s * dt, v - 0.5 * s * dt * N * inv_m)
         if g > 0.0:
             s_lo, g_lo = s, g
             if side == 1:
@@ -124,6 +127,9 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     fmax = 0.0
     slid = 1.0
     coulomb = -np.inf
+    # force just after first touch (non-zero only for a dashpot acting at zero overlap)
+    N = normal_force(nid, p, h, TOUCH_OVERLAP, vn0)[0]
+    h[H_N] = N if N > 0.0 else 0.0
     status = STATUS_MAX_STEPS
     nser = series.shape[0]
     steps = 0
@@ -131,7 +137,7 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
         hdt = dt
         vn_h = vn - 0.5 * hdt * N * inv_m
         delta_new = delta + vn_h * hdt
-        ended = normal_gap(nid, p, h, delta_new, vn_h) <= 0.0
+        ended = normal_gap(nid, p, h, delta_new, vn_h - 0.5 * hdt * N * inv_m) <= 0.0
         if ended and locate:
             hdt = dt * _end_fraction(nid, p, h, delta, vn, N, inv_m, dt)
             vn_h = vn - 0.5 * hdt * N * inv_m
@@ -146,7 +152,10 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
             a = 0.0
             Tn = 0.0
         else:
-            Nn, a, Tn = contact_step(nid, tid, p, h, delta_new, vn_h, dd)
+            # velocity-dependent forces see the end-of-step velocity predicted with the old force;
+            # at a located end the force is the limit from inside the contact
+            d_eval = delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
+            Nn, a, Tn = contact_step(nid, tid, p, h, d_eval, vn_h - 0.5 * hdt * N * inv_m, dd)
         PN += 0.5 * hdt * (N + Nn)
         PT += 0.5 * hdt * (T + Tn)
         WN += 0.5 * (N + Nn) * (delta_new - delta)
