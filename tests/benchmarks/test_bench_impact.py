@@ -1,0 +1,40 @@
+"""One impact at default settings (warm JIT): the Python call and the bare integrator kernel.
+
+Run with ``pytest tests/benchmarks --benchmark-only``.
+"""
+import numpy as np
+import pytest
+
+import dem_contact as dc
+from dem_contact.impact import body_inertia, time_step
+from dem_contact.integrator import N_OUT, N_SERIES, integrate_impact
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+
+
+@pytest.mark.benchmark(group="one impact")
+def test_bench_impact_python(benchmark, scene):
+    dc.impact(scene, 5.0, 2.0)  # warm the JIT
+    r = benchmark(dc.impact, scene, 5.0, 2.0)
+    assert abs(r.e_n - 1) < 1e-4
+
+
+@pytest.mark.benchmark(group="one impact")
+def test_bench_impact_kernel(benchmark, scene):
+    dt, spc = time_step(scene, 5.0)
+    inv_m, R1, R2, iI1, iI2 = body_inertia(scene)
+    out = np.zeros(N_OUT)
+    ser = np.zeros((0, N_SERIES))
+    h = scene.new_history()
+
+    def run():
+        h[:] = 0.0
+        integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, 5.0, 2.0, 0.0, 0.0,
+                         inv_m, R1, R2, iI1, iI2, dt, int(50 * spc), True, out, ser)
+
+    run()
+    benchmark(run)
+    assert out[0] < 0
