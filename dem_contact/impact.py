@@ -16,11 +16,13 @@ from .errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
                          S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact)
+from .laws.slots import H_A
 from .materials import Sphere, check_finite
 from .model import Scene
 
-#: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed.
-DEFAULT_STEPS_PER_CONTACT = 1000
+#: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed. With the
+#: default mdr_adaptive law f/mu is then within 1e-3 of its converged value (md needs about 1000).
+DEFAULT_STEPS_PER_CONTACT = 100
 #: Fewer steps per contact than this cannot resolve a contact: rejected.
 MIN_STEPS_PER_CONTACT = 2.0
 #: The contact must end within this many elastic contact times.
@@ -168,7 +170,17 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     h = scene.new_history()
     integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, vn, vt, spin, spin2,
                      inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", out, ser)
+    check_mdr_grid(scene, h, vn)
     return build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser)
+
+
+def check_mdr_grid(scene: Scene, h, vn: float):
+    """Raise NumericalError if the contact outgrew the springs of the mdr law (the kernel then stops the
+    integration with a NaN force)."""
+    if scene.tangential == "mdr" and h[H_A] > scene.mdr_max_radius:
+        raise NumericalError(f"the contact radius {h[H_A]:.4g} m at vn = {vn:g} m/s exceeds the extent of the "
+                             f"mdr springs ({scene.mdr_max_radius:.4g} m): raise the scene's v_ref or "
+                             f"mdr_max_radius")
 
 
 def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> ImpactResult:

@@ -12,10 +12,10 @@ import numpy as np
 
 from . import closed_forms as cf
 from .errors import InputError
-from .integrator import N_OUT, N_SERIES, O_STATUS, O_VN, integrate_impact
+from .integrator import N_OUT, N_SERIES, O_DMAX, O_STATUS, O_TC, O_VN, integrate_impact
 from .laws import contact as C
-from .laws.slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
-                         P_MSTAR, P_MU, P_PY, P_RSTAR)
+from .laws.slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
+                         P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR)
 from .materials import Sphere, Wall, check_finite, pair_properties
 
 NORMAL_LAWS = {
@@ -32,6 +32,8 @@ TANGENTIAL_LAWS = {
     "mindlin_rescale": C.MINDLIN_RESCALE,
     "linear": C.LINEAR_TANGENTIAL,
     "ddm": C.DDM,
+    "mdr": C.MDR,
+    "mdr_adaptive": C.MDR_ADAPTIVE,
 }
 
 NORMAL_LAW_SOURCES = {
@@ -48,10 +50,25 @@ TANGENTIAL_LAW_SOURCES = {
     "mindlin_rescale": "incremental Hertz-Mindlin with a/a_old rescaling (LAMMPS mindlin_rescale/force)",
     "linear": "Cundall-Strack linear spring, k_t = kappa k_n(linear, matched at v_ref)",
     "ddm": "Di Renzo & Di Maio (2005): total displacement, k_t = (2/3) 8 G* a",
+    "mdr": "exact reference: method of dimensionality reduction (Popov & Hess), springs on a half-line",
+    "mdr_adaptive": "method of dimensionality reduction with few cells on a grid that follows the contact",
 }
+
+#: Default number of MDR springs (cells on the half-line x >= 0): with MDR_STEPS_PER_CONTACT steps per
+#: contact, f/mu of an oblique impact is within 1e-5 of the converged MDR value (4 significant digits).
+MDR_SPRINGS = 200
+#: Steps per contact for 4-digit MDR results (see MDR_SPRINGS).
+MDR_STEPS_PER_CONTACT = 1000
+#: Cells of the mdr_adaptive law (even): its history row holds the cell width and these displacements.
+MDR_ADAPTIVE_CELLS = 16
+#: The MDR grid covers this multiple of the largest contact radius expected at v_ref.
+MDR_RADIUS_MARGIN = 1.05
 
 #: Steps per Hertz contact time used to calibrate the damped-Hertz dashpot.
 CALIBRATION_STEPS = 4000
+#: ``hertz_damped`` with e_n = 0 (and any e_n below this) uses the dashpot calibrated for this e_n: a dashpot
+#: reaches e_n = 0 only in the limit gamma -> inf, so the rebound speed is at most 1e-4 of the impact speed.
+HERTZ_DAMPED_EN_FLOOR = 1e-4
 
 
 def _law(name: str, table: dict, what: str) -> int:
@@ -93,6 +110,22 @@ def hertz_damping_for_restitution(e_n: float) -> float:
     return brentq(lambda g: restitution(g) - e_n, 0.0, hi, xtol=1e-13, rtol=1e-12)
 
 
+@functools.lru_cache(maxsize=256)
+def hertz_damped_time_ratio(gamma: float) -> float:
+    """Contact time of the damped-Hertz law over the elastic Hertz contact time (a function of gamma
+    alone, simulated once on the unit problem E* = R* = m* = V = 1)."""
+    if gamma == 0.0:
+        return 1.0
+    p = np.zeros(N_PARAMS)
+    p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
+    p[P_GAMMA] = gamma
+    tc = cf.hertz_contact_time(1.0, 1.0, 1.0, 1.0)
+    out = np.zeros(N_OUT)
+    integrate_impact(C.HERTZ_DAMPED, C.MD, p, np.zeros(N_HIST_BASE), 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0,
+                     0.0, tc / CALIBRATION_STEPS, 100 * CALIBRATION_STEPS, True, out, np.zeros((0, N_SERIES)))
+    return min(1.0, out[O_TC] / tc)
+
+
 class Scene:
     """A sphere against a wall or a second sphere, with a normal and a tangential law.
 
@@ -103,13 +136,20 @@ class Scene:
     mu : friction coefficient, >= 0
     normal : one of ``NORMAL_LAWS``; tangential : one of ``TANGENTIAL_LAWS``
     e_n : target normal restitution: sets the dashpot of ``hertz_damped`` and ``linear``; for
-        ``thornton`` calibrates p_y at speed ``v_ref`` when the materials give no yield pressure
+        ``thornton`` calibrates p_y at speed ``v_ref`` when the materials give no yield pressure.
+        ``hertz_damped`` accepts e_n = 0 (perfectly inelastic): it is the limit of infinite damping, and
+        any e_n below HERTZ_DAMPED_EN_FLOOR uses the dashpot of e_n = HERTZ_DAMPED_EN_FLOOR
     v_ref : reference normal speed [m/s], needed by ``linear`` laws (stiffness matched to the Hertz
-        contact time at v_ref) and by the thornton calibration from e_n
+        contact time at v_ref) and by the thornton calibration from e_n; for ``mdr`` the largest normal
+        speed expected (sets the extent of the springs)
+    mdr_springs : number of MDR springs (cells on the half-line), ``mdr`` only (default MDR_SPRINGS)
+    mdr_max_radius : largest contact radius the MDR springs must cover [m] (``mdr`` only; default: the
+        maximum contact radius of a normal impact at v_ref, times MDR_RADIUS_MARGIN)
     """
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = "hertz",
-                 tangential: str = "md", e_n: float | None = None, v_ref: float | None = None):
+                 tangential: str = "mdr_adaptive", e_n: float | None = None, v_ref: float | None = None,
+                 mdr_springs: int | None = None, mdr_max_radius: float | None = None):
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):
@@ -121,7 +161,8 @@ class Scene:
         self.tangential = tangential
         self.normal_id = _law(normal, NORMAL_LAWS, "normal")
         self.tangential_id = _law(tangential, TANGENTIAL_LAWS, "tangential")
-        self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0)
+        self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0,
+                                                                    lo_open=False)
         self.v_ref = None if v_ref is None else check_finite("v_ref (reference normal speed, m/s)", v_ref, lo=0.0)
         self.pair = pr = pair_properties(sphere, body2)
         p = np.zeros(N_PARAMS)
@@ -148,9 +189,10 @@ class Scene:
             p[P_DELTA_Y] = cf.thornton_yield_overlap(pr.E_star, pr.R_star, self.p_y)
             p[P_F_Y] = cf.thornton_yield_force(pr.E_star, pr.R_star, self.p_y)
         if normal == "hertz_damped":
-            if self.e_n == 0.0:
-                raise InputError("e_n = 0 cannot be reached by the hertz_damped law: valid range (0, 1]")
-            p[P_GAMMA] = hertz_damping_for_restitution(1.0 if self.e_n is None else self.e_n)
+            # e_n = 0 is the gamma -> inf limit of the dashpot (rebound speed ~ gamma^-2, contact time -> 0),
+            # reached at no finite gamma: the dashpot of e_n = HERTZ_DAMPED_EN_FLOOR stands for it.
+            e_used = 1.0 if self.e_n is None else max(self.e_n, HERTZ_DAMPED_EN_FLOOR)
+            p[P_GAMMA] = hertz_damping_for_restitution(e_used)
         if normal == "linear":
             p[P_GAMMA] = cf.linear_damping_ratio(1.0 if self.e_n is None else self.e_n)
             if p[P_GAMMA] >= 1.0:
@@ -160,6 +202,51 @@ class Scene:
             p[P_KN] = pr.m_star * (math.pi / cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, v)) ** 2
             p[P_KT] = pr.kappa * p[P_KN]
         self.params = p
+        self.mdr_springs = 0
+        self.tangential_extra_slots = 0     # history slots after N_HIST_BASE (mdr laws)
+        if tangential == "mdr":
+            self._set_mdr_grid(mdr_springs, mdr_max_radius)
+        elif tangential == "mdr_adaptive":
+            n = MDR_ADAPTIVE_CELLS if mdr_springs is None else mdr_springs
+            if isinstance(n, bool) or int(n) != n or n % 2 or not 2 <= n <= 1024:
+                raise InputError(f"mdr_springs = {n!r} must be an even integer in [2, 1024] for mdr_adaptive")
+            self.mdr_springs = int(n)
+            self.tangential_extra_slots = int(n) + 1        # the cell width, then the cells
+            self.params[P_NSPRING] = int(n)
+            if mdr_max_radius is not None:
+                raise InputError("mdr_max_radius applies to the mdr tangential law only")
+        elif mdr_springs is not None or mdr_max_radius is not None:
+            raise InputError("mdr_springs and mdr_max_radius apply to the mdr and mdr_adaptive laws only")
+
+    def _set_mdr_grid(self, springs, max_radius):
+        n = MDR_SPRINGS if springs is None else springs
+        if isinstance(n, bool) or int(n) != n or not 2 <= n <= 10**6:
+            raise InputError(f"mdr_springs = {n!r} must be an integer in [2, 1e6]")
+        n = int(n)
+        if max_radius is not None:
+            r = check_finite("mdr_max_radius (largest contact radius, m)", max_radius, lo=0.0)
+        elif self.v_ref is not None:
+            r = MDR_RADIUS_MARGIN * self.max_contact_radius(self.v_ref)
+        else:
+            raise InputError("the mdr tangential law needs v_ref (largest normal speed expected, m/s, > 0) or "
+                             "mdr_max_radius (largest contact radius, m) to place its springs")
+        self.mdr_springs = n
+        self.tangential_extra_slots = n
+        self.mdr_max_radius = r
+        self.params[P_NSPRING] = n
+        self.params[P_DX] = r / n
+
+    def max_contact_radius(self, vn: float) -> float:
+        """Largest contact radius sqrt(R* delta_max) [m] of a head-on impact at normal speed vn [m/s],
+        from a simulated normal impact with this scene's normal law."""
+        p = self.params.copy()
+        p[P_MU] = 0.0
+        pr = self.pair
+        dt = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn) / 2000.0
+        out = np.zeros(N_OUT)
+        integrate_impact(self.normal_id, C.MD, p, np.zeros(N_HIST_BASE), vn, 0.0, 0.0, 0.0, 1.0 / pr.m_star,
+                         1.0, 0.0, 0.0, 0.0, dt, 200000, True, out, np.zeros((0, N_SERIES)))
+        return math.sqrt(pr.R_star * out[O_DMAX])
 
     def _need_v_ref(self, what: str) -> float:
         if self.v_ref is None:
@@ -168,18 +255,22 @@ class Scene:
 
     @property
     def history_size(self) -> int:
-        return N_HIST_BASE
+        return N_HIST_BASE + self.tangential_extra_slots
 
     def new_history(self) -> np.ndarray:
         """A zeroed history row for one contact."""
         return np.zeros(self.history_size)
 
     def contact_time(self, vn: float) -> float:
-        """Elastic contact duration at normal speed vn [s]: Hertz, or the linear spring's closed form."""
+        """Contact duration at normal speed vn [s] that sets the time step: Hertz; the damped-Hertz contact
+        (shorter, by a factor that depends on gamma only); or the linear spring's closed form."""
         pr = self.pair
         if self.normal == "linear":
             return cf.linear_contact_time(self.params[P_KN], pr.m_star, self.params[P_GAMMA])
-        return cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
+        tc = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
+        if self.normal == "hertz_damped":
+            tc *= hertz_damped_time_ratio(float(self.params[P_GAMMA]))
+        return tc
 
     def describe(self) -> dict:
         """The model and its derived parameters, for reports."""
@@ -203,8 +294,12 @@ class Scene:
             d.update(p_y=self.p_y, p_y_source=self.p_y_source, delta_y=p[P_DELTA_Y], F_y=p[P_F_Y])
         if self.normal in ("hertz_damped", "linear"):
             d.update(e_n_target=1.0 if self.e_n is None else self.e_n, gamma=p[P_GAMMA])
+            if self.normal == "hertz_damped" and self.e_n is not None and self.e_n < HERTZ_DAMPED_EN_FLOOR:
+                d.update(e_n_dashpot=HERTZ_DAMPED_EN_FLOOR)
         if p[P_KN] > 0:
             d.update(k_n_linear=p[P_KN], k_t_linear=p[P_KT], v_ref=self.v_ref)
+        if self.tangential == "mdr":
+            d.update(mdr_springs=self.mdr_springs, mdr_max_radius=self.mdr_max_radius, mdr_dx=p[P_DX])
         return d
 
 

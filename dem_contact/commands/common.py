@@ -1,12 +1,16 @@
 """Scene options shared by the subcommands (sphere, wall, laws, time step) and the published presets."""
 from __future__ import annotations
 
+import inspect
 import json
 import math
 
 from ..errors import InputError
 from ..materials import STEEL, Material, Sphere, Wall, check_finite
 from ..model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+
+#: The library's default tangential law (the default of Scene).
+DEFAULT_TANGENTIAL = inspect.signature(Scene).parameters["tangential"].default
 
 #: Scenes of Wu, Thornton & Li (2009) (physics.md section 6): steel sphere R = 10 mm, mu = 0.3.
 #: RE: rigid sphere on an elastic half-space (nu set by --nu); EE: elastic steel on elastic steel;
@@ -33,7 +37,8 @@ def add_scene_options(p, vn_default=5.0):
     g.add_argument("--mu", type=float, default=0.3, help="friction coefficient >= 0 (default 0.3)")
     g.add_argument("--normal", choices=list(NORMAL_LAWS), default=None,
                    help="normal law (default hertz; thornton for --case PE)")
-    g.add_argument("--tangential", choices=list(TANGENTIAL_LAWS), default="md", help="tangential law (default md)")
+    g.add_argument("--tangential", choices=list(TANGENTIAL_LAWS), default=None,
+                   help=f"tangential law (default {DEFAULT_TANGENTIAL}, the library default)")
     g.add_argument("--yield-pressure", type=float, default=None,
                    help="sphere's limiting contact pressure p_y [Pa] (thornton)")
     g.add_argument("--yield-stress", type=float, default=None,
@@ -76,8 +81,9 @@ def scene_from_args(args) -> Scene:
     else:
         sphere_mat = Material(E=E, nu=nu, rho=args.density, yield_pressure=yield_pressure, yield_stress=yield_stress)
     wall = Wall.rigid() if rigid_wall else Wall(Material(E=wall_E, nu=wall_nu, rho=STEEL.rho))
-    return Scene(Sphere(args.radius, sphere_mat), wall, mu=args.mu, normal=normal, tangential=args.tangential,
-                 e_n=args.e_n, v_ref=args.vn)
+    laws = {} if args.tangential is None else {"tangential": args.tangential}
+    return Scene(Sphere(args.radius, sphere_mat), wall, mu=args.mu, normal=normal, e_n=args.e_n, v_ref=args.vn,
+                 **laws)
 
 
 def time_options(args) -> dict:
@@ -92,3 +98,19 @@ def angle_to_vt(vn: float, angle_deg: float) -> float:
     if not -90.0 < angle_deg < 90.0:
         raise InputError(f"angle = {angle_deg:g} deg is outside the valid range (-90, 90)")
     return vn * math.tan(math.radians(angle_deg))
+
+
+def preset_scene(case: str = "EE", vn: float = 5.0, **options) -> Scene:
+    """The Scene of a --case preset at normal speed ``vn``, as the CLI builds it; ``options`` are other
+    scene options by their argument names (nu, mu, tangential, normal, ...)."""
+    import argparse
+
+    p = argparse.ArgumentParser()
+    add_scene_options(p)
+    args = p.parse_args([])
+    args.case, args.vn = case, vn
+    for k, v in options.items():
+        if not hasattr(args, k):
+            raise InputError(f"unknown scene option {k!r}")
+        setattr(args, k, v)
+    return scene_from_args(args)

@@ -5,7 +5,7 @@ one id in ``registry`` and one branch here.
 """
 from numba import njit
 
-from . import normal, tangential
+from . import mdr, normal, tangential
 from .slots import H_A, H_N, P_KT
 
 # normal law ids
@@ -21,6 +21,8 @@ MINDLIN_INCREMENTAL = 3
 MINDLIN_RESCALE = 4
 LINEAR_TANGENTIAL = 5
 DDM = 6
+MDR = 7
+MDR_ADAPTIVE = 8
 
 
 @njit(cache=True)
@@ -60,6 +62,10 @@ def tangential_force(tid, p, h, N, dN, a, a_old, dd):
         return tangential.mindlin_incremental(p, h, N, a, a_old, dd, True)
     if tid == LINEAR_TANGENTIAL:
         return tangential.incremental(p, h, N, a, a, dd, False, p[P_KT])
+    if tid == MDR:
+        return mdr.mdr(p, h, N, a, a_old, dd)
+    if tid == MDR_ADAPTIVE:
+        return mdr.mdr_adaptive(p, h, N, a, a_old, dd)
     return tangential.mindlin_total(p, h, N, a, dd, 2.0 / 3.0)
 
 

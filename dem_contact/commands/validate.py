@@ -1,0 +1,21 @@
+"""``dem-contact validate``: reproduce the published cases of Wu, Thornton & Li (2009) and write a report."""
+from __future__ import annotations
+
+ORDER = 3
+
+
+def add_parser(sub):
+    p = sub.add_parser("validate", help="reproduce the published oblique-impact cases, write a report",
+                       description="Simulate every published case of Wu, Thornton & Li (2009) (RE, EE, PE), "
+                                   "fit eq. 4.5, compare with the published fits, compare all tangential laws "
+                                   "on EE 5 m/s, check universality in mu and V_n, and write OUT/report.md "
+                                   "with figures in OUT/figures/.")
+    p.add_argument("--out", default="validation", help="output directory (default ./validation)")
+    p.set_defaults(run=run)
+
+
+def run(args) -> int:
+    from ..validation import run_validation
+
+    print(f"report written to {run_validation(args.out)}")
+    return 0

@@ -1,0 +1,158 @@
+"""Fit of the Wu et al. model (eq. 4.5) to simulated (Theta, f/mu), and the critical Theta it implies.
+
+``fit_wu`` never integrates: it takes data. Three estimates of Theta_c are reported side by side
+(physics.md section 6): the crossing of the fitted curve with 1 (and with 0.99, the level at which the
+paper's printed values sit), the direct simulation estimate (``sweep.critical_angle``, passed in), and
+eq. 4.1 from kappa.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .errors import InputError, NumericalError
+from .rebound_models import theta_c_theory, wu_crossing, wu_curve
+
+#: Points with f/mu at or above this level count as persistently sliding and are left out of the fit.
+SLIDING_LEVEL = 1.0 - 1e-6
+#: Bounds of (c1, c2, c3, c4): c2 < 0 and c4 < 0 make the curve rise with Theta.
+LOWER = (-2.0, -5.0, -5.0, -5.0)
+UPPER = (3.0, 0.0, 5.0, 0.0)
+
+
+@dataclass
+class WuFit:
+    """c = (c1, c2, c3, c4) of eq. 4.5 with standard uncertainties ``c_err`` (from the Jacobian and the
+    residual variance); Theta_c: crossing of the fitted curve with 1 (inf if none) with its standard
+    uncertainty; Theta_c_099: crossing with 0.99; rms: residual RMS; n_points: points used; Theta_max:
+    largest Theta fitted."""
+
+    c: tuple
+    c_err: tuple
+    Theta_c: float
+    Theta_c_err: float
+    Theta_c_099: float
+    rms: float
+    max_residual: float
+    n_points: int
+    Theta_max: float
+
+    def __call__(self, Theta):
+        """The fitted model f/mu (1 above Theta_c)."""
+        Theta = np.asarray(Theta, dtype=float)
+        return np.where(Theta < self.Theta_c, wu_curve(Theta, self.c), 1.0)
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        c1, c2, c3, c4 = self.c
+        e1, e2, e3, e4 = self.c_err
+        d.update(c1=c1, c2=c2, c3=c3, c4=c4, c1_err=e1, c2_err=e2, c3_err=e3, c4_err=e4)
+        d["c"] = list(self.c)
+        d["c_err"] = list(self.c_err)
+        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
+
+
+def _linear_c12(T, y, c3, c4):
+    """Best (c1, c2) for fixed (c3, c4): the model is linear in c1, c2."""
+    A = np.column_stack([np.ones_like(T), np.tanh(c3 + c4 * T)])
+    sol, *_ = np.linalg.lstsq(A, y, rcond=None)
+    r = A @ sol - y
+    return sol, float(r @ r)
+
+
+def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", f_scale: float = 0.01) -> WuFit:
+    """Fit f/mu = c1 + c2 tanh(c3 + c4 Theta) (eq. 4.5) to the points below the persistent-sliding region.
+
+    Theta, f_over_mu: arrays of simulated points; persistent_sliding: optional boolean array, points
+    flagged True are left out (as are points with f/mu >= 1 - 1e-6 and non-finite ones). Start values:
+    a grid over (c3, c4) with (c1, c2) solved by linear least squares; then scipy least_squares with a
+    robust loss (``loss``, ``f_scale``) within bounds c2 <= 0, c4 <= 0."""
+    from scipy.optimize import least_squares
+
+    T = np.asarray(Theta, dtype=float).ravel()
+    y = np.asarray(f_over_mu, dtype=float).ravel()
+    if T.shape != y.shape:
+        raise InputError(f"Theta and f_over_mu must have the same length (got {T.size}, {y.size})")
+    keep = np.isfinite(T) & np.isfinite(y) & (y < SLIDING_LEVEL)
+    if persistent_sliding is not None:
+        ps = np.asarray(persistent_sliding, dtype=bool).ravel()
+        if ps.shape != T.shape:
+            raise InputError("persistent_sliding must have the length of Theta")
+        keep &= ~ps
+    T, y = T[keep], y[keep]
+    if T.size < 5:
+        raise InputError(f"the fit needs at least 5 points below persistent sliding (got {T.size})")
+    best = None
+    for c3 in np.linspace(-1.0, 3.0, 17):
+        for c4 in np.linspace(-1.5, -0.05, 30):
+            (c1, c2), ss = _linear_c12(T, y, c3, c4)
+            if c2 < 0 and (best is None or ss < best[0]):
+                best = (ss, (c1, c2, c3, c4))
+    if best is None:
+        raise NumericalError("no start values with a rising curve: f/mu does not rise with Theta")
+    x0 = np.clip(best[1], np.array(LOWER) + 1e-9, np.array(UPPER) - 1e-9)
+
+    def resid(c):
+        return wu_curve(T, c) - y
+
+    sol = least_squares(resid, x0, bounds=(LOWER, UPPER), loss=loss, f_scale=f_scale, x_scale="jac",
+                        xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=20000)
+    if not sol.success:
+        raise NumericalError(f"the fit of eq. 4.5 did not converge: {sol.message}")
+    c = tuple(float(v) for v in sol.x)
+    r = resid(sol.x)
+    dof = max(T.size - 4, 1)
+    s2 = float(r @ r) / dof
+    J = _jacobian(T, c)
+    try:
+        cov = np.linalg.inv(J.T @ J) * s2
+        c_err = tuple(float(math.sqrt(max(v, 0.0))) for v in np.diag(cov))
+    except np.linalg.LinAlgError:
+        cov = None
+        c_err = (math.inf,) * 4
+    tc = wu_crossing(c)
+    tc_err = math.inf
+    if math.isfinite(tc) and cov is not None:
+        g = np.array([(wu_crossing(_shift(c, k, h)) - wu_crossing(_shift(c, k, -h))) / (2 * h)
+                      for k, h in enumerate(1e-6 * np.maximum(np.abs(c), 1e-3))])
+        if np.all(np.isfinite(g)):
+            tc_err = float(math.sqrt(max(g @ cov @ g, 0.0)))
+    return WuFit(c=c, c_err=c_err, Theta_c=tc, Theta_c_err=tc_err, Theta_c_099=wu_crossing(c, 0.99),
+                 rms=float(math.sqrt(np.mean(r * r))), max_residual=float(np.max(np.abs(r))),
+                 n_points=int(T.size), Theta_max=float(T.max()))
+
+
+def _shift(c, k, h):
+    c = list(c)
+    c[k] += h
+    return tuple(c)
+
+
+def _jacobian(T, c):
+    c1, c2, c3, c4 = c
+    th = np.tanh(c3 + c4 * T)
+    sech2 = 1.0 - th * th
+    return np.column_stack([np.ones_like(T), th, c2 * sech2, c2 * sech2 * T])
+
+
+@dataclass
+class CriticalTheta:
+    """Three estimates of the critical Theta (physics.md section 6): ``fit`` (crossing of the fitted
+    curve with 1), ``fit_099`` (crossing with 0.99), ``simulation`` (smallest Theta at which the
+    contact slides at every step, from ``sweep.critical_angle``), ``theory`` (eq. 4.1)."""
+
+    fit: float
+    fit_099: float
+    simulation: float | None
+    theory: float
+
+    def to_dict(self) -> dict:
+        return {k: (None if v is None or not math.isfinite(v) else float(v)) for k, v in asdict(self).items()}
+
+
+def critical_theta(fit: WuFit, kappa: float, simulation: float | None = None) -> CriticalTheta:
+    """Collect the three estimates of Theta_c (``simulation`` is computed by ``sweep.critical_angle``)."""
+    return CriticalTheta(fit=fit.Theta_c, fit_099=fit.Theta_c_099, simulation=simulation,
+                         theory=theta_c_theory(kappa))

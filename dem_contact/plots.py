@@ -1,0 +1,333 @@
+"""Figures (matplotlib, Agg backend). The only module of the package that imports matplotlib.
+
+``sweep_figure``: the rebound quantities of one sweep against Theta in the manner of Wu, Thornton & Li
+(2009, figures 3-16) with the fitted, published, bilinear and rigid-body models.
+``overlay_figure``: f/mu of several sweeps on one axis (laws, parameter studies, the RE collapse).
+"""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from . import rebound_models as rm  # noqa: E402
+
+DPI = 100
+
+
+def _model_curves(Theta_max, kappa, fit=None, published=None):
+    """(label, style, model dict) of the curves drawn beside the points."""
+    T = np.linspace(0.0, Theta_max, 600)
+    curves = []
+    if fit is not None:
+        curves.append((f"fit eq. 4.5 (Theta_c = {fit.Theta_c:.3f})", dict(color="C0", lw=1.6),
+                       rm.wu(T, fit.c, fit.Theta_c)))
+    if published is not None:
+        curves.append((f"published fit (Theta_c = {published['Theta_c_paper']:.4g})",
+                       dict(color="k", ls="--", lw=1.2), rm.wu(T, published["c"])))
+    if kappa is not None:
+        curves.append(("bilinear (eqs 5.1-5.6)", dict(color="C2", ls="-.", lw=1.0), rm.bilinear(T, kappa)))
+    curves.append(("rigid body (eqs 5.7-5.9)", dict(color="C3", ls=":", lw=1.0), rm.rigid_body(T)))
+    return curves
+
+
+def sweep_figure(res, path, *, fit=None, published=None, kappa=None, title=None, Theta_c=None,
+                 Theta_max: float = 12.0):
+    """Six panels: f/mu vs Theta; f/mu vs kappa Theta/(7 kappa - 1); Psi_r, Omega_r, e_t vs Theta;
+    e_n vs impact angle. ``res``: SweepResult; ``fit``: fit.WuFit; ``published``: a row of
+    rebound_models.PUBLISHED_FITS; ``Theta_c``: optional dict label -> value drawn as vertical lines.
+    Points with Theta > ``Theta_max`` are not drawn. Writes a PNG to ``path``."""
+    kappa = res.model.get("kappa") if kappa is None else kappa
+    T = res.Theta
+    finite = T[np.isfinite(T)]
+    tmax = min(float(finite.max()), Theta_max) if finite.size else Theta_max
+    sel = T <= tmax
+    curves = _model_curves(tmax, kappa, fit, published)
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+    sl = res.persistent_sliding[sel]
+    panels = [("f_over_mu", "f / mu", axes[0, 0]), ("Psi_r", "Psi_r", axes[0, 2]),
+              ("Omega_r", "Omega_r", axes[1, 0]), ("e_t", "e_t", axes[1, 1])]
+    for key, lab, ax in panels:
+        y = getattr(res, key)[sel]
+        ax.plot(T[sel][~sl], y[~sl], "o", ms=3.5, mfc="none", color="C1", label="simulation")
+        ax.plot(T[sel][sl], y[sl], "s", ms=3.0, mfc="none", color="C4", label="simulation, persistent sliding")
+        for name, style, m in curves:
+            ax.plot(m["Theta"], m[key], label=name, **style)
+        ax.set_xlabel("Theta")
+        ax.set_ylabel(lab)
+        ax.set_xlim(0, tmax)
+        ax.grid(alpha=0.3)
+    axes[1, 1].set_ylim(-0.6, 1.05)
+    if Theta_c:
+        for i, (name, v) in enumerate(Theta_c.items()):
+            if v is not None and np.isfinite(v):
+                axes[0, 0].axvline(v, color=f"C{5 + i}", lw=0.8, alpha=0.8, label=f"Theta_c {name} = {v:.3f}")
+    axes[0, 0].set_ylim(0, 1.08)
+    axes[0, 0].legend(fontsize=7, loc="lower right")
+    ax = axes[0, 1]
+    if kappa is not None:
+        x = rm.collapse_variable(T[sel], kappa)
+        ax.plot(x, res.f_over_mu[sel], "o", ms=3.5, mfc="none", color="C1", label="simulation")
+        for name, style, m in curves:
+            ax.plot(rm.collapse_variable(m["Theta"], kappa), m["f_over_mu"], label=name, **style)
+        ax.set_xlabel("kappa Theta / (7 kappa - 1)")
+        ax.set_ylabel("f / mu")
+        ax.set_xlim(0, rm.collapse_variable(tmax, kappa))
+        ax.set_ylim(0, 1.08)
+        ax.grid(alpha=0.3)
+    ax = axes[1, 2]
+    ax.plot(res.theta_deg, res.e_n, "o-", ms=3, mfc="none", color="C1")
+    ax.set_xlabel("impact angle theta_i [deg]")
+    ax.set_ylabel("e_n")
+    lo, hi = float(np.nanmin(res.e_n)), float(np.nanmax(res.e_n))
+    pad = max(0.02, 0.1 * (hi - lo))
+    ax.set_ylim(lo - pad, min(hi + pad, 1.05))
+    ax.grid(alpha=0.3)
+    m = res.model
+    fig.suptitle(title or (f"{m['normal_law']} / {m['tangential_law']}, mu = {m['mu']:g}, "
+                           f"kappa = {m['kappa']:.4f}"), fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+def overlay_figure(results: dict, path, *, quantity: str = "f_over_mu", collapse: bool = False,
+                   published=None, kappa=None, title=None, Theta_max: float = 8.0, ylabel=None):
+    """``quantity`` of several sweeps (label -> SweepResult) against Theta, or against
+    kappa Theta/(7 kappa - 1) of each sweep's own kappa when ``collapse``. ``published``: optional dict
+    label -> PUBLISHED_FITS row drawn as dashed curves; ``kappa``: draws the bilinear model of that kappa."""
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for i, (label, res) in enumerate(results.items()):
+        T = res.Theta
+        sel = T <= Theta_max
+        x = rm.collapse_variable(T[sel], res.model["kappa"]) if collapse else T[sel]
+        ax.plot(x, getattr(res, quantity)[sel], "o-", ms=3, lw=0.8, mfc="none", color=f"C{i}", label=label)
+    Tm = np.linspace(0, Theta_max, 600)
+    for i, (label, row) in enumerate((published or {}).items()):
+        k = float(rm.kappa_from_nu(row["nu"]))
+        m = rm.wu(Tm, row["c"])
+        x = rm.collapse_variable(Tm, k) if collapse else Tm
+        ax.plot(x, m[quantity], ls="--", lw=1.0, color=f"C{i}" if len(results) == len(published) else "k",
+                label=f"published {label}")
+    if kappa is not None and not collapse:
+        m = rm.bilinear(Tm, kappa)
+        ax.plot(Tm, m[quantity], ls="-.", lw=1.0, color="gray", label="bilinear")
+    ax.set_xlabel("kappa Theta / (7 kappa - 1)" if collapse else "Theta")
+    ax.set_ylabel(ylabel or quantity.replace("_over_", " / "))
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    if title:
+        ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+# --------------------------------------------------------------------------------------------------
+# Chung & Ooi (2011) benchmark figures
+
+def _co_law_style(i, law):
+    return dict(marker="os^vD<>px"[i % 9], ms=3.5, mfc="none", lw=0.8, color=f"C{i}", label=law)
+
+
+def _co_normal(res, path):
+    """Tests 1, 2: force-time and force-overlap of each case against the exact Hertz curves."""
+    cases = list(res.data.items())
+    fig, axes = plt.subplots(len(cases), 2, figsize=(11, 3.6 * len(cases)), squeeze=False)
+    for row, (label, d) in zip(axes, cases):
+        t, F = np.asarray(d["t"]), np.asarray(d["force"])
+        step = max(1, len(t) // 60)
+        row[0].plot(np.asarray(d["hertz_t"]) * 1e6, d["hertz_force"], "k-", lw=1.2, label="Hertz (exact)")
+        row[0].plot(t[::step] * 1e6, F[::step], "o", ms=3, mfc="none", color="C1", label="simulation")
+        row[0].set_xlabel("time [us]")
+        row[0].set_ylabel("normal force [N]")
+        row[0].set_title(f"{label}: force-time", fontsize=10)
+        row[1].plot(np.asarray(d["hertz_overlap"]) * 1e6, d["hertz_force"], "k-", lw=1.2, label="Hertz")
+        row[1].plot(np.asarray(d["overlap"])[::step] * 1e6, F[::step], "o", ms=3, mfc="none", color="C1",
+                    label="simulation")
+        row[1].set_xlabel("overlap [um]")
+        row[1].set_ylabel("normal force [N]")
+        row[1].set_title(f"{label}: force-overlap", fontsize=10)
+        for ax in row:
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=8)
+    return fig
+
+
+def _co_restitution(res, path):
+    fig, ax = plt.subplots(figsize=(5.5, 5))
+    ax.plot([0, 1], [0, 1], "k-", lw=1, label="e_n out = e_n in")
+    for i, (label, d) in enumerate(res.data.items()):
+        ax.plot(d["e_n_in"], d["e_n_out"], "os"[i % 2], ms=6, mfc="none", color=f"C{i}", label=label)
+    ax.set_xlabel("e_n in")
+    ax.set_ylabel("e_n out")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    return fig
+
+
+def _co_oblique_angle(res, path):
+    """Test 4: e_t, rebound spin and patch rebound angle against the impact angle."""
+    mats = list(res.data.items())
+    fig, axes = plt.subplots(len(mats), 3, figsize=(15, 4.2 * len(mats)), squeeze=False)
+    panels = [("e_t", "e_t"), ("omega_r", "rebound spin omega_r [rad/s]"),
+              ("patch_angle_deg", "rebound angle of the contact patch [deg]")]
+    for row, (label, d) in zip(axes, mats):
+        rb = d["rigid_body"]
+        laws = [k for k in d if k != "rigid_body"]
+        for ax, (key, ylab) in zip(row, panels):
+            ax.plot(rb["angle_deg"], rb[key], "k-", lw=1.2, label="rigid body")
+            for i, law in enumerate(laws):
+                ax.plot(d[law]["angle_deg"], d[law][key], **_co_law_style(i, law))
+            ax.axvline(res.settings["sliding_angle_deg"], color="gray", ls=":", lw=0.8)
+            ax.set_xlabel("impact angle [deg]")
+            ax.set_ylabel(ylab)
+            ax.set_title(label, fontsize=10)
+            ax.grid(alpha=0.3)
+        row[0].set_ylim(0.5, 1.05)
+        row[0].legend(fontsize=7)
+    return fig
+
+
+def _co_theta(res, path):
+    """Test 5: Psi_r, Omega_r and f/mu against Theta with the published EE fit and rigid-body model."""
+    m = res.data["models"]
+    T = np.asarray(m["Theta"])
+    fw = np.asarray(m["wu_ee_f_over_mu"])
+    fr = np.asarray(m["rigid_f_over_mu"])
+    laws = res.settings["laws"]
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    curves = {"f_over_mu": (fw, fr), "Psi_r": (T - 7 * fw, T - 7 * fr), "Omega_r": (-fw, -fr)}
+    for ax, key in zip(axes, ("Psi_r", "Omega_r", "f_over_mu")):
+        ax.plot(T, curves[key][0], "k--", lw=1.1, label="Wu et al. (2009) EE fit")
+        ax.plot(T, curves[key][1], "k:", lw=1.1, label="rigid body")
+        for i, law in enumerate(laws):
+            ax.plot(res.data[law]["Theta"], res.data[law][key], **_co_law_style(i, law))
+        ax.set_xlabel("Theta = 2 tan(theta_i) / ((1 + e_n) mu)")
+        ax.set_ylabel(key.replace("_over_", " / "))
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    return fig
+
+
+def _co_spin(res, path):
+    """Tests 6, 8: beta and the recoil angle against chi."""
+    rb = res.data["rigid_body"]
+    laws = res.settings["laws"]
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    for ax, key, ylab in ((axes[0], "beta", "beta = -v_tr / v_ti"),
+                          (axes[1], "recoil_angle_deg", "recoil angle [deg]")):
+        ax.plot(rb["chi"], rb[key], "k-", lw=1.2, label="rigid body")
+        for i, law in enumerate(laws):
+            ax.plot(res.data[law]["chi"], res.data[law][key], **_co_law_style(i, law))
+        ax.set_xscale("log")
+        ax.axvline(1.0, color="gray", ls=":", lw=0.8)
+        ax.set_xlabel("chi = 3.5 mu (1 + e_n) V_ni / v_ti")
+        ax.set_ylabel(ylab)
+        ax.grid(alpha=0.3, which="both")
+    axes[0].legend(fontsize=7)
+    return fig
+
+
+def _co_no_slip(res, path):
+    """Test 7: rebound spins of both spheres against the incident spin (unchanged: w_r = w_i)."""
+    laws = res.settings["laws"]
+    fig, ax = plt.subplots(figsize=(6, 5))
+    w = np.asarray(res.data[laws[0]]["spin"])
+    ax.plot(w, w, "k-", lw=1, label="exact: sphere 1, w_r = w_i")
+    ax.plot(w, -w, "k--", lw=1, label="exact: sphere 2, w_r = -w_i")
+    for i, law in enumerate(laws):
+        d = res.data[law]
+        ax.plot(d["spin"], d["omega1_r"], **_co_law_style(i, law))
+        ax.plot(d["spin"], d["omega2_r"], **{**_co_law_style(i, law), "label": None})
+    ax.set_xlabel("incident spin of sphere 1 [rad/s]")
+    ax.set_ylabel("rebound spin [rad/s]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return fig
+
+
+_CO_FIGURES = {1: _co_normal, 2: _co_normal, 3: _co_restitution, 4: _co_oblique_angle, 5: _co_theta,
+               6: _co_spin, 7: _co_no_slip, 8: _co_spin}
+
+
+def chung_ooi_figure(res, path) -> list:
+    """Figure of one Chung & Ooi (2011) test (``chung_ooi.BenchmarkResult``) with its analytic curves;
+    writes a PNG to ``path`` and returns ``[path]``."""
+    fig = _CO_FIGURES[res.test](res, path)
+    fig.suptitle(f"Chung & Ooi test {res.test}: {res.title}", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return [path]
+
+
+def speed_accuracy_figure(rows, path, *, quantity: str = "err_f_over_mu"):
+    """Error against converged MDR versus time per impact (log-log), one panel per normal law, one line
+    per tangential law and integrator end (solid: located, dashed: standard); the Pareto front is the
+    black step line. ``rows``: ``chart.ChartRow`` list."""
+    normals = sorted({r.normal for r in rows})
+    laws = list(dict.fromkeys(r.tangential for r in rows))
+    colors = plt.get_cmap("tab10")
+    fig, axes = plt.subplots(1, len(normals), figsize=(6.5 * len(normals), 5.2), squeeze=False)
+    for ax, normal in zip(axes[0], normals):
+        for i, law in enumerate(laws):
+            for scheme, ls in (("located", "-"), ("standard", "--")):
+                pts = sorted((r for r in rows if r.normal == normal and r.tangential == law and r.scheme == scheme),
+                             key=lambda r: r.steps_per_contact)
+                pts = [r for r in pts if np.isfinite(getattr(r, quantity)) and getattr(r, quantity) > 0]
+                if not pts:
+                    continue
+                ax.plot([r.time_per_impact_us for r in pts], [getattr(r, quantity) for r in pts], ls,
+                        marker="o", ms=3, color=colors(i % 10), label=f"{law} ({scheme})" if scheme == "located"
+                        else None)
+        front = sorted((r for r in rows if r.normal == normal and r.pareto and getattr(r, quantity) > 0),
+                       key=lambda r: r.time_per_impact_us)
+        if front:
+            ax.step([r.time_per_impact_us for r in front], [getattr(r, quantity) for r in front], "k-",
+                    where="post", lw=2.5, alpha=0.35, label="Pareto front")
+            for r in front:
+                ax.annotate(f"{r.tangential} {r.steps_per_contact:g}", (r.time_per_impact_us, getattr(r, quantity)),
+                            fontsize=6, xytext=(3, 3), textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("time per impact [us] (serial, warm JIT)")
+        ax.set_ylabel(f"max |{quantity.replace('err_', '')} error| vs converged MDR, Theta in [0, 10]")
+        ax.set_title(f"normal law: {normal} (solid located, dashed standard end)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    return path
+
+
+def stability_figure(rows, path):
+    """Outcome grid of ``stability.stability_map`` rows: one row per tangential law and integrator end,
+    one column per case; colour = outcome (ok, inaccurate, coulomb, energy, blow-up, rejected)."""
+    from matplotlib.colors import ListedColormap
+
+    outcomes = ("ok", "inaccurate", "coulomb", "energy", "blow-up", "rejected")
+    colours = ("#4caf50", "#ffd54f", "#ff9800", "#e53935", "#6a1b9a", "#9e9e9e")
+    cases = list(dict.fromkeys(r.case for r in rows))
+    methods = list(dict.fromkeys((r.tangential, r.scheme) for r in rows))
+    grid = np.zeros((len(methods), len(cases)))
+    for r in rows:
+        grid[methods.index((r.tangential, r.scheme)), cases.index(r.case)] = outcomes.index(r.outcome)
+    fig, ax = plt.subplots(figsize=(1.0 + 0.55 * len(cases), 1.2 + 0.28 * len(methods)))
+    ax.imshow(grid, cmap=ListedColormap(colours), vmin=-0.5, vmax=len(outcomes) - 0.5, aspect="auto")
+    ax.set_xticks(range(len(cases)))
+    ax.set_xticklabels(cases, rotation=60, ha="right", fontsize=7)
+    ax.set_yticks(range(len(methods)))
+    ax.set_yticklabels([f"{t} ({s})" for t, s in methods], fontsize=7)
+    handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in colours]
+    ax.legend(handles, outcomes, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.set_title("stability map (EE steel scene; accuracy: |f/mu or e_n error| vs MDR <= 0.02)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    return path

@@ -1,0 +1,285 @@
+"""Sweeps: many independent impacts of one scene in a parallel kernel, and the direct critical angle.
+
+``sweep_angles`` varies the impact angle at fixed normal speed (the protocol of Wu, Thornton & Li 2009),
+``sweep_speed`` at fixed total speed (Kharaz et al. 2001; Chung & Ooi test 4), ``sweep_theta`` aims at
+given values of Theta, ``sweep`` takes any list of (vn, vt, spin). ``scene_with`` / ``sweep_scenes``
+build parameter studies (one Scene per value of mu or of a Poisson ratio). ``critical_angle`` finds the
+smallest angle at which the contact slides at every step (bisection on repeated impacts): the direct
+simulation estimate of Theta_c (physics.md section 6).
+
+Each impact has its own history row and output row, so the cost is linear in the number of impacts and
+the results equal single ``impact`` calls exactly.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit, prange
+
+from .errors import InputError, NumericalError
+from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident,
+                     impact, time_step)
+from .integrator import N_OUT, N_SERIES, integrate_impact
+from .materials import Material, Sphere, Wall, check_finite
+from .model import Scene
+
+#: Impacts per progress-bar update are chosen so that the bar advances about this many times.
+PROGRESS_UPDATES = 20
+
+
+@njit(parallel=True, cache=True)
+def sweep_kernel(nid, tid, p, hist, vn, vt, w1, w2, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out):
+    """Integrate independent impacts in parallel (prange over impacts).
+
+    p: parameter row (shared, read only); hist: float64[n, n_hist], zeroed rows, one per impact (written);
+    vn, vt, w1, w2, dt: float64[n] incident normal speed [m/s], tangential velocity [m/s], spins [rad/s],
+    time step [s]; max_steps: int64[n]; out: float64[n, N_OUT] (written, slots ``integrator.O_*``).
+    """
+    series = np.zeros((0, N_SERIES))
+    for i in prange(vn.shape[0]):
+        integrate_impact(nid, tid, p, hist[i], vn[i], vt[i], w1[i], w2[i], inv_m, R1, R2, inv_I1, inv_I2,
+                         dt[i], max_steps[i], locate, out[i], series)
+
+
+@dataclass
+class SweepResult:
+    """Impacts of one sweep: ``points`` (one ImpactResult each) and the main quantities as arrays.
+
+    theta_deg: impact angle of the centre velocity from the normal [deg]; Theta, Psi_r, Omega_r: the
+    dimensionless groups of physics.md section 0; f_over_mu: impulse ratio over mu; e_t (NaN at 0 deg),
+    e_n; persistent_sliding: the contact slid at every step.
+    """
+
+    points: list
+    model: dict
+    settings: dict
+    theta_deg: np.ndarray = field(init=False)
+    Theta: np.ndarray = field(init=False)
+    f_over_mu: np.ndarray = field(init=False)
+    e_t: np.ndarray = field(init=False)
+    e_n: np.ndarray = field(init=False)
+    Psi_r: np.ndarray = field(init=False)
+    Omega_r: np.ndarray = field(init=False)
+    Omega_i: np.ndarray = field(init=False)
+    persistent_sliding: np.ndarray = field(init=False)
+
+    def __post_init__(self):
+        for name, attr in [("theta_deg", "theta_i_deg"), ("Theta", "Theta"), ("f_over_mu", "f_over_mu"),
+                           ("e_t", "e_t"), ("e_n", "e_n"), ("Psi_r", "Psi_r"), ("Omega_r", "Omega_r"),
+                           ("Omega_i", "Omega_i")]:
+            setattr(self, name, np.array([getattr(r, attr) for r in self.points], dtype=float))
+        self.persistent_sliding = np.array([r.persistent_sliding for r in self.points], dtype=bool)
+
+    def __len__(self):
+        return len(self.points)
+
+    @property
+    def warnings(self) -> list:
+        """Distinct warnings of the impacts, each with the number of impacts that raised it."""
+        counts = {}
+        for r in self.points:
+            for w in r.warnings:
+                key = w.split(" (")[0].split(" by ")[0]
+                counts[key] = counts.get(key, 0) + 1
+        return [f"{k} ({n} of {len(self.points)} impacts)" for k, n in counts.items()]
+
+    def to_dicts(self) -> list:
+        """One JSON-ready dict per impact (the ImpactResult keys)."""
+        return [r.to_dict() for r in self.points]
+
+
+def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = None, scheme: str = "located",
+          progress: bool = False) -> SweepResult:
+    """Simulate independent impacts given by arrays (or scalars, broadcast) vn > 0 [m/s], vt [m/s] and
+    spin [rad/s]. Each impact gets ``steps_per_contact`` steps per elastic contact time at its own vn.
+    Raises NumericalError naming the first impact that failed."""
+    if not isinstance(scene, Scene):
+        raise InputError("scene must be a Scene")
+    if scheme not in SCHEMES:
+        raise InputError(f"scheme {scheme!r} is unknown; choose one of: {', '.join(SCHEMES)}")
+    vn, vt, spin = (np.atleast_1d(np.asarray(x, dtype=float)) for x in (vn, vt, spin))
+    try:
+        vn, vt, spin = (np.ascontiguousarray(x) for x in np.broadcast_arrays(vn, vt, spin))
+    except ValueError:
+        raise InputError(f"vn, vt and spin must have the same length or be scalars "
+                         f"(got {vn.size}, {vt.size}, {spin.size})") from None
+    if vn.ndim != 1 or vn.size == 0:
+        raise InputError("vn, vt and spin must be one-dimensional with at least one impact")
+    n = vn.size
+    for i in range(n):
+        check_incident(vn[i], vt[i], spin[i])
+    dts = np.empty(n)
+    spcs = np.empty(n)
+    for i in range(n):
+        dts[i], spcs[i] = time_step(scene, vn[i], steps_per_contact, None)
+    max_steps = np.ceil(MAX_CONTACT_TIMES * spcs).astype(np.int64) + 10
+    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    out = np.zeros((n, N_OUT))
+    hist = np.zeros((n, scene.history_size))
+    w2 = np.zeros(n)
+    locate = scheme == "located"
+    chunk = n if not progress else max(1, -(-n // PROGRESS_UPDATES))
+    bar = None
+    if progress:
+        from tqdm import tqdm
+        bar = tqdm(total=n, unit="impact", desc=f"sweep {scene.tangential}", leave=False)
+    try:
+        for s in range(0, n, chunk):
+            e = min(n, s + chunk)
+            sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[s:e], vn[s:e], vt[s:e],
+                         spin[s:e], w2[s:e], inv_m, R1, R2, inv_I1, inv_I2, dts[s:e], max_steps[s:e], locate,
+                         out[s:e])
+            if bar is not None:
+                bar.update(e - s)
+    finally:
+        if bar is not None:
+            bar.close()
+    points = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # recorded per impact in ImpactResult.warnings
+        for i in range(n):
+            try:
+                points.append(build_result(scene, out[i], vn[i], vt[i], spin[i], 0.0, dts[i], spcs[i], scheme))
+            except NumericalError as err:
+                raise NumericalError(f"impact {i} (vn = {vn[i]:g} m/s, vt = {vt[i]:g} m/s, spin = "
+                                     f"{spin[i]:g} rad/s) failed: {err}") from None
+    settings = {"scheme": scheme, "steps_per_contact": float(spcs[0]) if np.all(spcs == spcs[0]) else None,
+                "n_impacts": n}
+    return SweepResult(points=points, model=scene.describe(), settings=settings)
+
+
+def _angles(angles_deg) -> np.ndarray:
+    a = np.atleast_1d(np.asarray(angles_deg, dtype=float))
+    if a.ndim != 1 or a.size == 0:
+        raise InputError("angles_deg must be a non-empty list of angles [deg]")
+    for x in a:
+        check_finite("impact angle (deg)", x, lo=-90.0, hi=90.0, lo_open=True, hi_open=True)
+    return a
+
+
+def sweep_angles(scene: Scene, angles_deg, vn: float = 5.0, spin: float = 0.0, *,
+                 steps_per_contact: float | None = None, scheme: str = "located", progress: bool = False) -> SweepResult:
+    """Impacts at angles ``angles_deg`` from the normal at FIXED normal speed vn [m/s]:
+    vt = vn tan(angle) (the protocol of Wu et al. 2009)."""
+    a = _angles(angles_deg)
+    vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
+    res = sweep(scene, vn, vn * np.tan(np.radians(a)), spin, steps_per_contact=steps_per_contact,
+                scheme=scheme, progress=progress)
+    res.settings.update(protocol="fixed normal speed", vn=vn, spin=spin)
+    return res
+
+
+def sweep_speed(scene: Scene, angles_deg, speed: float = 5.0, spin: float = 0.0, *,
+                steps_per_contact: float | None = None, scheme: str = "located", progress: bool = False) -> SweepResult:
+    """Impacts at angles ``angles_deg`` at FIXED total speed [m/s]: vn = speed cos(angle), vt = speed
+    sin(angle) (Kharaz et al. 2001; Chung & Ooi test 4). Angles must be below 90 deg."""
+    a = _angles(angles_deg)
+    speed = check_finite("speed (total impact speed, m/s)", speed, lo=0.0)
+    r = np.radians(a)
+    res = sweep(scene, speed * np.cos(r), speed * np.sin(r), spin, steps_per_contact=steps_per_contact,
+                scheme=scheme, progress=progress)
+    res.settings.update(protocol="fixed total speed", speed=speed, spin=spin)
+    return res
+
+
+def sweep_theta(scene: Scene, Theta, vn: float = 5.0, *, steps_per_contact: float | None = None,
+                scheme: str = "located", progress: bool = False) -> SweepResult:
+    """Impacts aimed at the dimensionless incidence Theta = 2 tan(theta_i) / ((1 + e_n) mu), taking
+    e_n = 1: vt = Theta mu vn. The Theta reported is computed from the simulated e_n. Needs mu > 0."""
+    if scene.mu <= 0:
+        raise InputError("sweep_theta needs mu > 0")
+    T = np.atleast_1d(np.asarray(Theta, dtype=float))
+    for x in T:
+        check_finite("Theta (dimensionless incidence)", x, lo=0.0, lo_open=False)
+    vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
+    res = sweep(scene, vn, T * scene.mu * vn, 0.0, steps_per_contact=steps_per_contact, scheme=scheme,
+                progress=progress)
+    res.settings.update(protocol="fixed normal speed, aimed at Theta", vn=vn, spin=0.0)
+    return res
+
+
+def scene_with(scene: Scene, *, mu: float | None = None, nu: float | None = None, body: str = "elastic",
+               **kwargs) -> Scene:
+    """A copy of ``scene`` with another friction coefficient ``mu`` and/or Poisson ratio ``nu``.
+
+    body: which material takes ``nu``: "sphere", "wall" (body 2), "both", or "elastic" (every non-rigid
+    body; the default). Other keyword arguments (normal, tangential, e_n, v_ref) replace the scene's."""
+    if body not in ("sphere", "wall", "both", "elastic"):
+        raise InputError(f"body {body!r} is unknown; choose one of: sphere, wall, both, elastic")
+    sphere, body2 = scene.sphere, scene.body2
+    if nu is not None:
+        def swap(mat: Material, wanted: bool) -> Material:
+            if not wanted or mat.is_rigid:
+                return mat
+            return dataclasses.replace(mat, nu=nu)
+
+        m1 = swap(sphere.material, body in ("sphere", "both", "elastic"))
+        m2 = swap(body2.material, body in ("wall", "both", "elastic"))
+        if m1 is sphere.material and m2 is body2.material:
+            raise InputError(f"nu cannot be set on body {body!r}: it is rigid")
+        sphere = Sphere(sphere.radius, m1)
+        body2 = Sphere(body2.radius, m2) if isinstance(body2, Sphere) else Wall(m2)
+    opts = dict(mu=scene.mu if mu is None else mu, normal=scene.normal, tangential=scene.tangential,
+                e_n=scene.e_n, v_ref=scene.v_ref)
+    opts.update(kwargs)
+    return Scene(sphere, body2, **opts)
+
+
+def sweep_scenes(scenes: dict, angles_deg=None, vn: float = 5.0, *, Theta=None, **kwargs) -> dict:
+    """Parameter study: the same sweep for each Scene of ``scenes`` (label -> Scene). Give either
+    ``angles_deg`` (fixed normal speed) or ``Theta`` (see ``sweep_theta``). Returns label -> SweepResult."""
+    if (angles_deg is None) == (Theta is None):
+        raise InputError("give either angles_deg or Theta")
+    if Theta is not None:
+        return {k: sweep_theta(s, Theta, vn, **kwargs) for k, s in scenes.items()}
+    return {k: sweep_angles(s, angles_deg, vn, **kwargs) for k, s in scenes.items()}
+
+
+@dataclass
+class CriticalAngle:
+    """Smallest impact angle (at fixed vn, no spin) at which the contact slides at every step, bracketed
+    to ``tol_deg``; Theta is that of the first sliding impact (at angle_deg)."""
+
+    angle_deg: float
+    Theta: float
+    bracket_deg: tuple
+    impacts: int
+
+
+def critical_angle(scene: Scene, vn: float = 5.0, *, steps_per_contact: float | None = None,
+                   scheme: str = "located", tol_deg: float = 1e-6, lo_deg: float = 0.0,
+                   hi_deg: float = 89.5) -> CriticalAngle:
+    """Direct simulation estimate of the critical angle (physics.md section 6): bisection in the impact
+    angle on repeated impacts, between a non-sliding ``lo_deg`` and a persistently sliding ``hi_deg``.
+    Raises NumericalError when the bracket does not hold (no sliding even at hi_deg)."""
+    vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
+    tol_deg = check_finite("tol_deg", tol_deg, lo=0.0)
+    if scene.mu <= 0:
+        raise InputError("critical_angle needs mu > 0")
+    count = [0]
+
+    def run(angle):
+        count[0] += 1
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return impact(scene, vn, vn * math.tan(math.radians(angle)), steps_per_contact=steps_per_contact,
+                          scheme=scheme)
+
+    lo, hi = float(lo_deg), float(hi_deg)
+    if run(lo).persistent_sliding:
+        raise NumericalError(f"the contact already slides at every step at {lo:g} deg")
+    r_hi = run(hi)
+    if not r_hi.persistent_sliding:
+        raise NumericalError(f"no persistent sliding up to {hi:g} deg")
+    while hi - lo > tol_deg:
+        mid = 0.5 * (lo + hi)
+        r = run(mid)
+        if r.persistent_sliding:
+            hi, r_hi = mid, r
+        else:
+            lo = mid
+    return CriticalAngle(angle_deg=hi, Theta=r_hi.Theta, bracket_deg=(lo, hi), impacts=count[0])

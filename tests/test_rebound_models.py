@@ -1,0 +1,87 @@
+"""Rebound models (physics.md section 6): identities, limits, critical values."""
+import numpy as np
+import pytest
+
+from dem_contact import rebound_models as rm
+
+T = np.linspace(0.05, 15.0, 300)
+EE = rm.PUBLISHED_FITS["EE"]
+
+
+@pytest.mark.parametrize("model", [
+    lambda t: rm.wu(t, EE["c"]),
+    lambda t: rm.bilinear(t, 0.8235),
+    lambda t: rm.rigid_body(t),
+])
+def test_momentum_identities(model):
+    m = model(T)
+    fm = m["f_over_mu"]
+    assert np.allclose(m["e_t"], 1 - 2 * fm / T, rtol=0, atol=1e-14)
+    assert np.allclose(m["Omega_r"], -fm, rtol=0, atol=1e-14)
+    assert np.allclose(m["Psi_r"], T - 7 * fm, rtol=0, atol=1e-12)
+    assert np.all(fm <= 1.0) and np.all(fm >= 0.0)
+
+
+def test_identities_with_initial_spin():
+    m = rm.wu(T, EE["c"], Omega_i=0.4)
+    assert np.allclose(m["Omega_r"], 0.4 - m["f_over_mu"])
+    assert np.allclose(m["Psi_r"], T + 5 * 0.4 - 7 * m["f_over_mu"])
+
+
+@pytest.mark.parametrize("nu, expected", [(0.0, 6.0), (0.3, 5.786), (0.49, 5.520)])
+def test_theta_c_eq_4_1(nu, expected):
+    assert rm.theta_c_theory(rm.kappa_from_nu(nu)) == pytest.approx(expected, abs=6e-4)
+    assert rm.collapse_variable(expected, rm.kappa_from_nu(nu)) == pytest.approx(1.0, abs=1e-4)
+
+
+def test_persistent_sliding_limits():
+    for m in (rm.wu(T, EE["c"]), rm.bilinear(T, 0.8235), rm.rigid_body(T)):
+        hi = T >= 7.0
+        assert np.all(m["f_over_mu"][hi] == 1.0)
+        assert np.allclose(m["e_t"][hi], 1 - 2 / T[hi])
+        assert np.allclose(m["Psi_r"][hi], T[hi] - 7)
+        assert np.allclose(m["Omega_r"][hi], -1.0)
+    ps = rm.persistent_sliding(T)
+    assert np.allclose(ps["Psi_r"], T - 7) and np.allclose(ps["e_t"], 1 - 2 / T)
+
+
+@pytest.mark.parametrize("kappa", [1.0, 0.8235, 0.6755])
+def test_bilinear_model(kappa):
+    beta = 1 / (7 * kappa - 1)
+    tc = rm.theta_c_theory(kappa)
+    m = rm.bilinear(T, kappa)
+    lo = T < tc
+    assert np.allclose(m["Psi_r"][lo], -beta * T[lo])
+    assert np.allclose(m["e_t"][lo], 1 - 2 * (1 + beta) / 7)
+    # continuous at Theta_c: -beta Theta_c = Theta_c - 7
+    assert -beta * tc == pytest.approx(tc - 7)
+
+
+def test_rigid_body_model():
+    m = rm.rigid_body(T)
+    lo = T < 7
+    assert np.allclose(m["e_t"][lo], 5 / 7)
+    assert np.allclose(m["Psi_r"][lo], 0.0, atol=1e-12)
+    assert np.allclose(m["Omega_r"][lo], -T[lo] / 7)
+
+
+def test_wu_crossing_and_published_levels():
+    for row in rm.PUBLISHED_FITS.values():
+        tc = rm.wu_crossing(row["c"])
+        assert rm.wu_curve(tc, row["c"]) == pytest.approx(1.0, abs=1e-12)
+        # f/mu = 1 from the crossing on, continuous there
+        assert rm.wu_f_over_mu(tc + 1e-9, row["c"]) == 1.0
+        assert rm.wu_f_over_mu(tc - 1e-9, row["c"]) == pytest.approx(1.0, abs=1e-8)
+    # physics.md: the printed EE curve crosses 1 at 5.85; printed Theta_c sit where the curve is ~0.99
+    assert rm.wu_crossing(EE["c"]) == pytest.approx(5.85, abs=0.01)
+    for row in rm.PUBLISHED_FITS.values():
+        level = rm.wu_curve(row["Theta_c_paper"], row["c"])
+        assert level == pytest.approx(0.99, abs=0.01)
+        assert level < 1.0 and row["Theta_c_paper"] < rm.wu_crossing(row["c"])
+    assert rm.wu_crossing((0.0, -0.5, 1.0, -0.5)) == np.inf
+
+
+def test_max_curve_difference():
+    assert rm.max_curve_difference(EE["c"], EE["c"], 6.0) == 0.0
+    shifted = (EE["c"][0] + 0.01,) + tuple(EE["c"][1:])
+    assert rm.max_curve_difference(EE["c"], shifted, 5.0) == pytest.approx(0.01, abs=1e-12)
