@@ -29,7 +29,7 @@ from . import chart
 from .errors import InputError
 from .fit import fit_wu
 from .materials import Wall, check_finite
-from .model import MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
+from .model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
 from .rebound_models import wu_curve
 
 #: Laws at coarse steps tried as candidates: (tangential law, steps per contact).
@@ -60,9 +60,11 @@ class Advice:
 
 
 def _with_law(scene: Scene, tangential: str, vmax: float, **kw) -> Scene:
+    """The scene with another tangential law (same normal law and calibration); mdr springs cover vmax."""
+    if tangential == "mdr":
+        kw["mdr_max_radius"] = MDR_RADIUS_MARGIN * scene.max_contact_radius(vmax)
     return Scene(scene.sphere, scene.body2, mu=scene.mu, normal=scene.normal, tangential=tangential,
-                 e_n=scene.e_n, v_ref=scene.v_ref if tangential != "mdr" else max(vmax, scene.v_ref or 0.0),
-                 **kw)
+                 e_n=scene.e_n, v_ref=scene.v_ref, **kw)
 
 
 def _sample(vn_range, angle_range, n_speeds, n_angles, rng=None):

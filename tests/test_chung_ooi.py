@@ -54,23 +54,28 @@ def test_oblique_constant_speed_sliding_branch_is_rigid_body():
     assert n_sliding >= 10
 
 
-def test_spinning_sphere_fast_slip_is_rigid_body_sliding():
-    """Test 6 at its largest spin (chi = 0.2, deep in the sliding branch)."""
-    res = co.benchmark_test6(co.STEPS_PER_CONTACT, DEFAULT)
+@pytest.mark.parametrize("test", [6, 8])
+def test_spinning_sphere_sliding_branch_is_rigid_body_sliding(test):
+    """Tests 6 and 8: for chi <= 1 (the patch slides throughout) beta = chi - 1 and the recoil angle follow
+    the rigid-body formulas within 0.5%."""
+    res = co.run_test(test, laws=DEFAULT)
     d = res.data[DEFAULT[0]]
-    i = int(np.argmin(d["chi"]))
-    chi = d["chi"][i]
-    assert chi < 0.25
-    ref = co.rigid_spin(chi, 0.4, 0.5)
-    assert abs(d["beta"][i] - float(ref["beta"])) < 5e-3
-    assert d["recoil_angle_deg"][i] == pytest.approx(float(ref["recoil_angle_deg"]), rel=5e-3)
+    chi = np.asarray(d["chi"])
+    sliding = chi <= 1.0
+    assert sliding.sum() >= 5
+    ref = co.rigid_spin(chi[sliding], 0.4, 0.5)
+    assert np.max(np.abs(np.asarray(d["beta"])[sliding] - ref["beta"])) < 5e-3
+    np.testing.assert_allclose(np.asarray(d["recoil_angle_deg"])[sliding], ref["recoil_angle_deg"], rtol=5e-3)
 
 
-def test_spin_sliding_deficit_is_a_model_property_not_a_time_step_error():
+def test_damped_hertz_misses_the_sliding_branch_independently_of_dt():
+    """With hertz_damped the dashpot outruns the tangential spring at first touch: f/mu < 1 near chi = 1,
+    the same at 1000 and 4000 steps per contact (a model property, not a time-step error)."""
     scene = Scene(Sphere(0.1, co.AL_ALLOY), Wall.rigid(), mu=0.4, normal="hertz_damped", e_n=0.5,
                   tangential=DEFAULT[0], v_ref=0.2)
     f = [impact(scene, 0.2, 0.0, 4.2 / 0.9, steps_per_contact=spc).f_over_mu for spc in (1000, 4000)]
     assert f[0] == pytest.approx(f[1], abs=1e-3)
+    assert f[0] < 0.99
 
 
 def test_sphere_pair_impulse_relations_use_both_inertias():
