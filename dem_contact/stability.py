@@ -24,7 +24,7 @@ from dataclasses import asdict, dataclass
 
 from .errors import InputError, NumericalError
 from .impact import impact
-from .materials import STEEL, Material, Sphere, Wall
+from .materials import STEEL, Material, Sphere, Wall, pair_properties
 from .model import TANGENTIAL_LAWS, Scene
 
 ACCURACY_TOL = 0.02
@@ -85,7 +85,6 @@ def case_scene(case: Case, tangential: str) -> Scene:
     normal = "hertz"
     if case.plastic_ratio > 0:
         # p_y such that V_y = vn / ratio (physics.md 3, sphere on wall: V_y = 1.5605 sqrt(p_y^5 / (E*^4 rho)))
-        from .materials import pair_properties
         E_star = pair_properties(Sphere(0.01, mat), Wall(mat)).E_star
         vy = case.vn / case.plastic_ratio
         p_y = (vy / 1.5605) ** 0.4 * (E_star**4 * STEEL.rho) ** 0.2
