@@ -17,10 +17,9 @@ MDR reference (physics.md 7) for the accuracy class:
 """
 from __future__ import annotations
 
-import csv
 import math
 import warnings
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 from .errors import InputError, NumericalError
 from .impact import impact
@@ -145,9 +144,3 @@ def stability_map(laws=None, schemes=("located", "standard"), cases=CASES, progr
     return rows
 
 
-def write_csv(rows, path):
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))
-        w.writeheader()
-        for r in rows:
-            w.writerow(asdict(r))

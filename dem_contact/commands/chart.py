@@ -61,13 +61,13 @@ def run(args) -> int:
 
 
 def run_stability(args) -> int:
-    from .. import stability
+    from .. import chart, stability
     from ..plots import stability_figure
 
     rows = stability.stability_map(laws=args.laws)
     os.makedirs(args.out, exist_ok=True)
     csv_path = os.path.join(args.out, "stability.csv")
-    stability.write_csv(rows, csv_path)
+    chart.write_csv(rows, csv_path)
     png = stability_figure(rows, os.path.join(args.out, "stability.png"))
     for r in rows:
         if r.outcome != "ok":

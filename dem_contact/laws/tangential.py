@@ -6,7 +6,6 @@ the contact patch. It returns T [N], the tangential force in the direction of po
 force on body 1 is -T), and updates its history slots in place. Every law caps |T| <= mu N.
 When N <= 0 or a <= 0 the contact carries no tangential load: history is released.
 """
-import math
 
 from numba import njit
 
