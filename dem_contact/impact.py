@@ -234,8 +234,8 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         n = int(out[O_STEPS])
         names = {S_T: "t", S_DELTA: "overlap", S_N: "normal_force", S_TANG: "tangential_force",
                  S_A: "contact_radius", S_VN: "vn", S_VSLIP: "v_slip"}
-        series_dict = {name: np.concatenate([[0.0 if col != S_VN and col != S_VSLIP else
-                                              (vn if col == S_VN else v_ti)], ser[:n, col]])
+        first = {S_VN: vn, S_VSLIP: v_ti}     # the state at first touch heads every column
+        series_dict = {name: np.concatenate([[first.get(col, 0.0)], ser[:n, col]])
                        for col, name in names.items()}
     return ImpactResult(
         vn_i=vn, vt_i=vt, omega_i=spin, vn_r=vn_r, vt_r=vt_r, omega_r=w_r,

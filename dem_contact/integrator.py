@@ -135,12 +135,15 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     steps = 0
     for k in range(max_steps):
         hdt = dt
-        vn_h = vn - 0.5 * hdt * N * inv_m
+        kick = 0.5 * hdt * N * inv_m
+        vn_h = vn - kick
         delta_new = delta + vn_h * hdt
-        ended = normal_gap(nid, p, h, delta_new, vn_h - 0.5 * hdt * N * inv_m) <= 0.0
+        # velocity-dependent forces see the end-of-step velocity predicted with the old force
+        ended = normal_gap(nid, p, h, delta_new, vn_h - kick) <= 0.0
         if ended and locate:
             hdt = dt * _end_fraction(nid, p, h, delta, vn, N, inv_m, dt)
-            vn_h = vn - 0.5 * hdt * N * inv_m
+            kick = 0.5 * hdt * N * inv_m
+            vn_h = vn - kick
             delta_new = delta + vn_h * hdt
         vt_h = vt - 0.5 * hdt * T * inv_m
         w1_h = w1 - 0.5 * hdt * R1 * T * inv_I1
@@ -152,10 +155,9 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
             a = 0.0
             Tn = 0.0
         else:
-            # velocity-dependent forces see the end-of-step velocity predicted with the old force;
             # at a located end the force is the limit from inside the contact
             d_eval = delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
-            Nn, a, Tn = contact_step(nid, tid, p, h, d_eval, vn_h - 0.5 * hdt * N * inv_m, dd)
+            Nn, a, Tn = contact_step(nid, tid, p, h, d_eval, vn_h - kick, dd)
         PN += 0.5 * hdt * (N + Nn)
         PT += 0.5 * hdt * (T + Tn)
         WN += 0.5 * (N + Nn) * (delta_new - delta)

@@ -66,6 +66,8 @@ MDR_RADIUS_MARGIN = 1.05
 
 #: Steps per Hertz contact time used to calibrate the damped-Hertz dashpot.
 CALIBRATION_STEPS = 4000
+#: Hertz contact time of the unit problem E* = R* = m* = V = 1.
+UNIT_HERTZ_TC = cf.hertz_contact_time(1.0, 1.0, 1.0, 1.0)
 #: ``hertz_damped`` with e_n = 0 (and any e_n below this) uses the dashpot calibrated for this e_n: a dashpot
 #: reaches e_n = 0 only in the limit gamma -> inf, so the rebound speed is at most 1e-4 of the impact speed.
 HERTZ_DAMPED_EN_FLOOR = 1e-4
@@ -77,27 +79,30 @@ def _law(name: str, table: dict, what: str) -> int:
     return table[name]
 
 
+def _unit_damped_impact(gamma: float) -> np.ndarray:
+    """Output row of a normal damped-Hertz impact of the unit problem (E* = R* = m* = V = 1) at
+    CALIBRATION_STEPS steps per Hertz contact time: e_n and t_c / t_c,Hertz depend on gamma alone."""
+    p = np.zeros(N_PARAMS)
+    p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
+    p[P_GAMMA] = gamma
+    out = np.zeros(N_OUT)
+    integrate_impact(C.HERTZ_DAMPED, C.MD, p, np.zeros(N_HIST_BASE), 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0,
+                     0.0, UNIT_HERTZ_TC / CALIBRATION_STEPS, 100 * CALIBRATION_STEPS, True, out,
+                     np.zeros((0, N_SERIES)))
+    return out
+
+
 @functools.lru_cache(maxsize=256)
 def hertz_damping_for_restitution(e_n: float) -> float:
-    """Dashpot ratio gamma of ``hertz_damped`` that gives restitution ``e_n`` (0 < e_n <= 1).
-
-    e_n of the clamped damped-Hertz law depends on gamma alone, so gamma is found once by root finding
-    on simulated normal impacts of a unit problem (E* = R* = m* = V = 1)."""
+    """Dashpot ratio gamma of ``hertz_damped`` that gives restitution ``e_n`` (0 < e_n <= 1), found once
+    by root finding on simulated normal impacts of the unit problem."""
     from scipy.optimize import brentq
 
     if e_n >= 1.0:
         return 0.0
-    p = np.zeros(N_PARAMS)
-    p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
-    dt = cf.hertz_contact_time(1.0, 1.0, 1.0, 1.0) / CALIBRATION_STEPS
-    out = np.zeros(N_OUT)
-    series = np.zeros((0, N_SERIES))
 
     def restitution(gamma):
-        p[P_GAMMA] = gamma
-        h = np.zeros(N_HIST_BASE)
-        integrate_impact(C.HERTZ_DAMPED, C.MD, p, h, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0,
-                         dt, 100 * CALIBRATION_STEPS, True, out, series)
+        out = _unit_damped_impact(gamma)
         if out[O_STATUS] != 0:
             raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
         return -out[O_VN]
@@ -112,18 +117,10 @@ def hertz_damping_for_restitution(e_n: float) -> float:
 
 @functools.lru_cache(maxsize=256)
 def hertz_damped_time_ratio(gamma: float) -> float:
-    """Contact time of the damped-Hertz law over the elastic Hertz contact time (a function of gamma
-    alone, simulated once on the unit problem E* = R* = m* = V = 1)."""
+    """Contact time of the damped-Hertz law over the elastic Hertz contact time (gamma alone)."""
     if gamma == 0.0:
         return 1.0
-    p = np.zeros(N_PARAMS)
-    p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
-    p[P_GAMMA] = gamma
-    tc = cf.hertz_contact_time(1.0, 1.0, 1.0, 1.0)
-    out = np.zeros(N_OUT)
-    integrate_impact(C.HERTZ_DAMPED, C.MD, p, np.zeros(N_HIST_BASE), 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0,
-                     0.0, tc / CALIBRATION_STEPS, 100 * CALIBRATION_STEPS, True, out, np.zeros((0, N_SERIES)))
-    return min(1.0, out[O_TC] / tc)
+    return min(1.0, _unit_damped_impact(gamma)[O_TC] / UNIT_HERTZ_TC)
 
 
 class Scene:
