@@ -1,9 +1,9 @@
 """dem_contact: validated, fast contact laws for spheres (Hertz, Thornton, Mindlin-Deresiewicz) and
 the oblique sphere-wall impact they govern."""
 from .errors import InputError, NumericalError
-from .impact import DEFAULT_STEPS_PER_CONTACT, EnergyBudget, ImpactResult, impact
+from .impacts.impact import DEFAULT_STEPS_PER_CONTACT, EnergyBudget, ImpactResult, impact
 from .materials import STEEL, Material, PairProperties, Sphere, Wall, pair_properties
-from .model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+from .laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
 
 __version__ = "0.1.0"
 

@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import rebound_models as rm  # noqa: E402
+from .rebound import models as rm  # noqa: E402
 
 DPI = 100
 

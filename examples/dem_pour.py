@@ -2,7 +2,7 @@
 
 Velocity Verlet for positions, velocities and spins; gravity; five walls (floor and four sides, each
 with its own material); a cell-list neighbour search; contact histories kept per particle and carried
-from step to step; every contact force from ``dem_contact.contact3d.contact_force_xyz``.
+from step to step; every contact force from ``dem_contact.dem.contact3d.contact_force_xyz``.
 
 Writes into --out: legacy VTK files ``pour_XXXX.vtk`` (open the series in ParaView: points with
 radius, type, velocity, force), ``energy.csv`` (kinetic, potential, elastic and total energy over time),
@@ -18,10 +18,10 @@ import time
 import numpy as np
 from numba import njit
 
-from dem_contact.contact3d import N_HIST3D, contact_force_xyz, reset_contact
+from dem_contact.dem.contact3d import N_HIST3D, contact_force_xyz, reset_contact
 from dem_contact.laws.slots import P_ESTAR, P_RSTAR
 from dem_contact.materials import Material, Sphere, Wall
-from dem_contact.pairs import pair_table
+from dem_contact.dem.pairs import pair_table
 
 GRAVITY = 9.81
 MAX_CONTACTS = 16          # contact slots per particle (partners j > i)

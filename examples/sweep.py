@@ -7,7 +7,7 @@ import argparse
 import numpy as np
 
 from dem_contact import STEEL, Scene, Sphere, Wall
-from dem_contact.sweep import sweep_theta
+from dem_contact.impacts.sweep import sweep_theta
 
 
 def main(argv=None):

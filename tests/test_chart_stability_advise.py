@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 import dem_contact as dc
-from dem_contact import advise as adv
-from dem_contact import chart, stability
-from dem_contact.impact import build_result
-from dem_contact.integrator import N_OUT, O_COULOMB, O_FMAX, O_PN, O_PT, O_STATUS, O_VN
+from dem_contact.studies import advise as adv
+from dem_contact.studies import chart, stability
+from dem_contact.impacts.impact import build_result
+from dem_contact.impacts.integrator import N_OUT, O_COULOMB, O_FMAX, O_PN, O_PT, O_STATUS, O_VN
 
 
 def test_chart_errors_and_pareto():

@@ -4,12 +4,12 @@ import math
 import numpy as np
 import pytest
 
-from dem_contact import chung_ooi as co
-from dem_contact import closed_forms as cf
+from dem_contact.studies import chung_ooi as co
+from dem_contact.laws import closed_forms as cf
 from dem_contact.cli import main
-from dem_contact.impact import impact
+from dem_contact.impacts.impact import impact
 from dem_contact.materials import Sphere, Wall
-from dem_contact.model import Scene
+from dem_contact.laws.model import Scene
 
 DEFAULT = [co.default_tangential_law()]
 

@@ -9,19 +9,19 @@ import numpy as np
 import pytest
 from numba import njit
 
-from dem_contact import closed_forms as cf
-from dem_contact.contact3d import (N_HIST3D, contact_force, contact_force_xyz, contact_forces_batch,
+from dem_contact.laws import closed_forms as cf
+from dem_contact.dem.contact3d import (N_HIST3D, contact_force, contact_force_xyz, contact_forces_batch,
                                    contact_forces_serial, new_histories, peek_force, reset_contact,
                                    swap_bodies)
 from dem_contact.errors import InputError
-from dem_contact.impact import body_inertia
-from dem_contact.integrator import (N_OUT, N_SERIES, O_STATUS, O_VN, O_VT, O_W1, TOUCH_OVERLAP,
+from dem_contact.impacts.impact import body_inertia
+from dem_contact.impacts.integrator import (N_OUT, N_SERIES, O_STATUS, O_VN, O_VT, O_W1, TOUCH_OVERLAP,
                                    integrate_impact)
 from dem_contact.laws.contact import normal_force, normal_gap
 from dem_contact.laws.slots import H_N, P_ESTAR, P_MU, P_RSTAR
 from dem_contact.materials import STEEL, Material, Sphere, Wall
-from dem_contact.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
-from dem_contact.pairs import pair_table
+from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+from dem_contact.dem.pairs import pair_table
 
 
 @njit(cache=True)
@@ -360,9 +360,9 @@ def test_user_loop_caches_and_calls_the_kernel(tmp_path):
     script.write_text(textwrap.dedent("""
         import numpy as np
         from numba import njit
-        from dem_contact.contact3d import contact_force_xyz, N_HIST3D
+        from dem_contact.dem.contact3d import contact_force_xyz, N_HIST3D
         from dem_contact.materials import STEEL, Sphere, Wall
-        from dem_contact.model import Scene
+        from dem_contact.laws.model import Scene
 
         @njit(cache=True)
         def loop(nid, tid, p, h, h3, steps):

@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from dem_contact import rebound_models as rm
+from dem_contact.rebound import models as rm
 from dem_contact.errors import InputError
-from dem_contact.fit import critical_theta, fit_wu
+from dem_contact.rebound.fit import critical_theta, fit_wu
 
 
 @pytest.mark.parametrize("key", ["EE", "RE nu=0", "PE 5 m/s"])

@@ -87,7 +87,7 @@ def test_convergence_in_springs_and_steps():
     assert abs(ft[0] - ft[1]) > 2.2 * abs(ft[1] - ft[2]) > 0
     # the 4-digit defaults agree with a finer solution to 1e-5
     fine = f_over_mu(mdr_scene(mdr_springs=400), 1.0, 2000)
-    default = f_over_mu(mdr_scene(), 1.0, dc.model.MDR_STEPS_PER_CONTACT)
+    default = f_over_mu(mdr_scene(), 1.0, dc.laws.model.MDR_STEPS_PER_CONTACT)
     assert default == pytest.approx(fine, abs=1e-5)
 
 
@@ -137,7 +137,7 @@ def test_adaptive_grid_follows_the_contact():
     """The adaptive law needs no extent: the same scene serves speeds four decades apart, and its
     history row holds the cell width and the cells."""
     sc = mdr_scene(tangential="mdr_adaptive", v_ref=None)
-    assert sc.history_size == N_HIST_BASE + 1 + dc.model.MDR_ADAPTIVE_CELLS
+    assert sc.history_size == N_HIST_BASE + 1 + dc.laws.model.MDR_ADAPTIVE_CELLS
     for vn in (1e-3, 10.0):
         ref = mdr_scene(mdr_springs=100, v_ref=vn)
         vt = vt_for_Theta(1.0, MU, vn)

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import dem_contact as dc
-from dem_contact import closed_forms as cf
+from dem_contact.laws import closed_forms as cf
 from dem_contact.laws import normal
 from dem_contact.laws.slots import H_DP, H_RP, N_HIST_BASE
 
@@ -127,5 +127,5 @@ def test_damped_and_linear_restitution(steel_sphere, steel_wall, e_n):
     sl = dc.Scene(steel_sphere, steel_wall, normal="linear", e_n=e_n, v_ref=5.0)
     r = dc.impact(sl, 5.0, steps_per_contact=1000)
     assert r.e_n == pytest.approx(e_n, abs=1e-5)
-    assert r.contact_time == pytest.approx(cf.linear_contact_time(sl.params[dc.model.P_KN], sl.pair.m_star,
+    assert r.contact_time == pytest.approx(cf.linear_contact_time(sl.params[dc.laws.model.P_KN], sl.pair.m_star,
                                                                   cf.linear_damping_ratio(e_n)), rel=1e-5)

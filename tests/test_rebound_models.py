@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from dem_contact import rebound_models as rm
+from dem_contact.rebound import models as rm
 
 T = np.linspace(0.05, 15.0, 300)
 EE = rm.PUBLISHED_FITS["EE"]

@@ -5,13 +5,13 @@ import math
 import numpy as np
 import pytest
 
-from dem_contact import rebound_models as rm
+from dem_contact.rebound import models as rm
 from dem_contact.cli import main
-from dem_contact.commands.common import preset_scene
+from dem_contact.impacts.presets import preset_scene
 from dem_contact.errors import InputError
-from dem_contact.impact import impact
-from dem_contact.validation import UNIVERSALITY_TOL
-from dem_contact.sweep import critical_angle, scene_with, sweep, sweep_angles, sweep_speed, sweep_theta
+from dem_contact.impacts.impact import impact
+from dem_contact.studies.wu2009 import UNIVERSALITY_TOL
+from dem_contact.impacts.sweep import critical_angle, scene_with, sweep, sweep_angles, sweep_speed, sweep_theta
 
 SPC = 200
 ANGLES = [0.0, 10.0, 25.0, 40.0, 55.0, 70.0]

@@ -5,7 +5,7 @@ Usage: python validation/validate.py [OUTDIR]   (default: the directory of this 
 import os
 import sys
 
-from dem_contact.validation import run_validation
+from dem_contact.studies.wu2009 import run_validation
 
 if __name__ == "__main__":
     outdir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))

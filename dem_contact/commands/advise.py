@@ -26,7 +26,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from ..advise import advise
+    from ..studies.advise import advise
 
     args.vn = args.vn_range[1]
     scene = scene_from_args(args)

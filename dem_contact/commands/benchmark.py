@@ -30,7 +30,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from .. import chung_ooi as co
+    from ..studies import chung_ooi as co
 
     tests = args.test or list(co.TESTS)
     for n in tests:

@@ -35,7 +35,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from .. import chart
+    from ..studies import chart
     from ..plots import speed_accuracy_figure
 
     if args.stability:
@@ -61,7 +61,8 @@ def run(args) -> int:
 
 
 def run_stability(args) -> int:
-    from .. import chart, stability
+    from ..studies import chart
+    from ..studies import stability
     from ..plots import stability_figure
 
     rows = stability.stability_map(laws=args.laws)

@@ -1,22 +1,14 @@
-"""Scene options shared by the subcommands (sphere, wall, laws, time step) and the published presets."""
+"""Scene options shared by the subcommands (sphere, wall, laws, time step), parsed into the presets of
+``impacts.presets``."""
 from __future__ import annotations
 
-import inspect
 import json
 import math
 
 from ..errors import InputError
-from ..materials import STEEL, Material, Sphere, Wall, check_finite
-from ..model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
-
-#: The library's default tangential law (the default of Scene).
-DEFAULT_TANGENTIAL = inspect.signature(Scene).parameters["tangential"].default
-
-#: Scenes of Wu, Thornton & Li (2009) (physics.md section 6): steel sphere R = 10 mm, mu = 0.3.
-#: RE: rigid sphere on an elastic half-space (nu set by --nu); EE: elastic steel on elastic steel;
-#: PE: elastic-perfectly plastic sphere (Y = 1.85 GPa, p_y = 1.6 Y) on elastic steel, thornton law.
-CASES = ("RE", "EE", "PE")
-PE_YIELD_STRESS = 1.85e9
+from ..impacts.presets import CASES, DEFAULT_TANGENTIAL, preset_scene
+from ..laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+from ..materials import STEEL
 
 
 def add_scene_options(p, vn_default=5.0):
@@ -59,31 +51,10 @@ def add_scene_options(p, vn_default=5.0):
 
 def scene_from_args(args) -> Scene:
     """Build the Scene that the options describe (validated)."""
-    check_finite("vn (normal impact speed towards the wall, m/s)", args.vn, lo=0.0)
-    E = 208e9 if args.E is None else args.E
-    nu = 0.3 if args.nu is None else args.nu
-    wall_E = STEEL.E if args.wall_E is None else args.wall_E
-    wall_nu = STEEL.nu if args.wall_nu is None else args.wall_nu
-    yield_pressure, yield_stress = args.yield_pressure, args.yield_stress
-    normal = args.normal
-    rigid_sphere, rigid_wall = args.rigid_sphere, args.rigid_wall
-    if args.case == "RE":
-        rigid_sphere = True
-        if args.nu is not None and args.wall_nu is None:
-            wall_nu, nu = args.nu, 0.3
-    elif args.case == "PE":
-        normal = normal or "thornton"
-        if yield_pressure is None and yield_stress is None and args.e_n is None:
-            yield_stress = PE_YIELD_STRESS
-    normal = normal or "hertz"
-    if rigid_sphere:
-        sphere_mat = Material.rigid(rho=args.density)
-    else:
-        sphere_mat = Material(E=E, nu=nu, rho=args.density, yield_pressure=yield_pressure, yield_stress=yield_stress)
-    wall = Wall.rigid() if rigid_wall else Wall(Material(E=wall_E, nu=wall_nu, rho=STEEL.rho))
-    laws = {} if args.tangential is None else {"tangential": args.tangential}
-    return Scene(Sphere(args.radius, sphere_mat), wall, mu=args.mu, normal=normal, e_n=args.e_n, v_ref=args.vn,
-                 **laws)
+    return preset_scene(args.case, args.vn, radius=args.radius, density=args.density, E=args.E, nu=args.nu,
+                        wall_E=args.wall_E, wall_nu=args.wall_nu, rigid_sphere=args.rigid_sphere,
+                        rigid_wall=args.rigid_wall, mu=args.mu, normal=args.normal, tangential=args.tangential,
+                        yield_pressure=args.yield_pressure, yield_stress=args.yield_stress, e_n=args.e_n)
 
 
 def time_options(args) -> dict:
@@ -98,19 +69,3 @@ def angle_to_vt(vn: float, angle_deg: float) -> float:
     if not -90.0 < angle_deg < 90.0:
         raise InputError(f"angle = {angle_deg:g} deg is outside the valid range (-90, 90)")
     return vn * math.tan(math.radians(angle_deg))
-
-
-def preset_scene(case: str = "EE", vn: float = 5.0, **options) -> Scene:
-    """The Scene of a --case preset at normal speed ``vn``, as the CLI builds it; ``options`` are other
-    scene options by their argument names (nu, mu, tangential, normal, ...)."""
-    import argparse
-
-    p = argparse.ArgumentParser()
-    add_scene_options(p)
-    args = p.parse_args([])
-    args.case, args.vn = case, vn
-    for k, v in options.items():
-        if not hasattr(args, k):
-            raise InputError(f"unknown scene option {k!r}")
-        setattr(args, k, v)
-    return scene_from_args(args)

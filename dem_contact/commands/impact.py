@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import warnings
 
-from ..impact import impact
+from ..impacts.impact import impact
 from .common import add_scene_options, angle_to_vt, dump_json, scene_from_args, time_options
 
 ORDER = 1

@@ -8,10 +8,10 @@ import sys
 import numpy as np
 
 from ..errors import InputError
-from ..fit import critical_theta, fit_wu
+from ..rebound.fit import critical_theta, fit_wu
 from ..materials import STEEL
-from ..rebound_models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
-from ..sweep import critical_angle, sweep_angles, sweep_speed
+from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
+from ..impacts.sweep import critical_angle, sweep_angles, sweep_speed
 from .common import add_scene_options, dump_json, scene_from_args
 
 ORDER = 2

@@ -15,7 +15,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from ..validation import run_validation
+    from ..studies.wu2009 import run_validation
 
     print(f"report written to {run_validation(args.out)}")
     return 0

@@ -1,2 +1,3 @@
-"""Contact laws: jitted kernels (``normal``, ``tangential``), their dispatch (``contact``) and the named
-slots of the parameter and history rows (``slots``)."""
+"""Contact laws: jitted kernels (``normal``, ``tangential``, ``mdr``), their dispatch (``contact``), the
+named slots of the parameter and history rows (``slots``), closed forms (``closed_forms``), and the
+contact model of a pair of bodies with its calibration (``model``: ``Scene``; ``normal_impact``)."""

@@ -14,11 +14,11 @@ import subprocess
 import numpy as np
 import pytest
 
-from dem_contact.contact3d import contact_forces_serial, new_histories
+from dem_contact.dem.contact3d import contact_forces_serial, new_histories
 from dem_contact.laws.slots import N_HIST_BASE
 from dem_contact.materials import STEEL, Material, Sphere, Wall
-from dem_contact.model import NORMAL_LAWS, TANGENTIAL_LAWS
-from dem_contact.pairs import pair_table
+from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
+from dem_contact.dem.pairs import pair_table
 
 N_CONTACTS = 100_000
 DT = 2e-7

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import dem_contact as dc
-from dem_contact.impact import body_inertia, time_step
-from dem_contact.integrator import N_OUT, N_SERIES, integrate_impact
+from dem_contact.impacts.impact import body_inertia, time_step
+from dem_contact.impacts.integrator import N_OUT, N_SERIES, integrate_impact
 
 
 @pytest.fixture(scope="module")

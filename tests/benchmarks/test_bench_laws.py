@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 import dem_contact as dc
-from dem_contact.impact import DEFAULT_STEPS_PER_CONTACT, body_inertia
-from dem_contact.integrator import N_OUT, N_SERIES, integrate_impact
-from dem_contact.model import MDR_STEPS_PER_CONTACT
+from dem_contact.impacts.impact import DEFAULT_STEPS_PER_CONTACT, body_inertia
+from dem_contact.impacts.integrator import N_OUT, N_SERIES, integrate_impact
+from dem_contact.laws.model import MDR_STEPS_PER_CONTACT
 
 VN = 5.0
 VT = 0.3 * VN   # Theta = 1 with e_n = 1

@@ -4,9 +4,9 @@ import numba
 import numpy as np
 import pytest
 
-from dem_contact.commands.common import preset_scene
-from dem_contact.fit import fit_wu
-from dem_contact.sweep import sweep_angles
+from dem_contact.impacts.presets import preset_scene
+from dem_contact.rebound.fit import fit_wu
+from dem_contact.impacts.sweep import sweep_angles
 
 ANGLES = np.arange(0.0, 85.5, 1.0)
 

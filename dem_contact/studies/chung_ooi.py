@@ -49,11 +49,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import closed_forms as cf
-from .errors import InputError
-from .impact import impact
-from .materials import Material, Sphere, Wall
-from .model import HERTZ_DAMPED_EN_FLOOR, TANGENTIAL_LAWS, Scene
+from ..laws import closed_forms as cf
+from ..errors import InputError
+from ..impacts.impact import impact
+from ..materials import Material, Sphere, Wall
+from ..laws.model import HERTZ_DAMPED_EN_FLOOR, TANGENTIAL_LAWS, Scene
 
 TESTS = tuple(range(1, 9))
 

@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import InputError
-from .materials import Sphere, Wall
-from .model import Scene
+from ..errors import InputError
+from ..materials import Sphere, Wall
+from ..laws.model import Scene
 
 
 @dataclass

@@ -26,11 +26,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import chart
-from .errors import InputError
-from .fit import fit_wu
-from .materials import Wall, check_finite
-from .model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
-from .rebound_models import wu_curve
+from ..errors import InputError
+from ..rebound.fit import fit_wu
+from ..materials import Wall, check_finite
+from ..laws.model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
+from ..rebound.models import wu_curve
 
 #: Laws at coarse steps tried as candidates: (tangential law, steps per contact).
 LAW_CANDIDATES = (("mdr_adaptive", 10), ("mdr_adaptive", 20), ("mdr_adaptive", 50), ("mdr_adaptive", 100),

@@ -12,8 +12,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .errors import InputError, NumericalError
-from .rebound_models import theta_c_theory, wu_crossing, wu_curve
+from ..errors import InputError, NumericalError
+from .models import theta_c_theory, wu_crossing, wu_curve
 
 #: Points with f/mu at or above this level count as persistently sliding and are left out of the fit.
 SLIDING_LEVEL = 1.0 - 1e-6

@@ -20,12 +20,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit, prange
 
-from .errors import InputError, NumericalError
+from ..errors import InputError, NumericalError
 from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident,
                      impact, time_step)
 from .integrator import N_OUT, N_SERIES, integrate_impact
-from .materials import Material, Sphere, Wall, check_finite
-from .model import Scene
+from ..materials import Material, Sphere, Wall, check_finite
+from ..laws.model import Scene
 
 #: Impacts per progress-bar update are chosen so that the bar advances about this many times.
 PROGRESS_UPDATES = 20

@@ -21,10 +21,10 @@ import math
 import warnings
 from dataclasses import dataclass
 
-from .errors import InputError, NumericalError
-from .impact import impact
-from .materials import STEEL, Material, Sphere, Wall, pair_properties
-from .model import TANGENTIAL_LAWS, Scene
+from ..errors import InputError, NumericalError
+from ..impacts.impact import impact
+from ..materials import STEEL, Material, Sphere, Wall, pair_properties
+from ..laws.model import TANGENTIAL_LAWS, Scene
 
 ACCURACY_TOL = 0.02
 OUTCOMES = ("ok", "inaccurate", "coulomb", "energy", "blow-up", "rejected")

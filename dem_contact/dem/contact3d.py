@@ -39,8 +39,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .laws.contact import LINEAR_TANGENTIAL, contact_step
-from .laws.slots import H_T, P_GSTAR, P_KT
+from ..laws.contact import LINEAR_TANGENTIAL, contact_step
+from ..laws.slots import H_T, P_GSTAR, P_KT
 
 # slots of the per-contact 3D row h3
 H3_UX = 0      # axis of the planar tangential law, unit vector in the tangent plane (0 when unset)

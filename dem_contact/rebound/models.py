@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from .errors import InputError
+from ..errors import InputError
 
 #: Wu, Thornton & Li (2009) fits of eq. 4.5 (FEA, R = 10 mm, steel, mu = 0.3, no spin; physics.md
 #: section 6). Theta_c_paper is the paper's printed critical value (where its curve reaches about 0.99);

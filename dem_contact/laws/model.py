@@ -10,13 +10,13 @@ import math
 
 import numpy as np
 
+from ..errors import InputError
+from ..materials import Sphere, Wall, check_finite, pair_properties
 from . import closed_forms as cf
-from .errors import InputError
-from .integrator import N_OUT, N_SERIES, O_DMAX, O_STATUS, O_TC, O_VN, integrate_impact
-from .laws import contact as C
-from .laws.slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
+from . import contact as C
+from .normal_impact import normal_impact
+from .slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
                          P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR)
-from .materials import Sphere, Wall, check_finite, pair_properties
 
 NORMAL_LAWS = {
     "hertz": C.HERTZ,
@@ -79,17 +79,15 @@ def _law(name: str, table: dict, what: str) -> int:
     return table[name]
 
 
-def _unit_damped_impact(gamma: float) -> np.ndarray:
-    """Output row of a normal damped-Hertz impact of the unit problem (E* = R* = m* = V = 1) at
-    CALIBRATION_STEPS steps per Hertz contact time: e_n and t_c / t_c,Hertz depend on gamma alone."""
+def _unit_damped_impact(gamma: float):
+    """(final normal velocity, contact time, max overlap, status) of a normal damped-Hertz impact of the
+    unit problem (E* = R* = m* = V = 1) at CALIBRATION_STEPS steps per Hertz contact time: e_n and
+    t_c / t_c,Hertz depend on gamma alone."""
     p = np.zeros(N_PARAMS)
     p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
     p[P_GAMMA] = gamma
-    out = np.zeros(N_OUT)
-    integrate_impact(C.HERTZ_DAMPED, C.MD, p, np.zeros(N_HIST_BASE), 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0,
-                     0.0, UNIT_HERTZ_TC / CALIBRATION_STEPS, 100 * CALIBRATION_STEPS, True, out,
-                     np.zeros((0, N_SERIES)))
-    return out
+    return normal_impact(C.HERTZ_DAMPED, p, np.zeros(N_HIST_BASE), 1.0, 1.0, UNIT_HERTZ_TC / CALIBRATION_STEPS,
+                         100 * CALIBRATION_STEPS)
 
 
 @functools.lru_cache(maxsize=256)
@@ -102,10 +100,10 @@ def hertz_damping_for_restitution(e_n: float) -> float:
         return 0.0
 
     def restitution(gamma):
-        out = _unit_damped_impact(gamma)
-        if out[O_STATUS] != 0:
+        vn, _, _, status = _unit_damped_impact(gamma)
+        if status != 0:
             raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
-        return -out[O_VN]
+        return -vn
 
     hi = 1.0
     while restitution(hi) > e_n:
@@ -120,7 +118,7 @@ def hertz_damped_time_ratio(gamma: float) -> float:
     """Contact time of the damped-Hertz law over the elastic Hertz contact time (gamma alone)."""
     if gamma == 0.0:
         return 1.0
-    return min(1.0, _unit_damped_impact(gamma)[O_TC] / UNIT_HERTZ_TC)
+    return min(1.0, _unit_damped_impact(gamma)[1] / UNIT_HERTZ_TC)
 
 
 class Scene:
@@ -240,10 +238,8 @@ class Scene:
         p[P_MU] = 0.0
         pr = self.pair
         dt = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn) / 2000.0
-        out = np.zeros(N_OUT)
-        integrate_impact(self.normal_id, C.MD, p, np.zeros(N_HIST_BASE), vn, 0.0, 0.0, 0.0, 1.0 / pr.m_star,
-                         1.0, 0.0, 0.0, 0.0, dt, 200000, True, out, np.zeros((0, N_SERIES)))
-        return math.sqrt(pr.R_star * out[O_DMAX])
+        dmax = normal_impact(self.normal_id, p, np.zeros(N_HIST_BASE), vn, 1.0 / pr.m_star, dt, 200000)[2]
+        return math.sqrt(pr.R_star * dmax)
 
     def _need_v_ref(self, what: str) -> float:
         if self.v_ref is None:

@@ -12,13 +12,13 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from .errors import InputError, NumericalError
+from ..errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
                          S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact)
-from .laws.slots import H_A
-from .materials import Sphere, check_finite
-from .model import Scene
+from ..laws.slots import H_A
+from ..materials import Sphere, check_finite
+from ..laws.model import Scene
 
 #: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed. With the
 #: default mdr_adaptive law f/mu is then within 5e-4 of its converged value and 1.1e-3 of converged MDR

@@ -6,7 +6,7 @@ import math
 
 from scipy.optimize import brentq
 
-from .errors import InputError
+from ..errors import InputError
 
 #: t_c = HERTZ_TC_FACTOR * delta_max / V  (physics.md section 2)
 HERTZ_TC_FACTOR = 2.9433

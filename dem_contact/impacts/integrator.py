@@ -24,8 +24,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .laws.contact import contact_step, normal_force, normal_gap
-from .laws.slots import H_N, P_MU
+from ..laws.contact import contact_step, normal_force, normal_gap
+from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
+from ..laws.slots import H_N, P_MU
 
 # slots of the output row
 O_VN = 0        # final normal approach velocity, V_nr (negative: moving away) [m/s]
@@ -55,46 +56,6 @@ STATUS_MAX_STEPS = 1
 STATUS_NONFINITE = 2
 
 SLIDE_TOL = 1e-9
-#: Overlap at which the force just after first touch is evaluated [m].
-TOUCH_OVERLAP = 1e-300
-
-
-@njit(cache=True)
-def _end_fraction(nid, p, h, delta, vn, N, inv_m, dt):
-    """Fraction s in [0, 1] of the step at which the gap function reaches 0 (Illinois regula falsi).
-    Drift of a partial step of length s dt: delta + (vn - N s dt / (2 m*)) s dt. Returns the point on
-    the contact side of the root (the force there is the limit from inside the contact). The rate seen
-    by the gap function is the predicted end-of-step velocity, as in ``integrate_impact``."""
-    s_lo = 0.0
-    g_lo = normal_gap(nid, p, h, delta, vn)
-    if g_lo <= 0.0:
-        return 0.0
-    s_hi = 1.0
-    v = vn - 0.5 * dt * N * inv_m
-    g_hi = normal_gap(nid, p, h, delta + v * dt, v - 0.5 * dt * N * inv_m)
-    side = 0
-    for it in range(200):
-        if s_hi - s_lo <= 1e-15:
-            break
-        if it < 60:
-            s = (s_lo * g_hi - s_hi * g_lo) / (g_hi - g_lo)
-            if not (s > s_lo and s < s_hi):
-                s = 0.5 * (s_lo + s_hi)
-        else:
-            s = 0.5 * (s_lo + s_hi)
-        v = vn - 0.5 * s * dt * N * inv_m
-        g = normal_gap(nid, p, h, delta + v * s * dt, v - 0.5 * s * dt * N * inv_m)
-        if g > 0.0:
-            s_lo, g_lo = s, g
-            if side == 1:
-                g_hi *= 0.5
-            side = 1
-        else:
-            s_hi, g_hi = s, g
-            if side == -1:
-                g_lo *= 0.5
-            side = -1
-    return s_lo
 
 
 @njit(cache=True)
@@ -141,7 +102,7 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
         # velocity-dependent forces see the end-of-step velocity predicted with the old force
         ended = normal_gap(nid, p, h, delta_new, vn_h - kick) <= 0.0
         if ended and locate:
-            hdt = dt * _end_fraction(nid, p, h, delta, vn, N, inv_m, dt)
+            hdt = dt * end_fraction(nid, p, h, delta, vn, N, inv_m, dt)
             kick = 0.5 * hdt * N * inv_m
             vn_h = vn - kick
             delta_new = delta + vn_h * hdt

@@ -14,14 +14,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .commands.common import DEFAULT_TANGENTIAL, preset_scene
-from .errors import InputError, NumericalError
-from .fit import fit_wu
-from .impact import DEFAULT_STEPS_PER_CONTACT
-from .model import TANGENTIAL_LAWS
-from .rebound_models import (PUBLISHED_FITS, collapse_variable, kappa_from_nu, max_curve_difference,
+from ..errors import InputError, NumericalError
+from ..rebound.fit import fit_wu
+from ..impacts.impact import DEFAULT_STEPS_PER_CONTACT
+from ..laws.model import TANGENTIAL_LAWS
+from ..rebound.models import (PUBLISHED_FITS, collapse_variable, kappa_from_nu, max_curve_difference,
                              theta_c_theory, wu_crossing, wu_f_over_mu)
-from .sweep import critical_angle, scene_with, sweep_angles, sweep_theta
+from ..impacts.presets import DEFAULT_TANGENTIAL, preset_scene
+from ..impacts.sweep import critical_angle, scene_with, sweep_angles, sweep_theta
 
 #: Angles of the paper's protocol: 0-85 deg at fixed V_n.
 ANGLES = np.arange(0.0, 85.5, 1.0)
@@ -86,7 +86,7 @@ def _f(x, fmt=".4f"):
 
 def run_validation(outdir: str, log=print) -> str:
     """Run everything and write ``outdir/report.md`` and ``outdir/figures/*.png``. Returns the report path."""
-    from . import plots
+    from .. import plots
 
     t0 = time.perf_counter()
     figdir = os.path.join(outdir, "figures")

@@ -21,11 +21,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from numba import njit
 
-from .errors import InputError
-from .impact import MAX_CONTACT_TIMES, body_inertia
-from .integrator import N_OUT, N_SERIES, O_PN, O_PT, O_SLID, O_STATUS, O_VN, O_VT, O_W1, integrate_impact
-from .materials import STEEL, Material, Sphere, Wall
-from .model import TANGENTIAL_LAWS, Scene
+from ..errors import InputError
+from ..impacts.impact import MAX_CONTACT_TIMES, body_inertia
+from ..impacts.integrator import N_OUT, N_SERIES, O_PN, O_PT, O_SLID, O_STATUS, O_VN, O_VT, O_W1, integrate_impact
+from ..materials import STEEL, Material, Sphere, Wall
+from ..laws.model import TANGENTIAL_LAWS, Scene
 
 #: Settings of the converged MDR reference.
 REFERENCE_SPRINGS = 400

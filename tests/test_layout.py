@@ -1,0 +1,119 @@
+"""The package's rooms and the direction of their imports: laws <- impacts <- studies <- commands, with
+rebound/ (pure functions of numbers) and dem/ (what DEM codes call) beside them."""
+import ast
+import importlib
+import pathlib
+import pkgutil
+
+import dem_contact
+
+PKG = pathlib.Path(dem_contact.__file__).parent
+
+#: What each room may import from the package (besides itself). Lazy imports inside functions count too.
+ALLOWED = {
+    "errors": set(),
+    "materials": {"errors"},
+    "laws": {"errors", "materials"},
+    "rebound": {"errors"},
+    "reference": {"errors", "materials", "laws"},
+    "dem": {"errors", "materials", "laws"},
+    "impacts": {"errors", "materials", "laws"},
+    "plots": {"errors", "rebound"},
+    "studies": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots"},
+    "lammps": {"errors", "materials", "laws", "dem"},
+    "commands": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "studies", "dem"},
+    "cli": {"errors", "commands"},
+    "__init__": {"errors", "materials", "laws", "impacts"},
+    "__main__": {"cli"},
+}
+
+
+def _room(module: str) -> str:
+    """Room of a dotted module name below dem_contact (dem_contact.laws.mdr -> laws)."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
+def _package_imports(path: pathlib.Path, module: str):
+    """Modules of dem_contact that the file imports (absolute names), with line numbers."""
+    tree = ast.parse(path.read_text())
+    package = module if path.name == "__init__.py" else module.rsplit(".", 1)[0]
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[:len(base) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.startswith("dem_contact"):
+                if node.module is None:
+                    for alias in node.names:
+                        yield f"{target}.{alias.name}", node.lineno
+                else:
+                    yield target, node.lineno
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.startswith("dem_contact"):
+                    yield alias.name, node.lineno
+
+
+def _modules():
+    """Every module of the package but __main__ (importing it runs the command line)."""
+    for info in pkgutil.walk_packages([str(PKG)], prefix="dem_contact."):
+        if not info.name.endswith("__main__"):
+            yield info.name
+
+
+def test_every_module_imports():
+    """Importing each module on its own succeeds (an import cycle fails here)."""
+    for name in _modules():
+        importlib.import_module(name)
+
+
+def test_imports_point_down():
+    bad = []
+    for name in [*_modules(), "dem_contact.__main__"]:
+        path = PKG / "__main__.py" if name.endswith("__main__") else pathlib.Path(
+            importlib.import_module(name).__file__)
+        room = _room(name)
+        assert room in ALLOWED, f"{name}: room {room!r} has no place in the layering"
+        for target, line in _package_imports(path, name):
+            other = _room(target)
+            if other != room and other not in ALLOWED[room]:
+                bad.append(f"{name}:{line} imports {target} ({room} -> {other})")
+    assert not bad, "imports against the layering:\n" + "\n".join(bad)
+
+
+def test_rebound_never_integrates():
+    for path in (PKG / "rebound").glob("*.py"):
+        text = path.read_text()
+        assert "integrate_impact" not in text and "numba" not in text, path
+
+
+def test_no_import_cycle():
+    """No cycle among the module-level imports of the package's modules."""
+    names = set(_modules())
+    graph = {}
+    for name in names:
+        path = pathlib.Path(importlib.import_module(name).__file__)
+        top = ast.parse(path.read_text()).body
+        module_level = set()
+        for target, line in _package_imports(path, name):
+            if any(getattr(node, "lineno", -1) == line for node in top):
+                module_level.add(target if target in names else target.rsplit(".", 1)[0])
+        graph[name] = {t for t in module_level if t in names and t != name}
+    state = {}
+
+    def visit(n, stack):
+        state[n] = 1
+        for m in graph[n]:
+            if state.get(m) == 1:
+                raise AssertionError("import cycle: " + " -> ".join(stack + [n, m]))
+            if m not in state:
+                visit(m, stack + [n])
+        state[n] = 2
+
+    for n in sorted(graph):
+        if n not in state:
+            visit(n, [])
