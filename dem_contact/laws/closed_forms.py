@@ -4,8 +4,6 @@ Plain Python functions of SI quantities; none of them integrates anything.
 """
 import math
 
-from scipy.optimize import brentq
-
 from ..errors import InputError
 
 #: t_c = HERTZ_TC_FACTOR * delta_max / V  (physics.md section 2)
@@ -65,6 +63,8 @@ def thornton_yield_pressure_for_restitution(E_star, R_star, m_star, e_n, v):
     (inverts the closed form; 0 < e_n < 1)."""
     if not 0.0 < e_n < 1.0:
         raise InputError(f"e_n = {e_n:g} cannot be calibrated with the thornton law: valid range (0, 1)")
+    from scipy.optimize import brentq
+
     r = brentq(lambda r: thornton_restitution_ratio(r) - e_n, 1e-12, 1.0, xtol=1e-15, rtol=1e-15)
     return thornton_yield_pressure_for_velocity(E_star, R_star, m_star, r * v)
 
