@@ -85,11 +85,15 @@ def _truncated_integral(x, a, k):
     b = k * a
     c2 = a * a - b * b
     c = math.sqrt(c2)
-    s = min(x, c)
-    r = math.sqrt(max(c2 - s * s, 0.0))
-    asn = math.asin(min(s / c, 1.0)) if c > 0.0 else 0.0
+    if x >= c:       # the whole cut-off part (exact angles: no square root of a rounding error)
+        s, r, asn, at = c, 0.0, 0.5 * math.pi, 0.5 * math.pi
+    else:
+        s = x
+        r = math.sqrt(c2 - s * s)
+        asn = math.asin(s / c)
+        at = math.atan2(s * b, a * r)
     J = (a * a * s - s * s * s / 3.0) * math.atan2(r, b) + b / 3.0 * (
-        (0.5 * c2 - 2.0 * a * a) * asn - 0.5 * s * r + 2.0 * a * a * a / b * math.atan2(s * b, a * r))
+        (0.5 * c2 - 2.0 * a * a) * asn - 0.5 * s * r + 2.0 * a * a * a / b * at)
     cut = 2.0 / math.pi * J - k * a / math.pi * (s * r + c2 * asn)
     return a * a * x - x * x * x / 3.0 - cut
 
@@ -98,8 +102,8 @@ def _truncated_integral(x, a, k):
 def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     """Advance the cells h[k0 : k0 + n] of width dx [m] by one step (see the module docstring); return T."""
     GM = 4.0 * p[P_GSTAR]
-    k = _truncation(p, h, N, a)
-    c = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a) if k >= 1.0 else 1.0 / p[P_RSTAR]
+    kt = _truncation(p, h, N, a)
+    c = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a) if kt >= 1.0 else 1.0 / p[P_RSTAR]
     umax_per_w = p[P_MU] * p[P_ESTAR] * c / GM   # Coulomb: |u| <= mu q / G_M, q = E* c w
     a2 = a * a
     da = a - a_old
@@ -110,8 +114,8 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     S = 0.0
     for i in range(full):
         k = k0 + i
-        if k < 1.0:
-            umax = umax_per_w * (_truncated_integral((i + 1) * dx, a, k) - _truncated_integral(i * dx, a, k)) / dx
+        if kt < 1.0:
+            umax = umax_per_w * (_truncated_integral((i + 1) * dx, a, kt) - _truncated_integral(i * dx, a, kt)) / dx
         else:
             umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1))
         u = h[k] + dd
@@ -138,8 +142,8 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
         else:
             u = h[k] + dd
         x1 = x0 + l_new
-        if k < 1.0:
-            wbar = (_truncated_integral(x1, a, k) - _truncated_integral(x0, a, k)) / l_new
+        if kt < 1.0:
+            wbar = (_truncated_integral(x1, a, kt) - _truncated_integral(x0, a, kt)) / l_new
         else:
             wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0   # mean of a^2 - x^2 over the cell's contact part
         umax = umax_per_w * wbar
