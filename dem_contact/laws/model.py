@@ -182,13 +182,13 @@ class Scene:
         if model is not None:
             if model not in MODELS:
                 raise InputError(f"model {model!r} is unknown; choose one of: {', '.join(MODELS)}")
-            if (normal, tangential) != ("hertz", "mdr_adaptive"):
-                raise InputError(f"model={model!r} sets the laws: give no normal or tangential law with it")
             spec = MODELS[model]
-            yields = any(getattr(b, "material", None) is not None and b.material.p_y is not None
-                         for b in (sphere, body2))
-            normal = spec["normal"] if yields or e_n is not None else spec["normal_elastic"]
-            tangential = spec["tangential"]
+            yields = any(b.material.p_y is not None for b in (sphere, body2))
+            model_normal = spec["normal"] if yields or e_n is not None else spec["normal_elastic"]
+            if normal not in ("hertz", model_normal) or tangential not in ("mdr_adaptive", spec["tangential"]):
+                raise InputError(f"model={model!r} sets the laws ({model_normal} + {spec['tangential']} here): "
+                                 f"give no other normal or tangential law with it")
+            normal, tangential = model_normal, spec["tangential"]
             self.steps_per_contact = spec["steps_per_contact"]
         self.normal = normal
         self.tangential = tangential
