@@ -175,6 +175,19 @@ def test_traction_yield_limits():
         assert (r0.e_n, r0.e_t, r0.max_force) == (r1.e_n, r1.e_t, r1.max_force)
 
 
+def test_traction_yield_in_persistent_sliding_is_thornton_at_the_lowered_pressure():
+    """A contact that slides from the start carries mu_eff = mu (after its first step): e_n is Thornton's
+    closed form at p_y g(mu)."""
+    for vn in (2.0, 5.0):
+        s = scene_with(pe_scene("mdr_adaptive", vn), traction_yield=True)
+        g_mu = s.params[P_TY_TABLE + ty.TABLE_NODES - 1]
+        pr = s.pair
+        expected = cf.thornton_restitution(pr.E_star, pr.R_star, pr.m_star, s.p_y * g_mu, vn)
+        r = dc.impact(s, vn, angle_vt(vn, 80), steps_per_contact=400)
+        assert r.persistent_sliding
+        assert r.e_n == pytest.approx(expected, rel=1e-5)     # the first step carries no traction yet
+
+
 @settings(max_examples=30, deadline=None)
 @given(st.lists(st.floats(0.0, 0.3), min_size=3, max_size=40), st.floats(1.5, 30.0))
 def test_traction_yield_cycle_creates_no_energy(mu_effs, peak):
