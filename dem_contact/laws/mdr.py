@@ -112,10 +112,13 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     full = min(int(min(a, a_old) / dx), m)
     dx2 = dx * dx / 3.0
     S = 0.0
+    Q0 = 0.0      # truncated profile: int_0^x0 of the line load at the cell's lower edge x0 (x0 = 0 first)
     for i in range(full):
         k = k0 + i
         if kt < 1.0:
-            umax = umax_per_w * (_truncated_integral((i + 1) * dx, a, kt) - _truncated_integral(i * dx, a, kt)) / dx
+            Q1 = _truncated_integral((i + 1) * dx, a, kt)
+            umax = umax_per_w * (Q1 - Q0) / dx
+            Q0 = Q1
         else:
             umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1))
         u = h[k] + dd
@@ -143,7 +146,9 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
             u = h[k] + dd
         x1 = x0 + l_new
         if kt < 1.0:
-            wbar = (_truncated_integral(x1, a, kt) - _truncated_integral(x0, a, kt)) / l_new
+            Q1 = _truncated_integral(x1, a, kt)
+            wbar = (Q1 - Q0) / l_new
+            Q0 = Q1
         else:
             wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0   # mean of a^2 - x^2 over the cell's contact part
         umax = umax_per_w * wbar
