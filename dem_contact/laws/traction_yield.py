@@ -25,6 +25,7 @@ import functools
 import numpy as np
 
 from ..errors import InputError
+from .slots import TY_MAX_NODES
 
 
 def _aux(x, y, z):
@@ -129,8 +130,8 @@ def max_von_mises(nu: float, mu_eff: float):
     return best
 
 
-#: mu_eff of the nodes of the first-yield table (uniform), and their number.
-TABLE_NODES = 16
+#: Number of uniform nodes of mu_eff in the first-yield table (the slots the parameter row has for it).
+TABLE_NODES = TY_MAX_NODES
 
 
 @functools.lru_cache(maxsize=64)
@@ -144,8 +145,3 @@ def first_yield_ratio_table(nu: float, mu_max: float) -> tuple:
     mus = np.linspace(0.0, mu_max, TABLE_NODES)
     peak = np.array([max_von_mises(nu, m)[0] for m in mus])
     return tuple(peak[0] / peak)
-
-
-def first_yield_pressure(nu: float, mu_eff: float, Y: float = 1.0) -> float:
-    """Peak Hertz pressure p0 [Pa] at first yield of a contact with sliding traction mu_eff p."""
-    return Y / max_von_mises(nu, mu_eff)[0]
