@@ -22,6 +22,8 @@ Per step, with the contact radius a (after) and a_old (before) given by the norm
   parameter P_MDR_PROFILE = 1 uses that Hertz shape scaled to N for every law (the Thornton variant
   compared in the validation).
 - MDR relation: each spring of the half-line carries the local Coulomb limit mu q(x) (Popov & Hess).
+  This holds for any axisymmetric pressure, elastic or not: over a slip annulus u = mu q / G_M, whose
+  inverse Abel transform is the traction mu p(r).
 - every point in contact takes the rigid increment u += d(delta_t); a point entering the contact
   during the step starts at u = 0 and takes the part of the increment after its entry time (a taken
   linear in time over the step); a point leaving the contact is released (u = 0);
