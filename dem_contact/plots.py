@@ -331,3 +331,31 @@ def stability_figure(rows, path):
     fig.savefig(path, dpi=130)
     plt.close(fig)
     return path
+
+
+# --------------------------------------------------------------------------------------------------
+# Panels of curves (plastic contacts, model comparisons)
+
+def curves_figure(panels, path, *, ncols: int = 2, title=None):
+    """Panels of curves. ``panels``: list of dicts with ``title``, ``xlabel``, ``ylabel``, ``series`` (list
+    of (x, y, label, style dict)) and optionally ``hlines`` (list of (y, label)). Returns ``path``."""
+    nrows = (len(panels) + ncols - 1) // ncols
+    fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, 3.9 * nrows), squeeze=False)
+    for ax, panel in zip(axes.flat, panels):
+        for x, y, label, style in panel["series"]:
+            ax.plot(x, y, label=label, **{"lw": 0.9, **style})
+        for y, label in panel.get("hlines", ()):
+            ax.axhline(y, color="gray", ls=":", lw=1.0, label=label)
+        ax.set_title(panel.get("title", ""), fontsize=9)
+        ax.set_xlabel(panel.get("xlabel", ""))
+        ax.set_ylabel(panel.get("ylabel", ""))
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6.5)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.set_visible(False)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path

@@ -7,7 +7,7 @@ import math
 
 from ..errors import InputError
 from ..impacts.presets import CASES, DEFAULT_TANGENTIAL, preset_scene
-from ..laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+from ..laws.model import MDR_PROFILES, MODELS, NORMAL_LAWS, TANGENTIAL_LAWS, Scene
 from ..materials import STEEL
 
 
@@ -38,6 +38,15 @@ def add_scene_options(p, vn_default=5.0):
     g.add_argument("--e-n", type=float, default=None,
                    help="target normal restitution: sets the dashpot of hertz_damped and linear, or "
                         "calibrates p_y of thornton at --vn")
+    g.add_argument("--model", choices=list(MODELS), default=None,
+                   help="named model that sets the laws and the time step: thornton2001 = Thornton et al. "
+                        "(2001), thornton normal law (hertz if nothing yields) + md, 1000 steps per contact")
+    g.add_argument("--traction-yield", action="store_true",
+                   help="thornton: the limiting pressure falls with the traction |T|/N the contact carries, "
+                        "as the first-yield pressure of a Hertz contact under sliding traction (Hamilton 1983)")
+    g.add_argument("--mdr-profile", choices=list(MDR_PROFILES), default="truncated",
+                   help="Coulomb limit of mdr/mdr_adaptive in Thornton's plastic loading: truncated = Hertz "
+                        "pressure truncated at p_y (default), scaled = Hertz shape scaled to the force")
     g.add_argument("--vn", type=float, default=vn_default,
                    help=f"normal impact speed towards the wall [m/s] (default {vn_default:g})")
     t = p.add_argument_group("time step")
@@ -54,7 +63,8 @@ def scene_from_args(args) -> Scene:
     return preset_scene(args.case, args.vn, radius=args.radius, density=args.density, E=args.E, nu=args.nu,
                         wall_E=args.wall_E, wall_nu=args.wall_nu, rigid_sphere=args.rigid_sphere,
                         rigid_wall=args.rigid_wall, mu=args.mu, normal=args.normal, tangential=args.tangential,
-                        yield_pressure=args.yield_pressure, yield_stress=args.yield_stress, e_n=args.e_n)
+                        yield_pressure=args.yield_pressure, yield_stress=args.yield_stress, e_n=args.e_n,
+                        model=args.model, traction_yield=args.traction_yield, mdr_profile=args.mdr_profile)
 
 
 def time_options(args) -> dict:

@@ -116,7 +116,8 @@ def _json_safe(x):
 
 
 def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, dt: float | None = None):
-    """Validated time step [s] and the steps per contact it gives."""
+    """Validated time step [s] and the steps per contact it gives (default: the scene's model practice,
+    ``Scene.steps_per_contact``, else DEFAULT_STEPS_PER_CONTACT)."""
     tc = scene.contact_time(vn)
     if dt is not None and steps_per_contact is not None:
         raise InputError("give either dt or steps_per_contact, not both")
@@ -127,7 +128,9 @@ def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, d
             raise InputError(f"dt = {dt:g} s cannot resolve the contact: it must be <= t_c / "
                              f"{MIN_STEPS_PER_CONTACT:g} = {tc / MIN_STEPS_PER_CONTACT:g} s (t_c = {tc:g} s)")
         return dt, spc
-    spc = DEFAULT_STEPS_PER_CONTACT if steps_per_contact is None else steps_per_contact
+    if steps_per_contact is None:
+        steps_per_contact = getattr(scene, "steps_per_contact", None) or DEFAULT_STEPS_PER_CONTACT
+    spc = steps_per_contact
     spc = check_finite("steps_per_contact", spc, lo=MIN_STEPS_PER_CONTACT, lo_open=False)
     return tc / spc, spc
 

@@ -24,11 +24,13 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
                  wall_nu: float | None = None, rigid_sphere: bool = False, rigid_wall: bool = False,
                  mu: float = 0.3, normal: str | None = None, tangential: str | None = None,
                  yield_pressure: float | None = None, yield_stress: float | None = None,
-                 e_n: float | None = None) -> Scene:
+                 e_n: float | None = None, model: str | None = None, traction_yield: bool = False,
+                 mdr_profile: str = "truncated") -> Scene:
     """The Scene of preset ``case`` (one of CASES) at normal speed ``vn`` [m/s] (the reference speed of
     calibrations and of the mdr grid), with any option changed. Defaults: the EE steel scene (E = 208 GPa,
     nu = 0.3, rho = 7850), hertz (thornton for PE) and the library's default tangential law. For RE,
-    ``nu`` is the Poisson ratio of the elastic wall."""
+    ``nu`` is the Poisson ratio of the elastic wall. ``model``, ``traction_yield`` and ``mdr_profile`` are
+    passed to ``Scene``."""
     from ..errors import InputError
 
     if case not in CASES:
@@ -54,4 +56,5 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
                               yield_stress=yield_stress)
     wall = Wall.rigid() if rigid_wall else Wall(Material(E=wall_E, nu=wall_nu_used, rho=STEEL.rho))
     laws = {} if tangential is None else {"tangential": tangential}
-    return Scene(Sphere(radius, sphere_mat), wall, mu=mu, normal=normal, e_n=e_n, v_ref=vn, **laws)
+    return Scene(Sphere(radius, sphere_mat), wall, mu=mu, normal=normal, e_n=e_n, v_ref=vn, model=model,
+                 traction_yield=traction_yield, mdr_profile=mdr_profile, **laws)

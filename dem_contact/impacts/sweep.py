@@ -207,7 +207,8 @@ def scene_with(scene: Scene, *, mu: float | None = None, nu: float | None = None
     """A copy of ``scene`` with another friction coefficient ``mu`` and/or Poisson ratio ``nu``.
 
     body: which material takes ``nu``: "sphere", "wall" (body 2), "both", or "elastic" (every non-rigid
-    body; the default). Other keyword arguments (normal, tangential, e_n, v_ref) replace the scene's."""
+    body; the default). Other keyword arguments (normal, tangential, e_n, v_ref, model, mdr_profile,
+    traction_yield) replace the scene's."""
     if body not in ("sphere", "wall", "both", "elastic"):
         raise InputError(f"body {body!r} is unknown; choose one of: sphere, wall, both, elastic")
     sphere, body2 = scene.sphere, scene.body2
@@ -223,8 +224,15 @@ def scene_with(scene: Scene, *, mu: float | None = None, nu: float | None = None
             raise InputError(f"nu cannot be set on body {body!r}: it is rigid")
         sphere = Sphere(sphere.radius, m1)
         body2 = Sphere(body2.radius, m2) if isinstance(body2, Sphere) else Wall(m2)
-    opts = dict(mu=scene.mu if mu is None else mu, normal=scene.normal, tangential=scene.tangential,
-                e_n=scene.e_n, v_ref=scene.v_ref)
+    opts = dict(mu=scene.mu if mu is None else mu, e_n=scene.e_n, v_ref=scene.v_ref)
+    if scene.model is not None and "normal" not in kwargs and "tangential" not in kwargs:
+        opts["model"] = scene.model
+    else:
+        opts.update(normal=scene.normal, tangential=scene.tangential)
+    if scene.traction_yield:
+        opts["traction_yield"] = True
+    if scene.mdr_profile != "truncated":
+        opts["mdr_profile"] = scene.mdr_profile
     opts.update(kwargs)
     return Scene(sphere, body2, **opts)
 

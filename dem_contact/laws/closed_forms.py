@@ -111,3 +111,25 @@ def thornton_unloading(E_star, R_star, p_y, delta_star):
     R_p = 4.0 * E_star / (3.0 * F) * ((2.0 * F + F_y) / (2.0 * math.pi * p_y)) ** 1.5
     d_p = delta_star - (3.0 * F / (4.0 * E_star * math.sqrt(R_p))) ** (2.0 / 3.0)
     return F, R_p, d_p
+
+
+def truncated_line_load(x, a, R_star, E_star, p_t):
+    """MDR line load q(x) [N/m] of the Hertz pressure of contact radius a [m] truncated at p_t [Pa],
+    p(r) = min(p0 sqrt(1 - r^2/a^2), p_t) with p0 = 2 E* a / (pi R*) (Thornton 1997, plastic loading).
+
+    q is the Abel transform 2 int_x^a r p(r) / sqrt(r^2 - x^2) dr (Popov & Hess 2015): Hertz's
+    (E*/R*)(a^2 - x^2) less, for |x| < c = a sqrt(1 - k^2), k = p_t/p0, the part cut off,
+    (p0 / a) (a^2 - x^2) arctan(sqrt(c^2 - x^2) / (k a)) - p_t sqrt(c^2 - x^2).
+    2 int_0^a q dx = pi a^2 p_t (1 - k^2/3), Thornton's force at the overlap a^2/R*."""
+    import numpy as np
+
+    x = np.abs(np.asarray(x, dtype=float))
+    p0 = 2.0 * E_star * a / (math.pi * R_star)
+    q = np.where(x < a, E_star / R_star * (a * a - x * x), 0.0)
+    k = p_t / p0
+    if k >= 1.0:
+        return q
+    c2 = a * a * (1.0 - k * k)
+    r = np.sqrt(np.maximum(c2 - x * x, 0.0))
+    cut = p0 / a * (a * a - x * x) * np.arctan2(r, k * a) - p_t * r
+    return q - np.where(x * x < c2, cut, 0.0)

@@ -8,14 +8,26 @@ the contact, stored in the history row at ``H_TANG_EXTRA + i``.
 
 Per step, with the contact radius a (after) and a_old (before) given by the normal law:
 
-- MDR profile: w(x) = c (a^2 - x^2) on |x| < a, with c chosen so that the springs carry the normal
-  law's actual force, N = 2 E* int_0^a w dx = (4/3) E* c a^3. For Hertz c = 1/R*; for a Thornton
-  contact unloading with (R_p, delta_p), c = 1/R_p, i.e. w = (delta - delta_p) - x^2/R_p; during
-  plastic loading and for damped laws c is the value that keeps the Coulomb limit at mu N exactly.
+- MDR profile: the line load q(x) that the normal law's pressure p(r) implies, the Abel transform
+  q(x) = 2 int_x^a r p(r) / sqrt(r^2 - x^2) dr (Popov & Hess 2015, ch. 3), so that N = 2 int_0^a q dx.
+  Elastic parts of the laws have a Hertz pressure and q(x) = E* c (a^2 - x^2): c = 1/R* for Hertz, and
+  c = 1/R_p for a Thornton contact unloading or reloading with (R_p, delta_p), i.e.
+  w = (delta - delta_p) - x^2/R_p. During Thornton's plastic loading the pressure is the Hertz
+  pressure of the current overlap truncated at the limiting pressure, p = min(p_H(r), p_y): Thornton
+  (1997) builds his force law from exactly this distribution, and its line load integrates to his F
+  (``truncated_line_load``). The level is found from N (``_truncation``), so it also holds for a p_y
+  that varies during the contact (``traction_yield``). For the damped laws the Coulomb limit follows the
+  total force N with a Hertz shape, c = 3 N / (4 E* a^3): a limit following the elastic part only would
+  let a tangential force survive at N = 0, where the damped contact separates (delta > 0). The
+  parameter P_MDR_PROFILE = 1 uses that Hertz shape scaled to N for every law (the Thornton variant
+  compared in the validation).
+- MDR relation: each spring of the half-line carries the local Coulomb limit mu q(x) (Popov & Hess).
+  This holds for any axisymmetric pressure, elastic or not: over a slip annulus u = mu q / G_M, whose
+  inverse Abel transform is the traction mu p(r).
 - every point in contact takes the rigid increment u += d(delta_t); a point entering the contact
   during the step starts at u = 0 and takes the part of the increment after its entry time (a taken
   linear in time over the step); a point leaving the contact is released (u = 0);
-- local Coulomb: |G_M u| <= mu E* w with G_M = 4 G*, applied to the cell mean with the cell mean of w;
+- local Coulomb: |G_M u| <= mu q with G_M = 4 G*, applied to the cell mean with the cell mean of q;
 - T = 2 G_M sum_i u_i l_i, l_i = length of cell i inside the contact.
 
 Cell means (finite volumes) instead of point springs make T a continuous function of a, so the
@@ -28,7 +40,8 @@ import math
 
 from numba import njit
 
-from .slots import H_T, H_TANG_EXTRA, P_DX, P_ESTAR, P_GSTAR, P_MU, P_NSPRING
+from .slots import (H_FSTAR, H_T, H_TANG_EXTRA, P_DX, P_ESTAR, P_GSTAR, P_MDR_PROFILE, P_MU, P_NSPRING, P_PY,
+                    P_RSTAR)
 
 
 @njit(cache=True)
@@ -48,11 +61,52 @@ def _release(h, k0, m):
 
 
 @njit(cache=True)
+def _truncation(p, h, N, a):
+    """Ratio k = p_t / p0 of the truncation level p_t to the Hertz peak pressure p0 = 2 E* a / (pi R*) of
+    the contact radius a, during Thornton's plastic loading (1 otherwise: no truncation).
+
+    The Hertz pressure truncated at p_t carries F = pi a^2 p_t (1 - k^2 / 3) (Thornton 1997); with
+    F_H = (2/3) pi a^2 p0 this is k^3 - 3 k + 2 N / F_H = 0, whose root in [0, 1] is
+    k = 2 cos(arccos(-N / F_H) / 3 - 2 pi / 3). Plastic loading: a thornton contact (p_y > 0) at its
+    largest force (N = F*, written by the normal law in this step) below the Hertz force of R*."""
+    if p[P_MDR_PROFILE] != 0.0 or p[P_PY] <= 0.0 or N < h[H_FSTAR]:
+        return 1.0
+    ratio = 3.0 * N * p[P_RSTAR] / (4.0 * p[P_ESTAR] * a * a * a)    # N / F_H
+    if ratio >= 1.0:
+        return 1.0
+    return 2.0 * math.cos(math.acos(-ratio) / 3.0 - 2.0 * math.pi / 3.0)
+
+
+@njit(cache=True)
+def _truncated_integral(x, a, k):
+    """int_0^x q(s) ds / (E*/R*) for the Hertz pressure of radius a truncated at k p0 (0 <= x <= a).
+
+    q = (E*/R*)(a^2 - s^2) - dq, and for s < c = a sqrt(1 - k^2) the part cut off is
+    dq / (E*/R*) = (2/pi) (a^2 - s^2) arctan(sqrt(c^2 - s^2) / b) - (2 k a / pi) sqrt(c^2 - s^2), b = k a:
+    the Abel transform of p_H - k p0 on r < c, integrated in closed form."""
+    b = k * a
+    c2 = a * a - b * b
+    c = math.sqrt(c2)
+    if x >= c:       # the whole cut-off part (exact angles: no square root of a rounding error)
+        s, r, asn, at = c, 0.0, 0.5 * math.pi, 0.5 * math.pi
+    else:
+        s = x
+        r = math.sqrt(c2 - s * s)
+        asn = math.asin(s / c)
+        at = math.atan2(s * b, a * r)
+    J = (a * a * s - s * s * s / 3.0) * math.atan2(r, b) + b / 3.0 * (
+        (0.5 * c2 - 2.0 * a * a) * asn - 0.5 * s * r + 2.0 * a * a * a / b * at)
+    cut = 2.0 / math.pi * J - k * a / math.pi * (s * r + c2 * asn)
+    return a * a * x - x * x * x / 3.0 - cut
+
+
+@njit(cache=True)
 def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     """Advance the cells h[k0 : k0 + n] of width dx [m] by one step (see the module docstring); return T."""
     GM = 4.0 * p[P_GSTAR]
-    c = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a)
-    umax_per_w = p[P_MU] * p[P_ESTAR] * c / GM   # Coulomb: |u| <= mu E* w / G_M
+    kt = _truncation(p, h, N, a)
+    c = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a) if kt >= 1.0 else 1.0 / p[P_RSTAR]
+    umax_per_w = p[P_MU] * p[P_ESTAR] * c / GM   # Coulomb: |u| <= mu q / G_M, q = E* c w
     a2 = a * a
     da = a - a_old
     m = max(_cells(a, dx, n), _cells(a_old, dx, n))
@@ -60,9 +114,15 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     full = min(int(min(a, a_old) / dx), m)
     dx2 = dx * dx / 3.0
     S = 0.0
+    Q0 = 0.0      # truncated profile: int_0^x0 of the line load at the cell's lower edge x0 (x0 = 0 first)
     for i in range(full):
         k = k0 + i
-        umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1))
+        if kt < 1.0:
+            Q1 = _truncated_integral((i + 1) * dx, a, kt)
+            umax = umax_per_w * (Q1 - Q0) / dx
+            Q0 = Q1
+        else:
+            umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1))
         u = h[k] + dd
         if u > umax:
             u = umax
@@ -87,7 +147,12 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
         else:
             u = h[k] + dd
         x1 = x0 + l_new
-        wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0   # mean of a^2 - x^2 over the cell's contact part
+        if kt < 1.0:
+            Q1 = _truncated_integral(x1, a, kt)
+            wbar = (Q1 - Q0) / l_new
+            Q0 = Q1
+        else:
+            wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0   # mean of a^2 - x^2 over the cell's contact part
         umax = umax_per_w * wbar
         if u > umax:
             u = umax

@@ -16,7 +16,7 @@ from . import closed_forms as cf
 from . import contact as C
 from .normal_impact import normal_impact
 from .slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
-                         P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR)
+                         P_MDR_PROFILE, P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR, P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 
 NORMAL_LAWS = {
     "hertz": C.HERTZ,
@@ -63,6 +63,20 @@ MDR_STEPS_PER_CONTACT = 1000
 MDR_ADAPTIVE_CELLS = 16
 #: The MDR grid covers this multiple of the largest contact radius expected at v_ref.
 MDR_RADIUS_MARGIN = 1.05
+
+#: Coulomb-limit profiles of the MDR laws during plastic loading (``Scene(mdr_profile=...)``, laws.mdr).
+MDR_PROFILES = {"truncated": 0.0, "scaled": 1.0}
+
+#: Named models: laws and time-step practice of published DEM work.
+#: thornton2001: Thornton, Ciomocos, Ning & Kafui (2001) and Thornton's DEM of that period: Thornton's
+#: (1997) normal law (Hertz when nothing yields) with the Thornton-Yin incremental Mindlin-Deresiewicz
+#: tangential law. Their time step is not given in terms we can reproduce; it is assumed fine enough for
+#: converged results: 1000 steps per elastic contact time, where md is within 1e-3 of its converged f/mu.
+MODELS = {
+    "thornton2001": dict(normal="thornton", normal_elastic="hertz", tangential="md", steps_per_contact=1000.0,
+                         source="Thornton et al. (2001), Contact mechanics and coefficients of restitution, "
+                                "in Granular Gases (Lecture Notes in Physics 564): thornton + md"),
+}
 
 #: Steps per Hertz contact time used to calibrate the damped-Hertz dashpot.
 CALIBRATION_STEPS = 4000
@@ -140,11 +154,22 @@ class Scene:
     mdr_springs : number of MDR springs (cells on the half-line), ``mdr`` only (default MDR_SPRINGS)
     mdr_max_radius : largest contact radius the MDR springs must cover [m] (``mdr`` only; default: the
         maximum contact radius of a normal impact at v_ref, times MDR_RADIUS_MARGIN)
+    mdr_profile : Coulomb limit of the MDR laws (``mdr``, ``mdr_adaptive``) during Thornton's plastic
+        loading: "truncated" (default), mu times the line load of the Hertz pressure truncated at p_y,
+        the distribution Thornton's force law is built on; "scaled", a Hertz-shaped limit scaled to mu N
+        (see ``laws.mdr``). Both are the same for elastic laws and for Thornton unloading.
+    traction_yield : ``thornton`` only: the limiting pressure falls with the traction the contact carries,
+        p_y g(|T|/N), g = first-yield pressure of a Hertz contact with sliding traction over that without
+        (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of
+        the yielding body. Off by default.
+    model : a named model that sets the laws and the time step: ``MODELS`` (``"thornton2001"``: Thornton
+        et al. 2001, thornton + md). Its laws are not to be given as well.
     """
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = "hertz",
                  tangential: str = "mdr_adaptive", e_n: float | None = None, v_ref: float | None = None,
-                 mdr_springs: int | None = None, mdr_max_radius: float | None = None):
+                 mdr_springs: int | None = None, mdr_max_radius: float | None = None,
+                 mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None):
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):
@@ -152,6 +177,19 @@ class Scene:
         self.sphere = sphere
         self.body2 = body2
         self.mu = check_finite("mu (friction coefficient)", mu, lo=0.0, lo_open=False)
+        self.model = model
+        self.steps_per_contact = None       # the model's time-step practice (None: the integrator default)
+        if model is not None:
+            if model not in MODELS:
+                raise InputError(f"model {model!r} is unknown; choose one of: {', '.join(MODELS)}")
+            spec = MODELS[model]
+            yields = any(b.material.p_y is not None for b in (sphere, body2))
+            model_normal = spec["normal"] if yields or e_n is not None else spec["normal_elastic"]
+            if normal not in ("hertz", model_normal) or tangential not in ("mdr_adaptive", spec["tangential"]):
+                raise InputError(f"model={model!r} sets the laws ({model_normal} + {spec['tangential']} here): "
+                                 f"give no other normal or tangential law with it")
+            normal, tangential = model_normal, spec["tangential"]
+            self.steps_per_contact = spec["steps_per_contact"]
         self.normal = normal
         self.tangential = tangential
         self.normal_id = _law(normal, NORMAL_LAWS, "normal")
@@ -196,6 +234,17 @@ class Scene:
             v = self._need_v_ref(f"the linear {'normal' if normal == 'linear' else 'tangential'} law")
             p[P_KN] = pr.m_star * (math.pi / cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, v)) ** 2
             p[P_KT] = pr.kappa * p[P_KN]
+        if mdr_profile not in MDR_PROFILES:
+            raise InputError(f"mdr_profile = {mdr_profile!r} is unknown; choose one of: {', '.join(MDR_PROFILES)}")
+        if mdr_profile != "truncated" and tangential not in ("mdr", "mdr_adaptive"):
+            raise InputError("mdr_profile applies to the mdr and mdr_adaptive tangential laws only")
+        self.mdr_profile = mdr_profile
+        p[P_MDR_PROFILE] = MDR_PROFILES[mdr_profile]
+        self.traction_yield = bool(traction_yield)
+        if self.traction_yield:
+            if normal != "thornton":
+                raise InputError("traction_yield applies to the thornton normal law only")
+            self._set_traction_yield(p)
         self.params = p
         self.mdr_springs = 0
         self.tangential_extra_slots = 0     # history slots after N_HIST_BASE (mdr laws)
@@ -212,6 +261,23 @@ class Scene:
                 raise InputError("mdr_max_radius applies to the mdr tangential law only")
         elif mdr_springs is not None or mdr_max_radius is not None:
             raise InputError("mdr_springs and mdr_max_radius apply to the mdr and mdr_adaptive laws only")
+
+    def _set_traction_yield(self, p):
+        """Table of p0_first(mu_eff) / p0_first(0) on [0, mu] in the parameter row (none for mu = 0: the
+        contact then carries no traction and the law is Thornton's)."""
+        from .traction_yield import TABLE_NODES, first_yield_ratio_table
+
+        pr = self.pair
+        mats = [b.material for b in (self.sphere, self.body2) if not b.material.is_rigid]
+        yielding = [m for m in mats if m.p_y is not None and m.p_y == pr.p_y]
+        self.traction_yield_nu = (yielding or mats)[0].nu
+        if self.mu == 0.0:
+            return
+        nu = min(max(self.traction_yield_nu, 0.0), 0.5)
+        table = first_yield_ratio_table(nu, self.mu)
+        p[P_TY_NODES] = TABLE_NODES
+        p[P_TY_DMU] = self.mu / (TABLE_NODES - 1)
+        p[P_TY_TABLE:P_TY_TABLE + TABLE_NODES] = table
 
     def _set_mdr_grid(self, springs, max_radius):
         n = MDR_SPRINGS if springs is None else springs
@@ -274,6 +340,7 @@ class Scene:
             "normal_law_source": NORMAL_LAW_SOURCES[self.normal],
             "tangential_law": self.tangential,
             "tangential_law_source": TANGENTIAL_LAW_SOURCES[self.tangential],
+            "model": self.model,
             "mu": self.mu,
             "E_star": pr.E_star, "G_star": pr.G_star, "R_star": pr.R_star, "m_star": pr.m_star,
             "kappa": pr.kappa,
@@ -291,6 +358,12 @@ class Scene:
                 d.update(e_n_dashpot=HERTZ_DAMPED_EN_FLOOR)
         if p[P_KN] > 0:
             d.update(k_n_linear=p[P_KN], k_t_linear=p[P_KT], v_ref=self.v_ref)
+        if self.model is not None:
+            d.update(model_source=MODELS[self.model]["source"], steps_per_contact_model=self.steps_per_contact)
+        if self.traction_yield:
+            d.update(traction_yield=True, traction_yield_nu=self.traction_yield_nu)
+        if self.tangential in ("mdr", "mdr_adaptive"):
+            d.update(mdr_profile=self.mdr_profile)
         if self.tangential == "mdr":
             d.update(mdr_springs=self.mdr_springs, mdr_max_radius=self.mdr_max_radius, mdr_dx=p[P_DX])
         return d

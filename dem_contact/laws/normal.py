@@ -11,8 +11,8 @@ import math
 
 from numba import njit
 
-from .slots import (H_DP, H_DSTAR, H_FSTAR, H_RP, P_DELTA_Y, P_ESTAR, P_F_Y, P_GAMMA, P_KN, P_MSTAR,
-                    P_PY, P_RSTAR)
+from .slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR, P_F_Y, P_GAMMA, P_KN,
+                    P_MSTAR, P_MU, P_PY, P_RSTAR, P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 
 
 @njit(cache=True)
@@ -34,11 +34,15 @@ def thornton(p, h, delta):
       R_p = 4 E* a*^3 / (3 F*) and delta_p = delta* - (3 F* / (4 E* sqrt(R_p)))^(2/3).
     Unloading and elastic reloading below delta*: N = (4/3) E* sqrt(R_p) (delta - delta_p)^(3/2),
       a = sqrt(R_p (delta - delta_p)) (Hertz with R*, delta_p = 0 if the contact never yielded).
+    With a traction-yield table in the row (P_TY_NODES > 0) loading follows
+    ``_thornton_traction_loading``.
     """
     if delta <= 0.0:
         return 0.0, 0.0
     E = p[P_ESTAR]
     R = p[P_RSTAR]
+    if delta >= h[H_DSTAR] and p[P_TY_NODES] > 0.0:
+        return _thornton_traction_loading(p, h, delta)
     if delta >= h[H_DSTAR]:
         a = math.sqrt(R * delta)
         if delta <= p[P_DELTA_Y]:
@@ -60,6 +64,57 @@ def thornton(p, h, delta):
         return 0.0, 0.0
     a = math.sqrt(Rp * w)
     return 4.0 / 3.0 * E * a * w, a
+
+
+@njit(cache=True)
+def yield_ratio(p, h):
+    """p_y(mu_eff) / p_y of the traction-coupled Thornton law: the first-yield pressure of a Hertz contact
+    with sliding traction mu_eff p over that without (``traction_yield``), interpolated in the table of
+    the parameter row, at mu_eff = |T| / N of the contact's last step (at most mu)."""
+    N = h[H_N]
+    if N <= 0.0:
+        return 1.0
+    m = min(abs(h[H_T]) / N, p[P_MU])
+    s = m / p[P_TY_DMU]
+    last = int(p[P_TY_NODES]) - 1
+    i = min(int(s), last - 1)
+    t = min(s - i, 1.0)
+    return (1.0 - t) * p[P_TY_TABLE + i] + t * p[P_TY_TABLE + i + 1]
+
+
+@njit(cache=True)
+def _thornton_traction_loading(p, h, delta):
+    """Loading branch of ``thornton`` (delta >= delta*) with the limiting pressure p_y g(mu_eff), g from
+    ``yield_ratio``, which changes during the contact.
+
+    Before first yield: Hertz while delta <= delta_y(p_y g), then Thornton's law at that pressure,
+    F = pi p_y g R* (delta - delta_y / 3) (the Hertz pressure truncated at p_y g). After yield, the
+    increment dF = min(pi p_y g R*, 2 E* a_H(F*)) d(delta), a_H(F*) = (3 F* R* / (4 E*))^(1/3): Thornton's
+    plastic stiffness at the current limit, never stiffer than a Hertz contact of R* carrying F*. The
+    loading curve is then nowhere stiffer, at a given force, than the Hertz unloading curve of (R_p,
+    delta_p), so a loading-unloading cycle cannot create energy. With g = 1 throughout it is Thornton's
+    law (to rounding)."""
+    E = p[P_ESTAR]
+    R = p[P_RSTAR]
+    py = p[P_PY] * yield_ratio(p, h)
+    a = math.sqrt(R * delta)
+    if h[H_RP] <= 0.0:
+        dy = R * (math.pi * py / (2.0 * E)) ** 2
+        if delta <= dy:
+            F = 4.0 / 3.0 * E * a * delta
+        else:
+            F = math.pi * py * R * (delta - dy / 3.0)
+    else:
+        Fs = h[H_FSTAR]
+        k = min(math.pi * py * R, 2.0 * E * (3.0 * Fs * R / (4.0 * E)) ** (1.0 / 3.0))
+        F = Fs + k * (delta - h[H_DSTAR])
+    if F < 4.0 / 3.0 * E * a * delta or h[H_RP] > 0.0:
+        Rp = 4.0 * E * a * a * a / (3.0 * F)
+        h[H_RP] = Rp
+        h[H_DP] = delta - (3.0 * F / (4.0 * E * math.sqrt(Rp))) ** (2.0 / 3.0)
+    h[H_DSTAR] = delta
+    h[H_FSTAR] = F
+    return F, a
 
 
 @njit(cache=True)

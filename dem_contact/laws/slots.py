@@ -18,6 +18,12 @@ P_KN                  linear normal stiffness [N/m] (linear)
 P_KT                  linear tangential stiffness [N/m] (tangential linear)
 P_NSPRING             number of springs of the MDR reference (mdr)
 P_DX                  spring spacing of the MDR reference [m] (mdr)
+P_MDR_PROFILE         Coulomb-limit profile of the MDR laws: 0 the pressure the normal law implies
+                      (Hertz truncated at p_y during Thornton's plastic loading), 1 a Hertz shape scaled
+                      to N (mdr, mdr_adaptive)
+P_TY_NODES            nodes of the traction-yield table, 0 = off (thornton)
+P_TY_DMU              spacing of the table in mu_eff = |T|/N [-] (thornton)
+P_TY_TABLE ...        p0(mu_eff)/p0(0) at mu_eff = 0, P_TY_DMU, ... (TY_MAX_NODES slots; thornton)
 ====================  =====================================================================
 
 History row (one per contact), updated in place: a header, then the normal slots, then the
@@ -38,7 +44,12 @@ P_KN = 9
 P_KT = 10
 P_NSPRING = 11
 P_DX = 12
-N_PARAMS = 16
+P_MDR_PROFILE = 13
+P_TY_NODES = 14
+P_TY_DMU = 15
+P_TY_TABLE = 16
+TY_MAX_NODES = 16
+N_PARAMS = 32
 
 # history row: header
 H_N = 0        # normal force after the last step [N] (clamped at >= 0)

@@ -63,6 +63,9 @@ def _with_law(scene: Scene, tangential: str, vmax: float, **kw) -> Scene:
     """The scene with another tangential law (same normal law and calibration); mdr springs cover vmax."""
     if tangential == "mdr":
         kw["mdr_max_radius"] = MDR_RADIUS_MARGIN * scene.max_contact_radius(vmax)
+    if tangential in ("mdr", "mdr_adaptive"):
+        kw["mdr_profile"] = scene.mdr_profile
+    kw["traction_yield"] = scene.traction_yield
     return Scene(scene.sphere, scene.body2, mu=scene.mu, normal=scene.normal, tangential=tangential,
                  e_n=scene.e_n, v_ref=scene.v_ref, **kw)
 

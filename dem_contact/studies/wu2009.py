@@ -2,7 +2,8 @@
 
 ``run_validation(outdir)`` simulates every published case (RE nu = 0, 0.3, 0.49 at 5 m/s; EE at 2 and
 5 m/s; PE at 2 and 5 m/s) with the library's default tangential law, compares every tangential law on
-the EE 5 m/s case, checks the universality of the elastic curves in mu and V_n, and writes
+the EE 5 m/s case, checks the universality of the elastic curves in mu and V_n, adds the plastic-contact
+and thornton2001 sections of ``studies.plastic``, and writes
 ``report.md`` with figures in ``figures/``. Used by ``validation/validate.py`` and ``dem-contact validate``.
 """
 from __future__ import annotations
@@ -22,6 +23,7 @@ from ..rebound.models import (PUBLISHED_FITS, collapse_variable, kappa_from_nu, 
                              theta_c_theory, wu_crossing, wu_f_over_mu)
 from ..impacts.presets import DEFAULT_TANGENTIAL, preset_scene
 from ..impacts.sweep import critical_angle, scene_with, sweep_angles, sweep_theta
+from .plastic import plastic_sections
 
 #: Angles of the paper's protocol: 0-85 deg at fixed V_n.
 ANGLES = np.arange(0.0, 85.5, 1.0)
@@ -284,6 +286,7 @@ def run_validation(outdir: str, log=print) -> str:
     w("")
     w("![universality](figures/universality_f_vs_Theta.png)")
     w("")
+    lines.extend(plastic_sections(figdir, log))
     w("## Time step")
     w("")
     w(f"EE 5 m/s, {law} law: effect of the steps per elastic contact time.")

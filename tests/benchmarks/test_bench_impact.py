@@ -38,3 +38,30 @@ def test_bench_impact_kernel(benchmark, scene):
     run()
     benchmark(run)
     assert out[0] < 0
+
+
+def _pe_kernel(profile):
+    from dem_contact.impacts.presets import preset_scene
+
+    sc = preset_scene("PE", 5.0, mdr_profile=profile)
+    dt, spc = time_step(sc, 5.0)
+    inv_m, R1, R2, iI1, iI2 = body_inertia(sc)
+    out = np.zeros(N_OUT)
+    ser = np.zeros((0, N_SERIES))
+    h = sc.new_history()
+
+    def run():
+        h[:] = 0.0
+        integrate_impact(sc.normal_id, sc.tangential_id, sc.params, h, 5.0, 2.0, 0.0, 0.0,
+                         inv_m, R1, R2, iI1, iI2, dt, int(50 * spc), True, out, ser)
+    run()
+    return run, out
+
+
+@pytest.mark.benchmark(group="plastic impact, mdr_adaptive Coulomb-limit profile")
+@pytest.mark.parametrize("profile", ["truncated", "scaled"])
+def test_bench_pe_profile(benchmark, profile):
+    """PE at 5 m/s (plastic loading): the truncated pressure's line load against the Hertz shape."""
+    run, out = _pe_kernel(profile)
+    benchmark(run)
+    assert out[0] < 0

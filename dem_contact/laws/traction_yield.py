@@ -1,0 +1,147 @@
+"""First yield of a Hertz contact carrying a sliding traction, for the traction-coupled Thornton law.
+
+A Hertz pressure p = p0 sqrt(1 - r^2/a^2) with the tangential traction q = mu_eff p in the x direction
+(the traction of a sliding contact, or of a partly slipping one with |T| = mu_eff N distributed like
+the pressure) loads an elastic half-space. The stresses are Hamilton's closed forms (G. M. Hamilton,
+"Explicit equations for the stresses beneath a sliding spherical contact", Proc. IMechE 197C (1983)
+53-59), evaluated here in units of a and p0. First yield (von Mises, uniaxial yield stress Y) happens
+at the largest equivalent stress in the body: p0_first(mu_eff) = Y / max sigma_vM(x, y, z) / p0.
+
+For mu_eff = 0 the maximum is on the axis, z = 0.48 a, and p0_first = 1.60 Y (nu = 0.3; Johnson,
+Contact Mechanics, 1985, section 4.2), the basis of Thornton's p_y = 1.6 Y. With traction the maximum
+grows and moves towards the surface; above mu_eff of about 0.3 it is at the surface, at the trailing
+edge of the contact (Johnson 1985, section 7.2; Hamilton 1983). The traction-coupled Thornton law scales
+its limiting pressure by ``first_yield_ratio(mu_eff) = p0_first(mu_eff) / p0_first(0)``: nothing in it
+is fitted.
+
+The field is checked in ``tests/test_plastic.py`` (equilibrium, Beltrami-Michell compatibility and the
+surface tractions by finite differences; the trailing-edge surface stress
+sigma_x = p0 ((1 - 2 nu)/3 + (4 + nu) pi mu / 8) of Hamilton & Goodman 1966).
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from ..errors import InputError
+from .slots import TY_MAX_NODES
+
+
+def _aux(x, y, z):
+    r2 = x * x + y * y
+    A = r2 + z * z - 1.0
+    S = np.sqrt(A * A + 4.0 * z * z)
+    M = np.sqrt(0.5 * (S + A))
+    N = np.sqrt(np.maximum(0.5 * (S - A), 0.0))
+    phi = np.arctan2(1.0, M)
+    return r2, A, S, M, N, phi
+
+
+def normal_stress(x, y, z, nu):
+    """Stresses (sxx, syy, szz, sxy, sxz, syz) / p0 under the Hertz pressure (lengths / a, z >= 0 into the
+    body; compression negative). Hamilton (1983), normal load; the points must be off the axis x = y = 0."""
+    r2, A, S, M, N, phi = _aux(x, y, z)
+    G = M * M - N * N + z * M - N
+    H = 2.0 * M * N + M + z * N
+    common = (1.0 - nu) * N * z * z - (1.0 - 2.0 * nu) / 3.0 * (N * S + 2.0 * A * N + 1.0) - nu * M * z
+    sxx = (1.0 + nu) * z * phi + ((y * y - x * x) / r2 * common - N * (x * x + 2.0 * nu * y * y)
+                                  - M * x * x * z / S) / r2
+    syy = (1.0 + nu) * z * phi + ((x * x - y * y) / r2 * common - N * (y * y + 2.0 * nu * x * x)
+                                  - M * y * y * z / S) / r2
+    szz = -N + z * M / S
+    sxy = x * y / (r2 * r2) * ((1.0 - 2.0 * nu) * (-N * r2 + 2.0 / 3.0 * N * (S + 2.0 * A) - z * (z * N + M)
+                                                  + 2.0 / 3.0) + z * (-M * r2 / S - z * N + M))
+    t = z * z * H / (G * G + H * H) - z * N / S
+    return sxx, syy, szz, sxy, x * t, y * t
+
+
+def tangential_stress(x, y, z, nu):
+    """Stresses / q0 under the traction q = q0 sqrt(1 - r^2/a^2) acting on the body in +x (Hamilton 1983,
+    tangential load); same conventions as ``normal_stress``."""
+    r2, A, S, M, N, phi = _aux(x, y, z)
+    r4 = r2 * r2
+    v = 1.0 - 2.0 * nu
+    x2, y2, z2 = x * x, y * y, z * z
+    fx = 1.5 - 2.0 * x2 / r2
+    hx = 0.5 - 2.0 * x2 / r2
+    hy = 0.5 - 2.0 * y2 / r2
+    base = -S / 6.0 * v - A / 3.0 * v
+    sxx = (-x * (nu / 4.0 + 1.0) * phi
+           + x * M / r4 * (fx * (nu * S - 2.0 * nu * A + z2) + x2 * z2 / S + 1.75 * nu * r2 - 2.0 * nu * x2 + r2)
+           + x * z * N / r4 * (fx * (base - 0.5 * (z2 + 3.0)) + x2 / S - 0.25 * nu * r2 - 1.75 * r2)
+           + 4.0 * x * z / (3.0 * r4) * fx * v)
+    syy = (-0.75 * nu * x * phi
+           + x * M / r4 * (hy * (nu * (S - 2.0 * A + r2) + z2) + y2 * z2 / S + 0.75 * nu * r2)
+           + x * z * N / r4 * (hy * (base - 0.5 * z2 - 1.5) + y2 / S - 0.75 * nu * r2 - 0.25 * r2)
+           + 4.0 * x * z / (3.0 * r4) * hy * v)
+    szz = 0.5 * x * z * N / r2 * (1.0 - (r2 + z2 + 1.0) / S)
+    sxy = (0.5 * y * (0.5 * nu - 1.0) * phi
+           + y * M / r4 * (x2 * z2 / S + nu * ((S - 2.0 * A) * hx - 2.0 * x2 + 0.25 * r2) + 0.5 * r2 + z2 * hx)
+           + y * z * N / r4 * (hx * (-v * (S / 6.0 + A / 3.0) - 0.5 * z2 - 1.5 - 0.5 * r2) + 0.25 * nu * r2
+                               + x2 / S - 0.5 * y2 - 1.5 * x2)
+           + 4.0 * y * z / (3.0 * r4) * hx * v)
+    sxz = (1.5 * z * phi + z * M / r2 * (1.0 + x2 / r2 - x2 / S)
+           + N / r2 * (-0.75 * (S + 2.0 * A) + z2 - 0.75 - 0.25 * r2 + 0.5 * z2 * hx))
+    syz = x * y * z / (2.0 * r4) * (M * (0.5 + (0.5 * z2 - 1.5 - 0.5 * r2) / S)
+                                    + 0.5 * z * N * (-3.0 + (5.0 + z2 + r2) / S))
+    return sxx, syy, szz, sxy, sxz, syz
+
+
+#: Closer to the axis than this (in units of a), the closed forms lose digits to cancellation (terms in
+#: 1/r^4): the field is evaluated at this distance instead, in the same direction (it is smooth there).
+AXIS_GUARD = 0.02
+
+
+def von_mises(x, y, z, nu, mu_eff):
+    """Von Mises equivalent stress / p0 of the Hertz pressure plus the traction mu_eff p (in +x)."""
+    x, y, z = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float), np.asarray(z, float))
+    r = np.hypot(x, y)
+    scale = AXIS_GUARD / np.maximum(r, 1e-300)
+    near = r < AXIS_GUARD
+    x = np.where(near, np.where(r > 0.0, x * scale, AXIS_GUARD), x)
+    y = np.where(near, y * np.where(r > 0.0, scale, 0.0), y)
+    sn = normal_stress(x, y, z, nu)
+    st = tangential_stress(x, y, z, nu)
+    sxx, syy, szz, sxy, sxz, syz = (a + mu_eff * b for a, b in zip(sn, st))
+    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
+                   + 3.0 * (sxy * sxy + sxz * sxz + syz * syz))
+
+
+def max_von_mises(nu: float, mu_eff: float):
+    """(max sigma_vM / p0, x/a, y/a, z/a) over the half-space: a grid search, then a bounded local
+    maximisation from the best grid points (the field is symmetric in y, so y >= 0)."""
+    from scipy.optimize import minimize
+
+    xs = np.linspace(-1.6, 1.6, 97)
+    ys = np.linspace(0.0, 1.2, 25) + 1e-9
+    zs = np.concatenate([[1e-9], np.linspace(0.02, 1.2, 60)])
+    X, Y, Z = np.meshgrid(xs, ys, zs, indexing="ij")
+    V = von_mises(X, Y, Z, nu, mu_eff)
+    best = (-1.0, 0.0, 0.0, 0.0)
+    for idx in np.argsort(V, axis=None)[-6:]:
+        i = np.unravel_index(idx, V.shape)
+        x0 = np.array([X[i], Y[i], Z[i]])
+        res = minimize(lambda s: -von_mises(s[0], s[1], s[2], nu, mu_eff), x0, method="L-BFGS-B",
+                       bounds=[(-2.0, 2.0), (1e-9, 1.5), (1e-9, 1.5)], options={"ftol": 1e-14, "gtol": 1e-11})
+        val = -float(res.fun)
+        if val > best[0]:
+            best = (val, *map(float, res.x))
+    return best
+
+
+#: Number of uniform nodes of mu_eff in the first-yield table (the slots the parameter row has for it).
+TABLE_NODES = TY_MAX_NODES
+
+
+@functools.lru_cache(maxsize=64)
+def first_yield_ratio_table(nu: float, mu_max: float) -> tuple:
+    """p0_first(mu_eff) / p0_first(0) at TABLE_NODES uniform nodes of mu_eff in [0, mu_max] (Poisson
+    ratio nu of the yielding body). Computed once per (nu, mu_max) and cached."""
+    if not 0.0 <= nu <= 0.5:
+        raise InputError(f"nu = {nu:g}: the first-yield table needs a Poisson ratio in [0, 0.5]")
+    if not mu_max > 0.0:
+        raise InputError("mu must be > 0 for the first-yield table")
+    mus = np.linspace(0.0, mu_max, TABLE_NODES)
+    peak = np.array([max_von_mises(nu, m)[0] for m in mus])
+    return tuple(peak[0] / peak)
