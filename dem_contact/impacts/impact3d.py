@@ -317,17 +317,16 @@ class Impact3DResult:
         return _json_safe(d)
 
 
-def _vector(name: str, value, n: int) -> np.ndarray:
+def _vector(name: str, what: str, value, n: int) -> np.ndarray:
+    """A finite float vector of n components, or InputError naming the parameter."""
     try:
         v = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a sequence of {n} numbers") from None
-    if v.shape == () and n == 1:
-        v = v.reshape(1)
+        raise InputError(f"{name} ({what}) must be a sequence of {n} numbers") from None
     if v.shape != (n,):
-        raise InputError(f"{name} must have {n} components, got shape {v.shape}")
+        raise InputError(f"{name} ({what}) must have {n} components, got shape {v.shape}")
     for i, x in enumerate(v):
-        check_finite(f"{name}[{i}]", float(x))
+        check_finite(f"{name}[{i}] ({what})", float(x))
     return v
 
 
@@ -345,9 +344,9 @@ def impact3d(scene: Scene, vn: float, vt=(0.0, 0.0), spin=(0.0, 0.0, 0.0), *, sp
     if not isinstance(scene, Scene):
         raise InputError("scene must be a Scene")
     vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
-    vt = _vector("vt (tangential velocity (Vx, Vy), m/s)", vt, 2)
-    w1 = _vector("spin (angular velocity (wx, wy, wz) of the sphere, rad/s)", spin, 3)
-    w2 = _vector("spin2 (angular velocity of body 2, rad/s)", spin2, 3)
+    vt = _vector("vt", "tangential velocity (Vx, Vy) of the centre, m/s", vt, 2)
+    w1 = _vector("spin", "angular velocity (wx, wy, wz) of the sphere, rad/s", spin, 3)
+    w2 = _vector("spin2", "angular velocity (wx, wy, wz) of body 2, rad/s", spin2, 3)
     if isinstance(scene.body2, Wall) and np.any(w2 != 0.0):
         raise InputError("spin2 applies to sphere-sphere impacts only (body 2 is a wall)")
     if scheme not in SCHEMES:
