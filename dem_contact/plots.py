@@ -331,3 +331,44 @@ def stability_figure(rows, path):
     fig.savefig(path, dpi=130)
     plt.close(fig)
     return path
+
+
+def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=None):
+    """A prescribed path and the force along it: the tangential path (ux, uy) and the force vector
+    -T/(mu N) drawn on it; Tx/(mu N), Ty/(mu N) and |T|/(mu N) against the row. ``reference``: optional
+    (N, Tx, Ty) of a reference drawn dashed."""
+    N = np.asarray(N, dtype=float)
+    muN = np.where(N > 0, mu * N, np.nan)
+    rows = np.arange(len(N))
+    fig, (a0, a1) = plt.subplots(1, 2, figsize=(11, 4.6))
+    scale = 1e6
+    a0.plot(np.asarray(ux) * scale, np.asarray(uy) * scale, "k-", lw=1.0, label="path")
+    every = max(1, len(N) // 24)
+    extent = max(np.ptp(np.asarray(ux)), np.ptp(np.asarray(uy)), 1e-300) * scale
+    arrow = 0.2 * extent        # length of an arrow of magnitude mu N
+    a0.quiver(np.asarray(ux)[::every] * scale, np.asarray(uy)[::every] * scale,
+              (-np.asarray(Tx) / muN)[::every] * arrow, (-np.asarray(Ty) / muN)[::every] * arrow, color="C0",
+              angles="xy", scale_units="xy", scale=1.0, width=0.004,
+              label="-T/(mu N) (force on body 2; mu N = 0.2 of the path's extent)")
+    a0.set_xlabel("ux [um]")
+    a0.set_ylabel("uy [um]")
+    a0.set_aspect("equal", adjustable="datalim")
+    a0.legend(fontsize=8)
+    for val, lab, c in [(np.asarray(Tx) / muN, "Tx/(mu N)", "C0"), (np.asarray(Ty) / muN, "Ty/(mu N)", "C1"),
+                        (np.hypot(Tx, Ty) / muN, "|T|/(mu N)", "k")]:
+        a1.plot(rows, val, color=c, lw=1.3, label=lab)
+    if reference is not None:
+        Nr, Txr, Tyr = (np.asarray(x, dtype=float) for x in reference)
+        muNr = np.where(Nr > 0, mu * Nr, np.nan)
+        a1.plot(rows, Txr / muNr, "C0--", lw=1.0, label="reference")
+        a1.plot(rows, Tyr / muNr, "C1--", lw=1.0)
+        a1.plot(rows, np.hypot(Txr, Tyr) / muNr, "k--", lw=1.0)
+    a1.set_xlabel("row")
+    a1.set_ylabel("tangential force on body 1 / (mu N)")
+    a1.axhline(0, color="0.7", lw=0.5)
+    a1.legend(fontsize=8)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
