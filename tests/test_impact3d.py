@@ -159,3 +159,23 @@ def test_bad_input(scenes):
         impact3d(sc, -1.0)
     with pytest.raises(InputError, match="angle"):
         sweep3d(sc, [95.0])
+
+
+def test_command(tmp_path, capsys):
+    import json
+
+    from dem_contact.cli import main
+
+    assert main(["impact3d", "--vt", "1", "0", "--spin-vector", "0", "30", "0", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    r = dc.impact(dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, v_ref=5.0), 5.0, 1.0, 30.0)
+    assert d["f_over_mu"] == pytest.approx(r.f_over_mu, rel=1e-12) and d["spin_r"][1] == pytest.approx(r.omega_r)
+    assert main(["impact3d", "--angles", "10:30:10", "--spin-vector", "100", "0", "0", "--direction", "90",
+                 "--csv", str(tmp_path / "s.csv")]) == 0
+    rows = (tmp_path / "s.csv").read_text().splitlines()
+    assert len(rows) == 4 and rows[0].startswith("theta_deg,Theta,Theta_across")
+    capsys.readouterr()
+    for argv in (["impact3d", "--vt", "1", "0", "--angle", "3"], ["impact3d", "--csv", "x.csv"],
+                 ["impact3d", "--spin-vector", "1", "nan", "0"], ["impact3d", "--vt", "1", "0", "--direction", "3"]):
+        assert main(argv) == 2, argv
+        assert capsys.readouterr().err.count("\n") == 1
