@@ -11,9 +11,12 @@ ORDER = 6
 
 
 def add_parser(sub):
-    from ..studies.paths import SHAPE_HELP, SHAPES
+    from ..reference.paths import SHAPES
 
-    shapes = "; ".join(f"{k}: {v}" for k, v in SHAPE_HELP.items())
+    shapes = ("circle: the circle through the origin of radius SIZE, centre (SIZE, 0); load-circle: along x "
+              "to SIZE, then once round the circle of radius SIZE about the origin; l-turn: along x to SIZE, "
+              "then along y by SIZE; figure-eight: u = SIZE (sin t, sin t cos t), t from 0 to 2 pi; "
+              "load-unload: along x to SIZE, back to -SIZE and again to SIZE")
     p = sub.add_parser(
         "path", help="forces of a contact law along a prescribed path of overlap and tangential displacement",
         description="Drive one contact (the 3D per-contact kernel, normal along z) along a path and print, per "
@@ -31,7 +34,8 @@ def add_parser(sub):
                    help="size of the named path in units of the slip displacement mu delta / kappa (default: "
                         "0.6; 1.5 for l-turn; 1 for load-unload)")
     g.add_argument("--overlap", type=float, default=1e-5, help="constant overlap of the named path [m] (default 1e-5)")
-    g.add_argument("--steps", type=int, default=400, help="rows of the named path (default 400)")
+    g.add_argument("--steps", type=int, default=400,
+                   help="steps of the named path after its first row (the loaded contact at u = 0; default 400)")
     s = p.add_argument_group("contact (SI units; defaults: steel sphere of radius 10 mm on a steel wall)")
     s.add_argument("--radius", type=float, default=0.01, help="sphere radius [m] (default 0.01)")
     s.add_argument("--E", type=float, default=STEEL.E, help="sphere Young's modulus [Pa] (default 208e9)")
@@ -74,8 +78,8 @@ def _scene(args):
 
 
 def run(args) -> int:
-    from ..studies.paths import named_path, read_path_csv, reference_path, run_path, slip_displacement, \
-        write_path_csv
+    from ..reference.paths import scene_path
+    from ..studies.paths import read_path_csv, reference_path, run_path, write_path_csv
 
     scene = _scene(args)
     if args.reference and args.tangential is not None:
@@ -91,8 +95,7 @@ def run(args) -> int:
         size = args.size if args.size is not None else {"l-turn": 1.5, "load-unload": 1.0}.get(args.shape, 0.6)
         if not args.overlap > 0:
             raise InputError(f"--overlap = {args.overlap:g} must be > 0 [m]")
-        delta, ux, uy = named_path(args.shape, size, args.overlap, slip_displacement(scene, args.overlap),
-                                   args.steps)
+        delta, ux, uy = scene_path(args.shape, size, args.steps, scene, args.overlap)
     else:
         delta, ux, uy = read_path_csv(args.path_csv)
     if args.reference:

@@ -9,9 +9,8 @@ n = +z, the relative velocity increment/dt and no rotation of the contact frame,
 force N and the tangential force (Tx, Ty) on body 1 (it opposes the displacement: T = -k u in the elastic
 limit). ``reference_path`` gives the same from the boundary-element reference (``reference.bem``).
 
-``named_path`` builds the common checks at constant overlap, sizes in units of the slip displacement
-delta_slip = mu delta / kappa (the tangential displacement at gross slip of Cattaneo-Mindlin,
-Johnson 1985 section 7.2; kappa = 4 G*/E*).
+Named paths at constant overlap (circle, load-circle, l-turn, figure-eight, load-unload; sizes in units of
+the slip displacement mu delta / kappa) are built by ``reference.paths``.
 """
 from __future__ import annotations
 
@@ -26,15 +25,6 @@ from ..errors import InputError, NumericalError
 from ..laws.model import Scene
 from ..materials import check_finite
 
-#: Named paths (``named_path``).
-SHAPES = ("circle", "circle-origin", "l-turn", "figure-eight", "load-unload")
-SHAPE_HELP = {
-    "circle": "straight load to SIZE along x, then a full circle of radius SIZE around the origin",
-    "circle-origin": "a full circle of radius SIZE through the origin (centre at (SIZE, 0))",
-    "l-turn": "along x to SIZE, then a right angle: along y by SIZE",
-    "figure-eight": "a figure eight through the origin, u = SIZE (sin t, sin t cos t), t in [0, 2 pi]",
-    "load-unload": "along x to SIZE, back to -SIZE and back to 0 (the Cattaneo-Mindlin loop)",
-}
 #: Columns of a path CSV.
 COLUMNS = ("delta", "ux", "uy")
 
@@ -124,46 +114,6 @@ def reference_path(scene: Scene, delta, ux, uy, *, n_across: int = 64):
     E1 = math.inf if m1.is_rigid else m1.E
     E2 = math.inf if m2.is_rigid else m2.E
     return bem_path(E1, m1.nu, E2, m2.nu, scene.pair.R_star, scene.mu, delta, ux, uy, n_across=n_across)
-
-
-def slip_displacement(scene: Scene, delta: float) -> float:
-    """Tangential displacement at gross slip of a Hertz contact at overlap delta [m]: mu delta / kappa."""
-    return scene.mu * delta / scene.pair.kappa
-
-
-def named_path(shape: str, size: float, delta: float, slip: float, steps: int = 400):
-    """A named path at constant overlap ``delta`` [m] (``SHAPES``, ``SHAPE_HELP``): ``size`` in units of
-    the slip displacement ``slip`` [m] (``slip_displacement``), ``steps`` rows for its tangential part.
-    The first row loads the contact normally with no tangential displacement. Returns (delta, ux, uy)."""
-    if shape not in SHAPES:
-        raise InputError(f"shape {shape!r} is unknown; choose one of: {', '.join(SHAPES)}")
-    size = check_finite("size (in units of the slip displacement)", size, lo=0.0)
-    delta = check_finite("delta (overlap, m)", delta, lo=0.0)
-    slip = check_finite("slip (slip displacement, m)", slip, lo=0.0)
-    if isinstance(steps, bool) or int(steps) != steps or not 8 <= steps <= 10**7:
-        raise InputError(f"steps = {steps!r} must be an integer in [8, 1e7]")
-    steps = int(steps)
-    if shape == "circle-origin":
-        t = np.linspace(0.0, 2 * np.pi, steps + 1)
-        x, y = 1.0 - np.cos(t), np.sin(t)
-    elif shape == "circle":
-        n1 = max(2, steps // 5)
-        t = np.linspace(0.0, 2 * np.pi, steps - n1 + 1)[1:]
-        x = np.concatenate([np.linspace(0.0, 1.0, n1 + 1), np.cos(t)])
-        y = np.concatenate([np.zeros(n1 + 1), np.sin(t)])
-    elif shape == "l-turn":
-        n1 = steps // 2
-        x = np.concatenate([np.linspace(0.0, 1.0, n1 + 1), np.ones(steps - n1)])
-        y = np.concatenate([np.zeros(n1 + 1), np.linspace(0.0, 1.0, steps - n1 + 1)[1:]])
-    elif shape == "figure-eight":
-        t = np.linspace(0.0, 2 * np.pi, steps + 1)
-        x, y = np.sin(t), np.sin(t) * np.cos(t)
-    else:       # load-unload
-        s = np.linspace(0.0, 4.0, steps + 1)
-        x = np.where(s <= 1.0, s, np.where(s <= 3.0, 2.0 - s, s - 4.0))
-        y = np.zeros_like(x)
-    scale = size * slip
-    return np.full(x.size, delta), scale * x, scale * y
 
 
 def read_path_csv(path) -> tuple:
