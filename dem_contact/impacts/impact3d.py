@@ -46,7 +46,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import contact_force_xyz, new_histories
+from ..dem.contact3d import contact_force, history_size, new_histories
 from ..errors import InputError, NumericalError
 from ..laws.contact import normal_force, normal_gap
 from ..laws.model import Scene
@@ -84,42 +84,46 @@ N_SERIES3 = len(SERIES3)
 # --- the 3D per-contact kernel: every call of dem.contact3d is here -----------------------------------
 
 def new_contact_state(scene: Scene):
-    """Zeroed history of the one contact of an impact, as the 3D kernel wants it: (H, H3)."""
-    return new_histories(1, scene.history_size)
+    """(params, H): the scene's parameter row as a one-row table and the zeroed 3D history of the one
+    contact of an impact, as the 3D kernel takes them."""
+    params = np.ascontiguousarray(scene.params[None, :])
+    H = new_histories(1, history_size(scene.normal_id, scene.tangential_id, scene.mdr_springs))
+    return params, H
 
 
 @njit(cache=True)
-def _normal_history(H, H3):
-    """The history row that the normal law reads (the separation test and its location)."""
+def _normal_history(H):
+    """The history row that the normal law reads (separation test and its location): the header of the 3D
+    row has the planar row's normal slots."""
     return H[0]
 
 
 @njit(cache=True)
-def _contact(nid, tid, params, H, H3, delta, sx, sy, vn, wn, dt):
+def _contact(nid, tid, params, H, delta, sx, sy, vn, wn, dt):
     """Force of the 3D kernel on body 1 for the normal n = +z: (N, Ftx, Fty), advancing the history.
 
     (sx, sy): slip velocity over the step [m/s]; vn: overlap rate [m/s]; wn: rotation rate of the contact
-    frame about the normal [rad/s] (mean spin of the bodies about n)."""
-    fx, fy, fz, tx, ty, tz = contact_force_xyz(nid, tid, params, H[0], H3[0], 0.0, 0.0, 1.0, delta,
-                                               sx, sy, vn, dt)
+    frame about the normal [rad/s]."""
+    fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, 0, H, 0, 0.0, 0.0, 1.0, delta, sx, sy, vn, wn, dt)
     return -fz, tx, ty
 
 
 # -------------------------------------------------------------------------------------------------------
 
 @njit(cache=True)
-def integrate_impact3d(nid, tid, p, H, H3, vn0, vx0, vy0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
+def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
                        dt, max_steps, locate, frame_spin, out, series):
     """Integrate one 3D impact from first touch (delta = 0) to separation.
 
-    p: parameter row; H, H3: the contact's history (zeroed, ``new_contact_state``); vn0 > 0: incident
+    params, H: one-row parameter table and zeroed history (``new_contact_state``); vn0 > 0: incident
     normal approach speed [m/s]; vx0, vy0: incident tangential velocity of the centres [m/s]; w10, w20:
     float64[3] incident spins [rad/s]; inv_m = 1/m*; R1, R2 [m]; inv_I1, inv_I2; dt [s]; max_steps;
     locate: located separation (True) or the standard DEM end; frame_spin: pass the mean spin about the
     normal to the kernel as the rotation of the contact frame (True) or 0 (False);
     out: float64[N_OUT3]; series: float64[n, N_SERIES3] (first n steps recorded)."""
+    p = params[0]
     mu = p[P_MU]
-    hn = _normal_history(H, H3)
+    hn = _normal_history(H)
     delta = 0.0
     vn = vn0
     vx = vx0
@@ -174,7 +178,7 @@ def integrate_impact3d(nid, tid, p, H, H3, vn0, vx0, vy0, w10, w20, inv_m, R1, R
             Fyn = 0.0
         else:
             d_eval = delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
-            Nn, Fxn, Fyn = _contact(nid, tid, p, H, H3, d_eval, sx, sy, vn_h - kick, wn, hdt)
+            Nn, Fxn, Fyn = _contact(nid, tid, params, H, d_eval, sx, sy, vn_h - kick, wn, hdt)
         PN += 0.5 * hdt * (N + Nn)
         PX += 0.5 * hdt * (Fx + Fxn)
         PY += 0.5 * hdt * (Fy + Fyn)
@@ -356,8 +360,8 @@ def impact3d(scene: Scene, vn: float, vt=(0.0, 0.0), spin=(0.0, 0.0, 0.0), *, sp
     max_steps = int(math.ceil(MAX_CONTACT_TIMES * spc)) + 10
     out = np.zeros(N_OUT3)
     ser = np.zeros((max_steps if series else 0, N_SERIES3))
-    H, H3 = new_contact_state(scene)
-    integrate_impact3d(scene.normal_id, scene.tangential_id, scene.params, H, H3, vn, vt[0], vt[1], w1, w2,
+    params, H = new_contact_state(scene)
+    integrate_impact3d(scene.normal_id, scene.tangential_id, params, H, vn, vt[0], vt[1], w1, w2,
                        inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", bool(frame_spin),
                        out, ser)
     if scene.tangential == "mdr" and H[0, H_A] > scene.mdr_max_radius:

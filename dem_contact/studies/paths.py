@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import contact_force_xyz, new_histories, reset_contact
+from ..dem.contact3d import contact_force, history_size, new_histories, reset_contact
 from ..errors import InputError, NumericalError
 from ..laws.model import Scene
 from ..materials import check_finite
@@ -30,7 +30,7 @@ COLUMNS = ("delta", "ux", "uy")
 
 
 @njit(cache=True)
-def _drive(nid, tid, p, H, H3, delta, ux, uy, dt, N, Tx, Ty):
+def _drive(nid, tid, params, H, delta, ux, uy, dt, N, Tx, Ty):
     """Advance one contact along the path (kernel calls of this module are here only)."""
     d0 = 0.0
     x0 = 0.0
@@ -40,13 +40,13 @@ def _drive(nid, tid, p, H, H3, delta, ux, uy, dt, N, Tx, Ty):
             vx = (ux[k] - x0) / dt
             vy = (uy[k] - y0) / dt
             vz = (delta[k] - d0) / dt
-            fx, fy, fz, tx, ty, tz = contact_force_xyz(nid, tid, p, H[0], H3[0], 0.0, 0.0, 1.0, delta[k],
-                                                       vx, vy, vz, dt)
+            fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, 0, H, 0, 0.0, 0.0, 1.0, delta[k],
+                                                   vx, vy, vz, 0.0, dt)
             N[k] = -fz
             Tx[k] = tx
             Ty[k] = ty
         else:
-            reset_contact(H[0], H3[0])
+            reset_contact(H, 0)
             N[k] = 0.0
             Tx[k] = 0.0
             Ty[k] = 0.0
@@ -94,26 +94,22 @@ def run_path(scene: Scene, delta, ux, uy, *, dt: float = 1.0):
     delta, ux, uy = check_path(delta, ux, uy)
     dt = check_finite("dt (time per row, s)", dt, lo=0.0)
     sc = path_scene(scene, float(delta.max()))
-    H, H3 = new_histories(1, sc.history_size)
+    H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs))
     N, Tx, Ty = np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size)
-    _drive(sc.normal_id, sc.tangential_id, sc.params, H, H3, delta, ux, uy, dt, N, Tx, Ty)
+    _drive(sc.normal_id, sc.tangential_id, np.ascontiguousarray(sc.params[None, :]), H, delta, ux, uy, dt, N, Tx,
+           Ty)
     if not (np.all(np.isfinite(N)) and np.all(np.isfinite(Tx)) and np.all(np.isfinite(Ty))):
         raise NumericalError(f"non-finite force along the path ({sc.normal}/{sc.tangential})")
     return N, Tx, Ty
 
 
 def reference_path(scene: Scene, delta, ux, uy, *, n_across: int = 64):
-    """(N, Tx, Ty) of the boundary-element reference along the path (``reference.bem.bem_path``: Hertz
-    pressure, Cattaneo-Mindlin tangential problem solved on a grid of ``n_across`` elements across the
-    largest contact)."""
-    from ..reference.bem import bem_path
+    """(N, Tx, Ty) of the boundary-element reference along the path (``reference.bem``: Hertz pressure, the
+    Cattaneo-Mindlin tangential problem solved on ``n_across`` elements across the largest contact)."""
+    from ..reference.bem import bem_path_scene
 
     delta, ux, uy = check_path(delta, ux, uy)
-    m1 = scene.sphere.material
-    m2 = scene.body2.material
-    E1 = math.inf if m1.is_rigid else m1.E
-    E2 = math.inf if m2.is_rigid else m2.E
-    return bem_path(E1, m1.nu, E2, m2.nu, scene.pair.R_star, scene.mu, delta, ux, uy, n_across=n_across)
+    return bem_path_scene(scene, delta, ux, uy, n_across=n_across)
 
 
 def read_path_csv(path) -> tuple:
