@@ -372,3 +372,80 @@ def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=Non
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
+
+
+def spin_figure(rows, path, *, bem_rows=(), planar=None, title=None):
+    """Impacts with out-of-plane spin (``studies.spin``): f/mu in the impact plane (solid) and across it
+    (dashed) against Theta_across, one colour per impact angle, BEM cases as markers; |f|/mu against the
+    magnitude of the Theta vector with the planar curve ``planar`` = (Theta, f/mu); the rebound angle out
+    of the impact plane and e_t against Theta_across."""
+    angles = sorted({r.angle_deg for r in rows})
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8.4))
+    for i, ang in enumerate(angles):
+        pts = sorted((r for r in rows if r.angle_deg == ang), key=lambda r: r.Theta_across)
+        X = np.array([r.Theta_across for r in pts])
+        c = f"C{i}"
+        ax[0, 0].plot(X, [r.f_over_mu for r in pts], "-", color=c, label=f"{ang:g} deg (Theta = {pts[0].Theta:.2f})")
+        ax[0, 0].plot(X, [r.f_across_over_mu for r in pts], "--", color=c)
+        ax[0, 1].plot(np.hypot([r.Theta for r in pts], X), np.hypot([r.f_over_mu for r in pts],
+                      [r.f_across_over_mu for r in pts]), "o", ms=3, color=c, label=f"{ang:g} deg")
+        ax[1, 0].plot(X, [r.out_of_plane_angle_deg for r in pts], "-", color=c, label=f"{ang:g} deg")
+        ax[1, 1].plot(X, [r.e_t for r in pts], "-", color=c, label=f"{ang:g} deg")
+        for b in bem_rows:
+            if b.angle_deg == ang:
+                ax[0, 0].plot(b.Theta_across, b.bem_f_over_mu, "s", mfc="none", color=c, ms=8)
+                ax[0, 0].plot(b.Theta_across, b.bem_f_across_over_mu, "D", mfc="none", color=c, ms=7)
+                ax[1, 0].plot(b.Theta_across, b.bem_out_of_plane_angle_deg, "s", mfc="none", color=c, ms=8)
+    if bem_rows:
+        ax[0, 0].plot([], [], "ks", mfc="none", label="BEM: in plane")
+        ax[0, 0].plot([], [], "kD", mfc="none", label="BEM: across")
+        ax[1, 0].plot([], [], "ks", mfc="none", label="BEM")
+    if planar is not None:
+        ax[0, 1].plot(planar[0], planar[1], "k-", lw=1, label="planar impact, f/mu vs Theta")
+    ax[0, 0].set_ylabel("f/mu: in the impact plane (solid), across it (dashed)")
+    ax[0, 1].set_xlabel("|Theta vector| = 2 |v_slip,i| / ((1 + e_n) mu V_n)")
+    ax[0, 1].set_ylabel("|f vector| / mu")
+    ax[1, 0].set_ylabel("rebound velocity out of the impact plane [deg]")
+    ax[1, 1].set_ylabel("e_t (in the impact plane)")
+    for a in (ax[0, 0], ax[1, 0], ax[1, 1]):
+        a.set_xlabel("Theta_across = 2 v_slip,across / ((1 + e_n) mu V_n)")
+    for a in ax.flat:
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize=7)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+def chart3d_figure(rows, path, *, title=None):
+    """Error of each 3D law against the BEM (max over the curved paths, and per path) versus the time per
+    kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list."""
+    laws = list(dict.fromkeys(r.law for r in rows))
+    paths = [p for p in dict.fromkeys(r.path for r in rows) if p != "max"]
+    fig, (a0, a1) = plt.subplots(1, 2, figsize=(13, 5.4))
+    for i, law in enumerate(laws):
+        m = next(r for r in rows if r.law == law and r.path == "max")
+        a0.plot(m.time_per_update_ns, m.error, "o", color=f"C{i % 10}", ms=7)
+        a0.annotate(law, (m.time_per_update_ns, m.error), fontsize=7, xytext=(4, 3), textcoords="offset points")
+        a1.plot(range(len(paths)), [next(r.error for r in rows if r.law == law and r.path == p) for p in paths],
+                "o-", color=f"C{i % 10}", label=law, ms=4)
+    a0.set_xscale("log")
+    a0.set_yscale("log")
+    a0.set_xlabel("time per update of the 3D kernel [ns] (serial, warm JIT)")
+    a0.set_ylabel("max |T - T_BEM| / (mu N) over the five curved paths")
+    a1.set_xticks(range(len(paths)))
+    a1.set_xticklabels(paths, rotation=20, fontsize=8)
+    a1.set_yscale("log")
+    a1.set_ylabel("max |T - T_BEM| / (mu N) along the path")
+    for a in (a0, a1):
+        a.grid(True, which="both", alpha=0.3)
+    a1.legend(fontsize=7, ncol=2)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path

@@ -1,0 +1,59 @@
+"""3D speed-accuracy chart: every tangential law of dem_contact.dem.contact3d against the boundary-element
+reference on the five curved paths at constant overlap. Writes chart3d.csv, chart3d.png and chart3d.md
+beside this file; the BEM forces are read from bem_paths_n64.csv (recomputed with --recompute, about
+3 minutes at 64 elements across; --check FILE compares with a finer reference written the same way).
+
+    PYTHONPATH=$PWD python validation/chart/chart3d.py [--recompute] [--check bem_paths_n128.csv]
+"""
+import pathlib
+import sys
+
+import numpy as np
+
+from dem_contact.plots import chart3d_figure
+from dem_contact.studies import chart3d as c
+
+HERE = pathlib.Path(__file__).parent
+REF = HERE / "bem_paths_n64.csv"
+
+
+def main():
+    if "--recompute" in sys.argv or not REF.exists():
+        paths = c.chart_paths()
+        forces = c.reference_forces(paths, n_across=c.N_ACROSS, progress=True)
+        c.write_reference(REF, paths, forces, c.N_ACROSS)
+    paths, forces, n_across = c.read_reference(REF)
+    rows = c.chart3d(paths, forces)
+    c.write_csv(rows, HERE / "chart3d.csv")
+    chart3d_figure(rows, HERE / "chart3d.png",
+                   title=f"3D laws against the BEM ({n_across} elements across), steel on steel, mu = 0.3, "
+                         f"overlap {c.DELTA:g} m, {c.PATH_STEPS} steps per path")
+    labels = list(paths)
+    lines = ["# 3D laws against the boundary-element reference", "",
+             f"Steel sphere (R = 10 mm) on a steel wall, mu = 0.3, constant overlap {c.DELTA:g} m; paths of "
+             "`dem_contact.reference.paths.COMPARISON_SET` (sizes in slip displacements mu delta / kappa), "
+             f"{c.PATH_STEPS} steps each, driven through `dem_contact.studies.paths.run_path` (the 3D kernel, "
+             f"contact frame fixed). Reference: `dem_contact.reference.bem` with {n_across} elements across the "
+             "contact. Error: max over the path of |T - T_BEM| / (mu N); time: one kernel update, serial loop, "
+             "warm JIT, best of 5 runs (shared machine: compare ratios).", "",
+             "Regenerate: `PYTHONPATH=$PWD python validation/chart/chart3d.py` (a few seconds; the reference is "
+             "read from `bem_paths_n64.csv`, `--recompute` rebuilds it).", "",
+             "| law | " + " | ".join(labels) + " | max | ns per update |",
+             "|---|" + "---|" * (len(labels) + 2)]
+    for law in dict.fromkeys(r.law for r in rows):
+        per = {r.path: r for r in rows if r.law == law}
+        lines.append(f"| {law} | " + " | ".join(f"{per[p].error:.3f}" for p in labels) +
+                     f" | {per['max'].error:.3f} | {per['max'].time_per_update_ns:.0f} |")
+    for arg in sys.argv:
+        if arg.startswith("--check"):
+            fine = pathlib.Path(sys.argv[sys.argv.index(arg) + 1])
+            fpaths, fforces, fn = c.read_reference(fine)
+            lines += ["", f"BEM grid: {n_across} against {fn} elements across, max |T_{n_across} - T_{fn}| / (mu N) "
+                      "per path: " + ", ".join(
+                          f"{p} {c.force_error(*forces[p], fforces[p], 0.3):.4f}" for p in labels if p in fforces)]
+    lines += ["", "![chart](chart3d.png)", ""]
+    (HERE / "chart3d.md").write_text("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
