@@ -127,6 +127,12 @@ def test_command(tmp_path, capsys):
     out = capsys.readouterr().out.splitlines()
     assert out[1] == "N,Tx,Ty" and len(out) == 2 + 401
     assert (tmp_path / "l.png").stat().st_size > 0
+    assert main(["path", "--shape", "load-unload", "--size", "0.5", "--steps", "12", "--reference", "--n-across",
+                 "8", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert len(d["N"]) == 13 and d["law"].startswith("boundary-element")
+    Nb, Txb, _ = run_path(sc, *scene_path("load-unload", 0.5, 12, sc, 1e-5))
+    assert np.allclose(d["Tx"], Txb, rtol=0, atol=0.05 * 0.3 * Nb[0])   # MDR vs a coarse BEM on a straight path
     for argv in (["path"], ["path", str(p), "--shape", "circle"], ["path", str(p), "--size", "2"],
                  ["path", "--shape", "circle", "--overlap", "-1"], ["path", "--shape", "circle", "--mu", "-1"],
                  ["path", str(tmp_path / "none.csv")]):
