@@ -24,7 +24,7 @@ def scenes(steel_sphere, steel_wall):
 
 def test_cattaneo_mindlin_loop(scenes):
     """Exact MDR along x at constant overlap: loading T = mu N [1 - (1 - u/u_s)^(3/2)] and the Masing
-    unloading branch (Johnson 1985 eqs 7.39, 7.42; physics of Cattaneo-Mindlin), opposing the displacement."""
+    unloading branch (Johnson 1985 section 7.2; Mindlin & Deresiewicz 1953), opposing the displacement."""
     sc = dc.Scene(scenes["mdr"].sphere, scenes["mdr"].body2, mu=0.3, tangential="mdr", mdr_springs=4000,
                   mdr_max_radius=1.01 * math.sqrt(0.01 * DELTA))
     us = slip_displacement(DELTA, sc.mu, sc.pair.kappa)

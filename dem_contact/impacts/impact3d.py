@@ -34,7 +34,7 @@ incident slip direction (only a rotation of the contact frame, the mean spin abo
 
 In-plane quantities (``Impact3DResult``) are those of the impact plane, spanned by the normal and the
 incident tangential velocity of the centre (the x axis when that is zero): e_t, f, Theta, Psi_r and
-Omega as in physics section 0 of Wu et al. (eqs 2.1-2.20, 7.1), from the components along that plane;
+Omega of Wu, Thornton & Li (2009, eqs 2.1-2.20 and 7.1), from the components along that plane;
 the components across it are reported beside them (``*_across``).
 """
 from __future__ import annotations
