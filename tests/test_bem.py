@@ -36,7 +36,7 @@ def cattaneo_mindlin_error(nu, n, mu=0.3, k=12):
     T_load = mu * N * (1 - (1 - u_load / s) ** 1.5)
     T_un = T_load[-1] - 2 * mu * N * (1 - (1 - (u_load[-1] - u_un) / (2 * s)) ** 1.5)
     assert np.allclose(Nb, N, rtol=1e-14)
-    assert np.max(np.abs(Ty)) < 1e-12 * mu * N
+    assert np.max(np.abs(Ty)) < 1e-6 * mu * N          # single-precision convolutions
     return np.max(np.abs(-Tx - np.r_[T_load, T_un])) / (mu * N)
 
 
@@ -68,7 +68,7 @@ def test_stuck_contact_has_mindlin_stiffness():
         u = 1e-9
         _, Tx, Ty = B.bem_path(E, nu, E, nu, R, 1e6, [DELTA, DELTA], [0.0, u], [0.0, 0.0], n_across=32)
         assert -Tx[1] / u == pytest.approx(8 * G_star * a, rel=0.01)
-        assert abs(Ty[1]) < 1e-12 * abs(Tx[1])
+        assert abs(Ty[1]) < 1e-6 * abs(Tx[1])
 
 
 def test_cattaneo_mindlin_loading_unloading_within_one_percent():
@@ -170,7 +170,7 @@ def test_impact_matches_planar_mdr():
         b = bem_impact(scene, 5.0, vt, n_across=16, steps=80)
         assert b.Theta == pytest.approx(ref.Theta, rel=1e-8)
         assert abs(b.f_over_mu - ref.f_over_mu) < 5e-3
-        assert b.tangential_impulse[1] == pytest.approx(0.0, abs=1e-12 * b.normal_impulse)
+        assert b.tangential_impulse[1] == pytest.approx(0.0, abs=1e-7 * b.normal_impulse)
     # gross sliding: |T| = mu N at every step once the contact covers an element centre
     b = bem_impact(scene, 5.0, 5.0 * math.tan(math.radians(70.0)), n_across=8, steps=20, series=True)
     T, N = b.series["tangential_force"], b.series["normal_force"]
@@ -213,3 +213,15 @@ def test_named_paths():
     d, ux, uy = named_path("load-circle", 0.5, 20, delta=DELTA, mu=0.3, kappa=0.8235)
     assert np.all(d == DELTA)
     assert np.hypot(ux[-1], uy[-1]) == pytest.approx(0.5 * 0.3 * DELTA / 0.8235)
+
+
+def test_single_precision_convolutions_agree_with_double():
+    _, _, _, N = effective(0.3)
+    x, y = unit_path("circle", 0.6, 16)
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    d = np.full(x.size, DELTA)
+    out = []
+    for single in (True, False):
+        solver = B.TangentialBEM(E, 0.3, E, 0.3, R, 0.3, math.sqrt(R * DELTA), n_across=12, single=single)
+        out.append(np.array([solver.step(DELTA, *du)[1:] for du in np.diff(np.c_[[0.0, 0.0], [s * x, s * y]].T, axis=0)]))
+    assert np.max(np.abs(out[0] - out[1])) < 1e-5 * 0.3 * N
