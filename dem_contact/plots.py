@@ -6,6 +6,8 @@
 """
 from __future__ import annotations
 
+import math
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -422,18 +424,34 @@ def spin_figure(rows, path, *, bem_rows=(), planar=None, title=None):
 
 def chart3d_figure(rows, path, *, title=None):
     """Error of each 3D law against the BEM (max over the curved paths, and per path) versus the time per
-    kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list."""
+    kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list. Laws at the same point share a label."""
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
     laws = list(dict.fromkeys(r.law for r in rows))
     paths = [p for p in dict.fromkeys(r.path for r in rows) if p != "max"]
+    cmap = plt.get_cmap("tab20")
     fig, (a0, a1) = plt.subplots(1, 2, figsize=(13, 5.4))
+    points = []
     for i, law in enumerate(laws):
         m = next(r for r in rows if r.law == law and r.path == "max")
-        a0.plot(m.time_per_update_ns, m.error, "o", color=f"C{i % 10}", ms=7)
-        a0.annotate(law, (m.time_per_update_ns, m.error), fontsize=7, xytext=(4, 3), textcoords="offset points")
+        a0.plot(m.time_per_update_ns, m.error, "o", color=cmap(i % 20), ms=7)
+        for pt in points:
+            if abs(pt[1] / m.error - 1) < 0.03 and abs(math.log(pt[0] / m.time_per_update_ns)) < 0.3:
+                pt[2].append(law)
+                break
+        else:
+            points.append([m.time_per_update_ns, m.error, [law]])
         a1.plot(range(len(paths)), [next(r.error for r in rows if r.law == law and r.path == p) for p in paths],
-                "o-", color=f"C{i % 10}", label=law, ms=4)
+                "o-", color=cmap(i % 20), label=law, ms=4)
+    for j, (t, e, names) in enumerate(sorted(points)):
+        below = j % 2 == 1       # neighbours' labels alternate above and below their points
+        a0.annotate(",\n".join(names), (t, e), fontsize=7, xytext=(5, -6 if below else 4), textcoords="offset points",
+                    va="top" if below else "bottom")
     a0.set_xscale("log")
     a0.set_yscale("log")
+    a0.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    a0.xaxis.set_major_formatter(ScalarFormatter())
+    a0.xaxis.set_minor_formatter(NullFormatter())
     a0.set_xlabel("time per update of the 3D kernel [ns] (serial, warm JIT)")
     a0.set_ylabel("max |T - T_BEM| / (mu N) over the five curved paths")
     a1.set_xticks(range(len(paths)))
