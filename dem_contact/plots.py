@@ -422,31 +422,57 @@ def spin_figure(rows, path, *, bem_rows=(), planar=None, title=None):
     return path
 
 
-def chart3d_figure(rows, path, *, title=None):
+def _shared_labels(ax, pts):
+    """Annotate points (x, y, label), one label per cluster of coinciding points, alternately above and
+    below."""
+    clusters = []
+    for x, y, law in pts:
+        for cl in clusters:
+            if abs(cl[1] / y - 1) < 0.03 and abs(math.log(cl[0] / x)) < 0.3:
+                cl[2].append(law)
+                break
+        else:
+            clusters.append([x, y, [law]])
+    for j, (x, y, names) in enumerate(sorted(clusters)):
+        below = j % 2 == 1
+        ax.annotate(",\n".join(names), (x, y), fontsize=7, xytext=(5, -6 if below else 4), textcoords="offset points",
+                    va="top" if below else "bottom")
+
+
+def chart3d_figure(rows, path, *, title=None, spin_rows=None):
     """Error of each 3D law against the BEM (max over the curved paths, and per path) versus the time per
-    kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list. Laws at the same point share a label."""
+    kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list; ``spin_rows``: optional
+    ``studies.chart3d.SpinImpactRow`` list (a third panel: spinning impacts, error vs time per impact).
+    Laws at the same point share a label."""
     from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
     laws = list(dict.fromkeys(r.law for r in rows))
     paths = [p for p in dict.fromkeys(r.path for r in rows) if p != "max"]
     cmap = plt.get_cmap("tab20")
-    fig, (a0, a1) = plt.subplots(1, 2, figsize=(13, 5.4))
+    n = 3 if spin_rows else 2
+    fig, axes = plt.subplots(1, n, figsize=(6.5 * n, 5.4))
+    a0, a1 = axes[0], axes[1]
     points = []
     for i, law in enumerate(laws):
         m = next(r for r in rows if r.law == law and r.path == "max")
         a0.plot(m.time_per_update_ns, m.error, "o", color=cmap(i % 20), ms=7)
-        for pt in points:
-            if abs(pt[1] / m.error - 1) < 0.03 and abs(math.log(pt[0] / m.time_per_update_ns)) < 0.3:
-                pt[2].append(law)
-                break
-        else:
-            points.append([m.time_per_update_ns, m.error, [law]])
+        points.append((m.time_per_update_ns, m.error, law))
         a1.plot(range(len(paths)), [next(r.error for r in rows if r.law == law and r.path == p) for p in paths],
                 "o-", color=cmap(i % 20), label=law, ms=4)
-    for j, (t, e, names) in enumerate(sorted(points)):
-        below = j % 2 == 1       # neighbours' labels alternate above and below their points
-        a0.annotate(",\n".join(names), (t, e), fontsize=7, xytext=(5, -6 if below else 4), textcoords="offset points",
-                    va="top" if below else "bottom")
+    _shared_labels(a0, points)
+    if spin_rows:
+        a2 = axes[2]
+        pts = []
+        for r in spin_rows:
+            i = laws.index(r.law) if r.law in laws else len(laws)
+            a2.plot(r.time_per_impact_us, r.error, "o", color=cmap(i % 20), ms=7)
+            pts.append((r.time_per_impact_us, r.error, r.law))
+        _shared_labels(a2, pts)
+        a2.set_xscale("log")
+        a2.set_yscale("log")
+        a2.set_xlabel("time per impact [us] (bare kernel, warm JIT)")
+        a2.set_ylabel("max |f - f_BEM| / mu, spinning impacts (EE)")
+        a2.grid(True, which="both", alpha=0.3)
     a0.set_xscale("log")
     a0.set_yscale("log")
     a0.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))

@@ -48,3 +48,15 @@ def test_spin_study_against_the_bem():
     assert b.Theta_across == pytest.approx(1.5, rel=1e-3)
     assert b.error < 0.01
     assert b.out_of_plane_angle_deg == pytest.approx(b.bem_out_of_plane_angle_deg, abs=0.2)
+
+
+def test_spin_reference_round_trip_and_chart(tmp_path):
+    from dem_contact.studies.spin import bem_spin_reference, read_bem_spin_reference, write_rows
+
+    sc = preset_scene("EE", 5.0)
+    ref = bem_spin_reference(sc, [(30.0, 1.5)], 5.0, n_across=8, steps=30)
+    write_rows(ref, tmp_path / "ref.csv")
+    back = read_bem_spin_reference(tmp_path / "ref.csv")
+    assert back == ref
+    rows = c.spin_impact_chart(back, laws=(("mdr_adaptive", "mdr_adaptive", {}),), repeats=1)
+    assert rows[0].law == "mdr_adaptive" and rows[0].error < 0.05 and rows[0].time_per_impact_us > 0

@@ -154,6 +154,31 @@ def chart3d(paths: dict, forces: dict, laws=LAWS, repeats: int = 5) -> list:
     return rows
 
 
+@dataclass
+class SpinImpactRow:
+    law: str
+    error: float              # max over the BEM spin cases of |f - f_BEM| / mu (impulse-ratio vectors)
+    time_per_impact_us: float
+
+
+def spin_impact_chart(reference, laws=LAWS, vn: float = 5.0, repeats: int = 20) -> list:
+    """Every law on the spinning impacts of ``reference`` (``studies.spin.bem_spin_reference``, EE scene):
+    the largest error of the impulse-ratio vector and the time of one impact (bare kernel, warm JIT) at the
+    BEM's steps per contact, for the first case."""
+    from ..impacts.presets import preset_scene
+    from .spin import compare_spin_cases, time_per_impact
+
+    base = preset_scene("EE", vn)
+    out = []
+    for label, tangential, options in laws:
+        sc = Scene(base.sphere, base.body2, mu=base.mu, tangential=tangential, v_ref=vn, **options)
+        err = max(r.error for r in compare_spin_cases({label: sc}, reference, vn))
+        b = reference[0]
+        t = time_per_impact(sc, vn, (b.vt, 0.0), (b.spin_x, 0.0, 0.0), b.steps, repeats)
+        out.append(SpinImpactRow(label, err, 1e6 * t))
+    return out
+
+
 def write_csv(rows, path):
     with open(path, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))

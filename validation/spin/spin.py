@@ -1,14 +1,15 @@
 """Impacts with out-of-plane spin, EE scene of Wu, Thornton & Li (2009): steel on steel, R = 10 mm,
 V_n = 5 m/s, mu = 0.3. Writes spin.csv, bem_cases.csv, spin.png and report.md beside this file.
 
-    PYTHONPATH=$PWD python validation/spin/spin.py [--quick]
+    PYTHONPATH=$PWD python validation/spin/spin.py [--quick] [--recompute]
+
+The BEM impacts are stored in bem_spin_reference.csv (--recompute: about 1 minute more, with a grid check).
 """
 import math
 import pathlib
 import sys
 import time
 import warnings
-from dataclasses import asdict
 
 import numpy as np
 
@@ -16,7 +17,8 @@ from dem_contact.impacts.impact3d import impact3d
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import sweep_theta
 from dem_contact.plots import spin_figure
-from dem_contact.studies.spin import bem_spin_cases, spin_sweep
+from dem_contact.studies.spin import (bem_spin_cases, bem_spin_reference, compare_spin_cases, law_scenes,
+                                      read_bem_spin_reference, spin_sweep, write_rows)
 
 HERE = pathlib.Path(__file__).parent
 QUICK = "--quick" in sys.argv
@@ -28,16 +30,6 @@ LAWS = ("mdr_adaptive", "mdr", "md", "md_rescale", "mindlin_total", "mindlin_inc
         "ddm", "linear")
 
 
-def write(rows, path):
-    import csv
-
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (float(v) if isinstance(v, np.floating) else v) for k, v in asdict(r).items()})
-
-
 def main():
     lines = ["# Impacts with out-of-plane spin", "",
              "EE scene of Wu, Thornton & Li (2009): steel sphere (R = 10 mm, E = 208 GPa, nu = 0.3, rho = 7850) "
@@ -45,12 +37,13 @@ def main():
              "impact angle; a spin wx about x (the incident tangential direction) gives the contact point a "
              "velocity across the impact plane, s_y = -R wx, measured by Theta_across = 2 s_y / ((1 + e_n) mu V_n). "
              "Frame of `dem_contact.impacts.impact3d`: z into the wall.", "",
-             "Regenerate: `PYTHONPATH=$PWD python validation/spin/spin.py` (about "
-             f"{'1' if QUICK else '3'} minutes; the BEM cases dominate).", ""]
+             "Regenerate: `PYTHONPATH=$PWD python validation/spin/spin.py` (about a minute; the BEM impacts are "
+             "read from `bem_spin_reference.csv`, `--recompute` recomputes them with a grid check, about 2 minutes "
+             "more).", ""]
     sc = preset_scene("EE", VN)
     t0 = time.perf_counter()
     rows = spin_sweep(sc, VN, ANGLES, THETA_ACROSS)
-    write(rows, HERE / "spin.csv")
+    write_rows(rows, HERE / "spin.csv")
     lines += ["## The impact is the planar impact along the incident slip", "",
               "For a sphere on a flat wall the slip velocity obeys ds/dt = (1/m + R^2/I) F_t with the same factor in "
               "every tangential direction, and a law whose force follows a straight displacement path keeps the "
@@ -93,8 +86,15 @@ def main():
             lines.append(f"| {wz:g} | {wz * a.contact_time:.3g} | {a.f_over_mu:.8f} | {b.f_over_mu:.8f} | "
                          f"{a.f_across_over_mu:.2e} | {a.out_of_plane_angle_deg:.2e} |")
     # BEM cases
-    bem = bem_spin_cases(sc, BEM_CASES, VN, n_across=32, steps=200)
-    write(bem, HERE / "bem_cases.csv")
+    ref_path = HERE / "bem_spin_reference.csv"
+    if "--recompute" in sys.argv or QUICK or not ref_path.exists():
+        ref = bem_spin_reference(sc, BEM_CASES, VN, n_across=32, steps=200)
+        if not QUICK:
+            write_rows(ref, ref_path)
+    else:
+        ref = read_bem_spin_reference(ref_path)
+    bem = compare_spin_cases(law_scenes(sc, ("mdr_adaptive", "mdr", "md"), VN), ref, VN)
+    write_rows(bem, HERE / "bem_cases.csv")
     lines += ["", "## Against the boundary-element reference", "",
               "`dem_contact.reference.impact.bem_impact` (Hertz normal motion, 3D Cattaneo-Mindlin tangential "
               "contact solved on the contact area, 32 elements across the largest contact, 200 velocity-Verlet "
@@ -106,7 +106,7 @@ def main():
         lines.append(f"| {b.angle_deg:g} | {b.Theta:.3f} | {b.Theta_across:.3f} | {b.law} | {b.f_over_mu:.5f} | "
                      f"{b.f_across_over_mu:.5f} | {b.bem_f_over_mu:.5f} | {b.bem_f_across_over_mu:.5f} | "
                      f"{b.error:.1e} | {b.out_of_plane_angle_deg:.3f} | {b.bem_out_of_plane_angle_deg:.3f} |")
-    if not QUICK:
+    if "--recompute" in sys.argv:
         conv = bem_spin_cases(sc, [(30.0, 1.5)], VN, n_across=64, steps=200, laws=("mdr_adaptive",))[0]
         b32 = next(b for b in bem if b.angle_deg == 30.0 and abs(b.Theta_across - 1.5) < 0.01
                    and b.law == "mdr_adaptive")
