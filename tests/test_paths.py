@@ -135,6 +135,7 @@ def test_command(tmp_path, capsys):
     assert np.allclose(d["Tx"], Txb, rtol=0, atol=0.05 * 0.3 * Nb[0])   # MDR vs a coarse BEM on a straight path
     for argv in (["path"], ["path", str(p), "--shape", "circle"], ["path", str(p), "--size", "2"],
                  ["path", "--shape", "circle", "--overlap", "-1"], ["path", "--shape", "circle", "--mu", "-1"],
-                 ["path", str(tmp_path / "none.csv")]):
+                 ["path", str(tmp_path / "none.csv")],
+                 ["path", "--shape", "circle", "--reference", "--normal", "thornton", "--yield-stress", "1e9"]):
         assert main(argv) == 2, argv
         assert capsys.readouterr().err.count("\n") == 1

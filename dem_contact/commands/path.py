@@ -84,6 +84,8 @@ def run(args) -> int:
     scene = _scene(args)
     if args.reference and args.tangential is not None:
         raise InputError("give either --reference or --tangential, not both")
+    if args.reference and args.normal != "hertz":
+        raise InputError("--reference solves the Hertz contact: it takes --normal hertz only")
     if args.n_across != 64 and not args.reference:
         raise InputError("--n-across applies to --reference only")
     if (args.path_csv is None) == (args.shape is None):
