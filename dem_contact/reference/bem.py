@@ -39,6 +39,7 @@ import math
 import time
 
 import numpy as np
+from numba import njit
 from scipy import fft as sfft
 
 from ..errors import InputError, NumericalError
@@ -119,6 +120,75 @@ def hertz_element_pressure(xc, h, a, N):
     return p * (N / total) if total > 0.0 else p
 
 
+@njit(cache=True)
+def _combine(kxx, kyy, kxy, f, out):
+    """Spectral product of the 2 x 2 influence block with the transformed tractions f[0], f[1]."""
+    for i in range(f.shape[1]):
+        for j in range(f.shape[2]):
+            fx, fy = f[0, i, j], f[1, i, j]
+            out[0, i, j] = kxx[i, j] * fx + kxy[i, j] * fy
+            out[1, i, j] = kxy[i, j] * fx + kyy[i, j] * fy
+
+
+@njit(cache=True)
+def _project(qx, qy, rad):
+    """Radial return of every element's traction onto its Coulomb disk |q| <= rad (in place)."""
+    for i in range(qx.shape[0]):
+        for j in range(qx.shape[1]):
+            m2 = qx[i, j] * qx[i, j] + qy[i, j] * qy[i, j]
+            if m2 > rad[i, j] * rad[i, j]:
+                f = rad[i, j] / math.sqrt(m2)
+                qx[i, j] *= f
+                qy[i, j] *= f
+
+
+@njit(cache=True)
+def _gradient_step(yx, yy, ywx, ywy, cx, cy, inv_L, rad, nx, ny):
+    """One projected gradient step from y (n = P(y - (A y - c) / L), into nx, ny); returns the largest
+    |y - n| (the gradient mapping over L)."""
+    res = 0.0
+    for i in range(yx.shape[0]):
+        for j in range(yx.shape[1]):
+            zx = yx[i, j] - (ywx[i, j] - cx[i, j]) * inv_L
+            zy = yy[i, j] - (ywy[i, j] - cy[i, j]) * inv_L
+            m2 = zx * zx + zy * zy
+            r = rad[i, j]
+            if m2 > r * r:
+                f = r / math.sqrt(m2)
+                zx *= f
+                zy *= f
+            nx[i, j] = zx
+            ny[i, j] = zy
+            dx = yx[i, j] - zx
+            dy = yy[i, j] - zy
+            d2 = dx * dx + dy * dy
+            if d2 > res:
+                res = d2
+    return math.sqrt(res)
+
+
+@njit(cache=True)
+def _momentum(nx, ny, nwx, nwy, qx, qy, wx, wy, yx, yy, ywx, ywy, t):
+    """FISTA extrapolation y = n + b (n - q) (and its image A y), with the gradient restart of O'Donoghue
+    & Candes (2015): when (y - n).(n - q) > 0 the momentum is dropped. Writes y, A y; returns the new t."""
+    dot = 0.0
+    for i in range(nx.shape[0]):
+        for j in range(nx.shape[1]):
+            dot += (yx[i, j] - nx[i, j]) * (nx[i, j] - qx[i, j]) + (yy[i, j] - ny[i, j]) * (ny[i, j] - qy[i, j])
+    if dot > 0.0:
+        t_new, b = 1.0, 0.0
+    else:
+        t_new = 0.5 * (1.0 + math.sqrt(1.0 + 4.0 * t * t))
+        b = (t - 1.0) / t_new
+    for i in range(nx.shape[0]):
+        for j in range(nx.shape[1]):
+            yx[i, j] = nx[i, j] + b * (nx[i, j] - qx[i, j])
+            yy[i, j] = ny[i, j] + b * (ny[i, j] - qy[i, j])
+            ywx[i, j] = nwx[i, j] + b * (nwx[i, j] - wx[i, j])
+            ywy[i, j] = nwy[i, j] + b * (nwy[i, j] - wy[i, j])
+    return t_new
+
+
 class TangentialBEM:
     """The boundary-element contact of two bodies (or a body and a wall) for one contact history.
 
@@ -161,18 +231,21 @@ class TangentialBEM:
         self._kxx = sfft.rfft2(kxx, workers=workers).astype(cplx)
         self._kyy = sfft.rfft2(kyy, workers=workers).astype(cplx)
         self._kxy = sfft.rfft2(kxy, workers=workers).astype(cplx)
+        self._pad = np.zeros((2, 2 * n, 2 * n), dtype=self._real)       # zero-padded tractions
+        self._spec = np.zeros((2, 2 * n, n + 1), dtype=cplx)
         self._L_table = self._lipschitz_table()
         self.reset()
 
     # -- linear algebra ------------------------------------------------------------------------------
     def apply(self, qx, qy):
         """Relative surface displacement (wx, wy) [m] of the tractions (qx, qy) [Pa] on the n x n grid."""
-        fx = sfft.rfft2(qx.astype(self._real, copy=False), s=self._shape, workers=self.workers)
-        fy = sfft.rfft2(qy.astype(self._real, copy=False), s=self._shape, workers=self.workers)
-        wx = sfft.irfft2(self._kxx * fx + self._kxy * fy, s=self._shape, workers=self.workers)
-        wy = sfft.irfft2(self._kxy * fx + self._kyy * fy, s=self._shape, workers=self.workers)
         n = self.n
-        return wx[:n, :n].astype(np.float64), wy[:n, :n].astype(np.float64)
+        self._pad[0, :n, :n] = qx
+        self._pad[1, :n, :n] = qy
+        f = sfft.rfft2(self._pad, axes=(1, 2), workers=self.workers)
+        _combine(self._kxx, self._kyy, self._kxy, f, self._spec)
+        w = sfft.irfft2(self._spec, s=self._shape, axes=(1, 2), workers=self.workers)
+        return w[0, :n, :n].astype(np.float64), w[1, :n, :n].astype(np.float64)
 
     def _lipschitz_table(self):
         """Largest eigenvalue of A restricted to the disks of radius r_k = a_max k/8 (k = 1..8), by power
@@ -246,38 +319,28 @@ class TangentialBEM:
         return N, -h2 * float(self.qx.sum()), -h2 * float(self.qy.sum())
 
     def _solve(self, rad, cx, cy, L, tol):
-        """Minimise 1/2 q.A q - q.c over |q_i| <= rad_i by FISTA with adaptive restart, from the current q."""
-        def project(x, y):
-            m = np.hypot(x, y)
-            f = np.where(m > rad, rad / np.where(m > 0.0, m, 1.0), 1.0)
-            return x * f, y * f
-
-        qx, qy = project(self.qx, self.qy)
-        yx, yy = qx, qy
+        """Minimise 1/2 q.A q - q.c over |q_i| <= rad_i by FISTA with adaptive restart, from the current q
+        (Beck & Teboulle 2009; O'Donoghue & Candes 2015). Stops when the gradient mapping L |y - q_new|
+        (the slip increment the iterate still gets wrong) is below ``tol`` [m] at every element."""
+        qx, qy = self.qx.copy(), self.qy.copy()
+        _project(qx, qy, rad)
         wx, wy = self.apply(qx, qy)
-        ywx, ywy = wx, wy
+        yx, yy, ywx, ywy = qx.copy(), qy.copy(), wx.copy(), wy.copy()
+        nx, ny = np.empty_like(qx), np.empty_like(qy)
         t = 1.0
+        inv_L = 1.0 / L
         for it in range(1, MAX_ITERATIONS + 1):
-            gx, gy = ywx - cx, ywy - cy                    # gradient at y: minus the slip increment
-            nx, ny = project(yx - gx / L, yy - gy / L)
-            # gradient mapping L (y - q_new): the slip increment still violating the stick/slip conditions
-            res = L * float(np.max(np.hypot(yx - nx, yy - ny)))
+            res = L * _gradient_step(yx, yy, ywx, ywy, cx, cy, inv_L, rad, nx, ny)
+            if not math.isfinite(res):
+                raise NumericalError("BEM step solve produced a non-finite traction")
             nwx, nwy = self.apply(nx, ny)
             if res <= tol:
                 qx, qy, wx, wy = nx, ny, nwx, nwy
                 break
-            if np.sum((yx - nx) * (nx - qx) + (yy - ny) * (ny - qy)) > 0.0:   # restart (O'Donoghue-Candes)
-                t = 1.0
-                yx, yy, ywx, ywy = nx, ny, nwx, nwy
-            else:
-                t_new = 0.5 * (1.0 + math.sqrt(1.0 + 4.0 * t * t))
-                b = (t - 1.0) / t_new
-                yx, yy = nx + b * (nx - qx), ny + b * (ny - qy)
-                ywx, ywy = nwx + b * (nwx - wx), nwy + b * (nwy - wy)
-                t = t_new
-            qx, qy, wx, wy = nx, ny, nwx, nwy
-            if not (np.isfinite(res)):
-                raise NumericalError("BEM step solve produced a non-finite traction")
+            t = _momentum(nx, ny, nwx, nwy, qx, qy, wx, wy, yx, yy, ywx, ywy, t)
+            qx, nx = nx, qx              # the new iterate becomes q; the old buffer takes the next step
+            qy, ny = ny, qy
+            wx, wy = nwx, nwy
         else:
             raise NumericalError(f"BEM step solve did not converge in {MAX_ITERATIONS} iterations "
                                  f"(residual {res:.3g} m, tolerance {tol:.3g} m)")
