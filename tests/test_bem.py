@@ -26,7 +26,7 @@ def effective(nu):
 
 def cattaneo_mindlin_error(nu, n, mu=0.3, k=12):
     """Largest |T_bem - T_CM| / (mu N) over loading to 0.8 of the slip displacement and unloading to -0.8
-    (Johnson 1985 eqs 7.43 and 7.52; Mindlin & Deresiewicz)."""
+    (Mindlin & Deresiewicz 1953; Johnson 1985 section 7.2)."""
     G_star, _, a, N = effective(nu)
     s = 3 * mu * N / (16 * G_star * a)
     u_load = np.linspace(0, 0.8 * s, k + 1)[1:]
@@ -62,7 +62,7 @@ def test_element_integrals_match_quadrature():
 
 
 def test_stuck_contact_has_mindlin_stiffness():
-    """No slip (mu large): T = -8 G* a u (Mindlin 1949; Johnson 1985 eq. 7.42), to the grid's accuracy."""
+    """No slip (mu large): T = -8 G* a u (Mindlin 1949; Johnson 1985 section 7.2), to the grid's accuracy."""
     for nu in (0.0, 0.3):
         G_star, _, a, _ = effective(nu)
         u = 1e-9
@@ -151,7 +151,7 @@ def test_bad_inputs_raise_input_error():
 
 
 def test_hertz_overlap_history_closed_forms():
-    """The normal motion behind bem_impact: Hertz contact time and overlap (Johnson 1985 section 11.4)."""
+    """The normal motion behind bem_impact: Hertz contact time and overlap (Johnson 1985, ch. 11)."""
     from dem_contact.laws import closed_forms as cf
     Es, Rs, m, v = 114.29e9, 0.01, 0.032882, 5.0
     _, tc, dmax, vout = hertz_overlap_history(Es, Rs, m, v, None)

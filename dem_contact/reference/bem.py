@@ -5,27 +5,28 @@ vector. It is slow and exact up to its grid: it exists to judge the fast laws.
 Model (the assumptions of the method of dimensionality reduction, so that the two can be compared):
 half-spaces, quasi-static contact, Coulomb friction with a constant mu, normal-tangential coupling dropped
 (exact for identical materials and for nu = 0.5). The pressure is Hertz's, from the current overlap:
-p = p0 sqrt(1 - r^2/a^2), a = sqrt(R* delta), p0 = 3 N / (2 pi a^2) (Johnson 1985, eqs 4.22-4.23).
+p = p0 sqrt(1 - r^2/a^2), a = sqrt(R* delta), p0 = 3 N / (2 pi a^2) (Johnson 1985, section 4.2).
 
-Discretisation (Kalker 1990, *Three-Dimensional Elastic Bodies in Rolling Contact*, ch. 5; FFT form:
+Discretisation (Kalker 1990, *Three-Dimensional Elastic Bodies in Rolling Contact*, Kluwer; FFT form:
 Pohrt & Li 2014, *Phys. Mesomech.* 17:334):
 
 - the square [-a_max, a_max]^2 around the largest contact is cut into n x n square elements of side h
   carrying uniform tractions q = (qx, qy);
 - the relative tangential surface displacement of the two bodies is w = A q, where A sums the influence
-  coefficients of both bodies: the Cerruti point-force solution (Johnson 1985, eqs 3.86-3.87, with the
+  coefficients of both bodies: the Cerruti point-force solution (Johnson 1985, eq. 2.19, with the
   normal-tangential term dropped), u_x = [(1-nu)/r + nu x^2/r^3] Q_x / (2 pi G) + nu x y / r^3 Q_y / (2 pi G),
   integrated in closed form over a square of uniform traction (Love 1929, *Phil. Trans. A* 228:377;
-  Johnson 1985, section 3.9), see ``influence_kernels``;
+  Kalker 1990), see ``influence_kernels``;
 - A q is a discrete convolution: evaluated by FFT on a grid of 2n x 2n with zero padding (no periodic
   images; Pohrt & Li 2014, section 3);
-- each element has its own Coulomb circle |q| <= mu p, p the element average of the Hertz pressure.
+- each element has its own Coulomb circle |q| <= mu p, p the Hertz pressure at its centre, scaled so
+  that the elements carry N exactly (``hertz_element_pressure``).
 
 Each step (overlap delta and a rigid tangential displacement increment d of body 1 relative to body 2)
 solves Kalker's incremental problem: the local slip increment is s = d - A (q - q_old); stick elements
 (|q| < mu p) have s = 0, slipping elements have |q| = mu p with q along s (maximal dissipation). Its
 solution minimises the complementary energy 1/2 q.A q - q.(d + A q_old) over the product of Coulomb disks
-(Kalker 1990, section 5.3); we minimise it by an accelerated projected gradient (FISTA: Beck & Teboulle
+(Kalker's variational principle, 1990); we minimise it by an accelerated projected gradient (FISTA: Beck & Teboulle
 2009, SIAM J. Imaging Sci. 2:183, with the adaptive restart of O'Donoghue & Candes 2015, Found. Comput.
 Math. 15:715), warm-started from the previous step. Elements outside the current contact have a disk of
 radius 0 and so drop their traction; elements entering start unloaded.
@@ -58,7 +59,7 @@ def _corner_sums(X, Y, h):
     """Closed-form integrals over the square [-h/2, h/2]^2 of source points, at field offsets (X, Y):
     returns (I1, Ixx, Iyy, Ixy) = integrals of 1/r, x^2/r^3, y^2/r^3, x y/r^3 with (x, y) = field - source.
 
-    Primitives (Love 1929; Johnson 1985 section 3.9): d2/dxdy of x asinh(y/|x|) + y asinh(x/|y|) is 1/r,
+    Primitives (Love 1929; Kalker 1990): d2/dxdy of x asinh(y/|x|) + y asinh(x/|y|) is 1/r,
     of y asinh(x/|y|) is x^2/r^3, of x asinh(y/|x|) is y^2/r^3 and of -r is x y/r^3 (the terms x ln|x|,
     y ln|y| dropped from the logarithmic forms cancel in the corner sum). Field offsets are multiples of h,
     so no corner lies on an axis."""
@@ -81,7 +82,7 @@ def _corner_sums(X, Y, h):
 
 def compliance_coefficients(E1, nu1, E2, nu2):
     """(c1, c2) with the relative tangential displacement of the two surfaces under a point force Q,
-    w_x = c1 Q_x / r + c2 (x^2 Q_x + x y Q_y) / r^3 (Cerruti, Johnson 1985 eq. 3.86a, both bodies summed):
+    w_x = c1 Q_x / r + c2 (x^2 Q_x + x y Q_y) / r^3 (Cerruti; Johnson 1985 eq. 2.19, both bodies summed):
     c1 = sum (1 - nu)/(2 pi G), c2 = sum nu/(2 pi G); a rigid body (E = inf) adds nothing."""
     c1 = c2 = 0.0
     for E, nu in ((E1, nu1), (E2, nu2)):
@@ -287,7 +288,7 @@ class TangentialBEM:
         self.N = 0.0
 
     def normal(self, delta):
-        """(N, a, element pressures) of the Hertz contact at overlap delta (Johnson 1985, eq. 4.23)."""
+        """(N, a, element pressures) of the Hertz contact at overlap delta (Johnson 1985, section 4.2)."""
         if delta <= 0.0:
             return 0.0, 0.0, None
         a = math.sqrt(self.R_star * delta)
