@@ -274,7 +274,8 @@ def run_report():
         _fig_cm(cm, os.path.join(HERE, "bem_cattaneo_mindlin.png"))
         lines += ["## Cattaneo-Mindlin loading and unloading at constant N", "",
                   "Loading to 0.8 of the slip displacement s = 3 mu N/(16 G* a) in 20 steps, unloading to "
-                  "-0.8 s in 40 steps; largest error against the Cattaneo-Mindlin-Masing curves (Johnson 1985, section 7.2), in units of "
+                  "-0.8 s in 40 steps; largest error against the Cattaneo-Mindlin-Masing curves "
+                  "(Johnson 1985, section 7.2), in units of "
                   "mu N. With nu = 0 the analytic solution is exact for the model, and the error falls at "
                   "about second order; with nu = 0.3 Cattaneo-Mindlin is itself approximate (the slip is "
                   "not exactly parallel to T), and the BEM converges to a slightly different curve.", "",
@@ -344,9 +345,11 @@ def run_report():
                   f"delta = {PATH_DELTA:g} m on the EE scene (R* = 10 mm); sizes in slip displacements "
                   "(`dem_contact.reference.paths`). Entries: max over the path of |T_1 - T_2| / (mu N). Grid: "
                   "32 and 64 against 128 elements across, all at 400 steps. Steps (at 64 across): 200 and 400 "
-                  "against 800 steps (the finer run interpolated in arc length to the rows of the coarser). The step error is first order (the "
+                  "against 800 steps (the finer run interpolated in arc length to the rows of the coarser). "
+                  "The step error is first order (the "
                   "slip direction of a step is that of its increment); the grid error falls faster.", "",
-                  "| path | size | 32 vs 128 | 64 vs 128 | 200 vs 800 steps | 400 vs 800 steps | final |T|/mu N (128/400) |",
+                  "| path | size | 32 vs 128 | 64 vs 128 | 200 vs 800 steps | 400 vs 800 steps "
+                  "| final |T|/mu N (128/400) |",
                   "|---|---|---|---|---|---|---|"]
         for shape, size in PATHS:
             ref = force(shape, size, 128, 400)
@@ -363,7 +366,8 @@ def run_report():
     print("report written to", os.path.join(HERE, "report.md"))
 
 
-SECTIONS = {"cm": run_cm, "impact": run_impact, "impact_nu0": run_impact_nu0, "timing": run_timing, "paths": run_paths, "report": run_report}
+SECTIONS = {"cm": run_cm, "impact": run_impact, "impact_nu0": run_impact_nu0, "timing": run_timing,
+            "paths": run_paths, "report": run_report}
 
 if __name__ == "__main__":
     todo = sys.argv[1:] or ["all"]
