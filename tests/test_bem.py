@@ -148,6 +148,12 @@ def test_bad_inputs_raise_input_error():
         solver.step(4e-6, 0.0, 0.0)
     with pytest.raises(InputError, match="shape"):
         unit_path("spiral", 0.5, 10)
+    two_spheres = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Sphere(0.01, dc.STEEL), mu=0.3)
+    with pytest.raises(InputError, match="Wall"):
+        bem_impact(two_spheres, 5.0, 1.0)
+    wall_scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    with pytest.raises(InputError, match="spin"):
+        bem_impact(wall_scene, 5.0, 1.0, spin=(1.0, 2.0))
 
 
 def test_hertz_overlap_history_closed_forms():
