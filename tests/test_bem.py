@@ -26,7 +26,7 @@ def effective(nu):
 
 def cattaneo_mindlin_error(nu, n, mu=0.3, k=12):
     """Largest |T_bem - T_CM| / (mu N) over loading to 0.8 of the slip displacement and unloading to -0.8
-    (Johnson 1985 eqs 7.43 and 7.52; Mindlin & Deresiewicz)."""
+    (Mindlin & Deresiewicz 1953; Johnson 1985 section 7.2)."""
     G_star, _, a, N = effective(nu)
     s = 3 * mu * N / (16 * G_star * a)
     u_load = np.linspace(0, 0.8 * s, k + 1)[1:]
@@ -44,8 +44,8 @@ def test_element_integrals_match_quadrature():
     h, c1, c2 = 1.0, 0.7, 0.3
     K = B.influence_kernels(4, h, c1, c2)
     # self element: the integral of 1/r over a square from its centre is 4 h ln(1 + sqrt 2)
-    assert K[0][0, 0] == pytest.approx(c1 * 4 * h * math.log(1 + math.sqrt(2)) + c2 * 2 * h * math.log(1 + math.sqrt(2)),
-                                       rel=1e-13)
+    ln = math.log(1 + math.sqrt(2))      # and of x^2/r^3 half of it, by symmetry
+    assert K[0][0, 0] == pytest.approx(c1 * 4 * h * ln + c2 * 2 * h * ln, rel=1e-13)
     assert K[2][0, 0] == pytest.approx(0.0, abs=1e-15)
     for i, j in ((1, 0), (2, 1), (-1, 3), (-3, -2)):
         X, Y = i * h, j * h
@@ -62,7 +62,7 @@ def test_element_integrals_match_quadrature():
 
 
 def test_stuck_contact_has_mindlin_stiffness():
-    """No slip (mu large): T = -8 G* a u (Mindlin 1949; Johnson 1985 eq. 7.42), to the grid's accuracy."""
+    """No slip (mu large): T = -8 G* a u (Mindlin 1949; Johnson 1985 section 7.2), to the grid's accuracy."""
     for nu in (0.0, 0.3):
         G_star, _, a, _ = effective(nu)
         u = 1e-9
@@ -148,10 +148,16 @@ def test_bad_inputs_raise_input_error():
         solver.step(4e-6, 0.0, 0.0)
     with pytest.raises(InputError, match="shape"):
         unit_path("spiral", 0.5, 10)
+    two_spheres = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Sphere(0.01, dc.STEEL), mu=0.3)
+    with pytest.raises(InputError, match="Wall"):
+        bem_impact(two_spheres, 5.0, 1.0)
+    wall_scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    with pytest.raises(InputError, match="spin"):
+        bem_impact(wall_scene, 5.0, 1.0, spin=(1.0, 2.0))
 
 
 def test_hertz_overlap_history_closed_forms():
-    """The normal motion behind bem_impact: Hertz contact time and overlap (Johnson 1985 section 11.4)."""
+    """The normal motion behind bem_impact: Hertz contact time and overlap (Johnson 1985, ch. 11)."""
     from dem_contact.laws import closed_forms as cf
     Es, Rs, m, v = 114.29e9, 0.01, 0.032882, 5.0
     _, tc, dmax, vout = hertz_overlap_history(Es, Rs, m, v, None)
@@ -223,5 +229,6 @@ def test_single_precision_convolutions_agree_with_double():
     out = []
     for single in (True, False):
         solver = B.TangentialBEM(E, 0.3, E, 0.3, R, 0.3, math.sqrt(R * DELTA), n_across=12, single=single)
-        out.append(np.array([solver.step(DELTA, *du)[1:] for du in np.diff(np.c_[[0.0, 0.0], [s * x, s * y]].T, axis=0)]))
+        steps = np.diff(np.column_stack([s * x, s * y]), axis=0, prepend=0.0)
+        out.append(np.array([solver.step(DELTA, *du)[1:] for du in steps]))
     assert np.max(np.abs(out[0] - out[1])) < 1e-5 * 0.3 * N

@@ -5,27 +5,28 @@ vector. It is slow and exact up to its grid: it exists to judge the fast laws.
 Model (the assumptions of the method of dimensionality reduction, so that the two can be compared):
 half-spaces, quasi-static contact, Coulomb friction with a constant mu, normal-tangential coupling dropped
 (exact for identical materials and for nu = 0.5). The pressure is Hertz's, from the current overlap:
-p = p0 sqrt(1 - r^2/a^2), a = sqrt(R* delta), p0 = 3 N / (2 pi a^2) (Johnson 1985, eqs 4.22-4.23).
+p = p0 sqrt(1 - r^2/a^2), a = sqrt(R* delta), p0 = 3 N / (2 pi a^2) (Johnson 1985, section 4.2).
 
-Discretisation (Kalker 1990, *Three-Dimensional Elastic Bodies in Rolling Contact*, ch. 5; FFT form:
+Discretisation (Kalker 1990, *Three-Dimensional Elastic Bodies in Rolling Contact*, Kluwer; FFT form:
 Pohrt & Li 2014, *Phys. Mesomech.* 17:334):
 
 - the square [-a_max, a_max]^2 around the largest contact is cut into n x n square elements of side h
   carrying uniform tractions q = (qx, qy);
 - the relative tangential surface displacement of the two bodies is w = A q, where A sums the influence
-  coefficients of both bodies: the Cerruti point-force solution (Johnson 1985, eqs 3.86-3.87, with the
+  coefficients of both bodies: the Cerruti point-force solution (Johnson 1985, eq. 2.19, with the
   normal-tangential term dropped), u_x = [(1-nu)/r + nu x^2/r^3] Q_x / (2 pi G) + nu x y / r^3 Q_y / (2 pi G),
   integrated in closed form over a square of uniform traction (Love 1929, *Phil. Trans. A* 228:377;
-  Johnson 1985, section 3.9), see ``influence_kernels``;
+  Kalker 1990), see ``influence_kernels``;
 - A q is a discrete convolution: evaluated by FFT on a grid of 2n x 2n with zero padding (no periodic
   images; Pohrt & Li 2014, section 3);
-- each element has its own Coulomb circle |q| <= mu p, p the element average of the Hertz pressure.
+- each element has its own Coulomb circle |q| <= mu p, p the Hertz pressure at its centre, scaled so
+  that the elements carry N exactly (``hertz_element_pressure``).
 
 Each step (overlap delta and a rigid tangential displacement increment d of body 1 relative to body 2)
 solves Kalker's incremental problem: the local slip increment is s = d - A (q - q_old); stick elements
 (|q| < mu p) have s = 0, slipping elements have |q| = mu p with q along s (maximal dissipation). Its
 solution minimises the complementary energy 1/2 q.A q - q.(d + A q_old) over the product of Coulomb disks
-(Kalker 1990, section 5.3); we minimise it by an accelerated projected gradient (FISTA: Beck & Teboulle
+(Kalker's variational principle, 1990); we minimise it by an accelerated projected gradient (FISTA: Beck & Teboulle
 2009, SIAM J. Imaging Sci. 2:183, with the adaptive restart of O'Donoghue & Candes 2015, Found. Comput.
 Math. 15:715), warm-started from the previous step. Elements outside the current contact have a disk of
 radius 0 and so drop their traction; elements entering start unloaded.
@@ -39,6 +40,7 @@ import math
 import time
 
 import numpy as np
+from numba import njit
 from scipy import fft as sfft
 
 from ..errors import InputError, NumericalError
@@ -57,7 +59,7 @@ def _corner_sums(X, Y, h):
     """Closed-form integrals over the square [-h/2, h/2]^2 of source points, at field offsets (X, Y):
     returns (I1, Ixx, Iyy, Ixy) = integrals of 1/r, x^2/r^3, y^2/r^3, x y/r^3 with (x, y) = field - source.
 
-    Primitives (Love 1929; Johnson 1985 section 3.9): d2/dxdy of x asinh(y/|x|) + y asinh(x/|y|) is 1/r,
+    Primitives (Love 1929; Kalker 1990): d2/dxdy of x asinh(y/|x|) + y asinh(x/|y|) is 1/r,
     of y asinh(x/|y|) is x^2/r^3, of x asinh(y/|x|) is y^2/r^3 and of -r is x y/r^3 (the terms x ln|x|,
     y ln|y| dropped from the logarithmic forms cancel in the corner sum). Field offsets are multiples of h,
     so no corner lies on an axis."""
@@ -80,7 +82,7 @@ def _corner_sums(X, Y, h):
 
 def compliance_coefficients(E1, nu1, E2, nu2):
     """(c1, c2) with the relative tangential displacement of the two surfaces under a point force Q,
-    w_x = c1 Q_x / r + c2 (x^2 Q_x + x y Q_y) / r^3 (Cerruti, Johnson 1985 eq. 3.86a, both bodies summed):
+    w_x = c1 Q_x / r + c2 (x^2 Q_x + x y Q_y) / r^3 (Cerruti; Johnson 1985 eq. 2.19, both bodies summed):
     c1 = sum (1 - nu)/(2 pi G), c2 = sum nu/(2 pi G); a rigid body (E = inf) adds nothing."""
     c1 = c2 = 0.0
     for E, nu in ((E1, nu1), (E2, nu2)):
@@ -117,6 +119,75 @@ def hertz_element_pressure(xc, h, a, N):
     p = np.sqrt(np.clip(1.0 - r2, 0.0, None))
     total = p.sum() * h * h
     return p * (N / total) if total > 0.0 else p
+
+
+@njit(cache=True)
+def _combine(kxx, kyy, kxy, f, out):
+    """Spectral product of the 2 x 2 influence block with the transformed tractions f[0], f[1]."""
+    for i in range(f.shape[1]):
+        for j in range(f.shape[2]):
+            fx, fy = f[0, i, j], f[1, i, j]
+            out[0, i, j] = kxx[i, j] * fx + kxy[i, j] * fy
+            out[1, i, j] = kxy[i, j] * fx + kyy[i, j] * fy
+
+
+@njit(cache=True)
+def _project(qx, qy, rad):
+    """Radial return of every element's traction onto its Coulomb disk |q| <= rad (in place)."""
+    for i in range(qx.shape[0]):
+        for j in range(qx.shape[1]):
+            m2 = qx[i, j] * qx[i, j] + qy[i, j] * qy[i, j]
+            if m2 > rad[i, j] * rad[i, j]:
+                f = rad[i, j] / math.sqrt(m2)
+                qx[i, j] *= f
+                qy[i, j] *= f
+
+
+@njit(cache=True)
+def _gradient_step(yx, yy, ywx, ywy, cx, cy, inv_L, rad, nx, ny):
+    """One projected gradient step from y (n = P(y - (A y - c) / L), into nx, ny); returns the largest
+    |y - n| (the gradient mapping over L)."""
+    res = 0.0
+    for i in range(yx.shape[0]):
+        for j in range(yx.shape[1]):
+            zx = yx[i, j] - (ywx[i, j] - cx[i, j]) * inv_L
+            zy = yy[i, j] - (ywy[i, j] - cy[i, j]) * inv_L
+            m2 = zx * zx + zy * zy
+            r = rad[i, j]
+            if m2 > r * r:
+                f = r / math.sqrt(m2)
+                zx *= f
+                zy *= f
+            nx[i, j] = zx
+            ny[i, j] = zy
+            dx = yx[i, j] - zx
+            dy = yy[i, j] - zy
+            d2 = dx * dx + dy * dy
+            if d2 > res:
+                res = d2
+    return math.sqrt(res)
+
+
+@njit(cache=True)
+def _momentum(nx, ny, nwx, nwy, qx, qy, wx, wy, yx, yy, ywx, ywy, t):
+    """FISTA extrapolation y = n + b (n - q) (and its image A y), with the gradient restart of O'Donoghue
+    & Candes (2015): when (y - n).(n - q) > 0 the momentum is dropped. Writes y, A y; returns the new t."""
+    dot = 0.0
+    for i in range(nx.shape[0]):
+        for j in range(nx.shape[1]):
+            dot += (yx[i, j] - nx[i, j]) * (nx[i, j] - qx[i, j]) + (yy[i, j] - ny[i, j]) * (ny[i, j] - qy[i, j])
+    if dot > 0.0:
+        t_new, b = 1.0, 0.0
+    else:
+        t_new = 0.5 * (1.0 + math.sqrt(1.0 + 4.0 * t * t))
+        b = (t - 1.0) / t_new
+    for i in range(nx.shape[0]):
+        for j in range(nx.shape[1]):
+            yx[i, j] = nx[i, j] + b * (nx[i, j] - qx[i, j])
+            yy[i, j] = ny[i, j] + b * (ny[i, j] - qy[i, j])
+            ywx[i, j] = nwx[i, j] + b * (nwx[i, j] - wx[i, j])
+            ywy[i, j] = nwy[i, j] + b * (nwy[i, j] - wy[i, j])
+    return t_new
 
 
 class TangentialBEM:
@@ -161,18 +232,21 @@ class TangentialBEM:
         self._kxx = sfft.rfft2(kxx, workers=workers).astype(cplx)
         self._kyy = sfft.rfft2(kyy, workers=workers).astype(cplx)
         self._kxy = sfft.rfft2(kxy, workers=workers).astype(cplx)
+        self._pad = np.zeros((2, 2 * n, 2 * n), dtype=self._real)       # zero-padded tractions
+        self._spec = np.zeros((2, 2 * n, n + 1), dtype=cplx)
         self._L_table = self._lipschitz_table()
         self.reset()
 
     # -- linear algebra ------------------------------------------------------------------------------
     def apply(self, qx, qy):
         """Relative surface displacement (wx, wy) [m] of the tractions (qx, qy) [Pa] on the n x n grid."""
-        fx = sfft.rfft2(qx.astype(self._real, copy=False), s=self._shape, workers=self.workers)
-        fy = sfft.rfft2(qy.astype(self._real, copy=False), s=self._shape, workers=self.workers)
-        wx = sfft.irfft2(self._kxx * fx + self._kxy * fy, s=self._shape, workers=self.workers)
-        wy = sfft.irfft2(self._kxy * fx + self._kyy * fy, s=self._shape, workers=self.workers)
         n = self.n
-        return wx[:n, :n].astype(np.float64), wy[:n, :n].astype(np.float64)
+        self._pad[0, :n, :n] = qx
+        self._pad[1, :n, :n] = qy
+        f = sfft.rfft2(self._pad, axes=(1, 2), workers=self.workers)
+        _combine(self._kxx, self._kyy, self._kxy, f, self._spec)
+        w = sfft.irfft2(self._spec, s=self._shape, axes=(1, 2), workers=self.workers)
+        return w[0, :n, :n].astype(np.float64), w[1, :n, :n].astype(np.float64)
 
     def _lipschitz_table(self):
         """Largest eigenvalue of A restricted to the disks of radius r_k = a_max k/8 (k = 1..8), by power
@@ -214,7 +288,7 @@ class TangentialBEM:
         self.N = 0.0
 
     def normal(self, delta):
-        """(N, a, element pressures) of the Hertz contact at overlap delta (Johnson 1985, eq. 4.23)."""
+        """(N, a, element pressures) of the Hertz contact at overlap delta (Johnson 1985, section 4.2)."""
         if delta <= 0.0:
             return 0.0, 0.0, None
         a = math.sqrt(self.R_star * delta)
@@ -246,38 +320,28 @@ class TangentialBEM:
         return N, -h2 * float(self.qx.sum()), -h2 * float(self.qy.sum())
 
     def _solve(self, rad, cx, cy, L, tol):
-        """Minimise 1/2 q.A q - q.c over |q_i| <= rad_i by FISTA with adaptive restart, from the current q."""
-        def project(x, y):
-            m = np.hypot(x, y)
-            f = np.where(m > rad, rad / np.where(m > 0.0, m, 1.0), 1.0)
-            return x * f, y * f
-
-        qx, qy = project(self.qx, self.qy)
-        yx, yy = qx, qy
+        """Minimise 1/2 q.A q - q.c over |q_i| <= rad_i by FISTA with adaptive restart, from the current q
+        (Beck & Teboulle 2009; O'Donoghue & Candes 2015). Stops when the gradient mapping L |y - q_new|
+        (the slip increment the iterate still gets wrong) is below ``tol`` [m] at every element."""
+        qx, qy = self.qx.copy(), self.qy.copy()
+        _project(qx, qy, rad)
         wx, wy = self.apply(qx, qy)
-        ywx, ywy = wx, wy
+        yx, yy, ywx, ywy = qx.copy(), qy.copy(), wx.copy(), wy.copy()
+        nx, ny = np.empty_like(qx), np.empty_like(qy)
         t = 1.0
+        inv_L = 1.0 / L
         for it in range(1, MAX_ITERATIONS + 1):
-            gx, gy = ywx - cx, ywy - cy                    # gradient at y: minus the slip increment
-            nx, ny = project(yx - gx / L, yy - gy / L)
-            # gradient mapping L (y - q_new): the slip increment still violating the stick/slip conditions
-            res = L * float(np.max(np.hypot(yx - nx, yy - ny)))
+            res = L * _gradient_step(yx, yy, ywx, ywy, cx, cy, inv_L, rad, nx, ny)
+            if not math.isfinite(res):
+                raise NumericalError("BEM step solve produced a non-finite traction")
             nwx, nwy = self.apply(nx, ny)
             if res <= tol:
                 qx, qy, wx, wy = nx, ny, nwx, nwy
                 break
-            if np.sum((yx - nx) * (nx - qx) + (yy - ny) * (ny - qy)) > 0.0:   # restart (O'Donoghue-Candes)
-                t = 1.0
-                yx, yy, ywx, ywy = nx, ny, nwx, nwy
-            else:
-                t_new = 0.5 * (1.0 + math.sqrt(1.0 + 4.0 * t * t))
-                b = (t - 1.0) / t_new
-                yx, yy = nx + b * (nx - qx), ny + b * (ny - qy)
-                ywx, ywy = nwx + b * (nwx - wx), nwy + b * (nwy - wy)
-                t = t_new
-            qx, qy, wx, wy = nx, ny, nwx, nwy
-            if not (np.isfinite(res)):
-                raise NumericalError("BEM step solve produced a non-finite traction")
+            t = _momentum(nx, ny, nwx, nwy, qx, qy, wx, wy, yx, yy, ywx, ywy, t)
+            qx, nx = nx, qx              # the new iterate becomes q; the old buffer takes the next step
+            qy, ny = ny, qy
+            wx, wy = nwx, nwy
         else:
             raise NumericalError(f"BEM step solve did not converge in {MAX_ITERATIONS} iterations "
                                  f"(residual {res:.3g} m, tolerance {tol:.3g} m)")

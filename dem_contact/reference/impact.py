@@ -61,7 +61,7 @@ class BEMImpactResult:
 def hertz_overlap_history(E_star, R_star, m_star, vn, t):
     """Overlap delta(t) [m] of the elastic Hertz impact at normal speed vn on the times t (within the
     contact), and the contact time, by DOP853 integration of m* delta'' = -(4/3) E* sqrt(R*) delta^(3/2)
-    (Johnson 1985 section 11.4) with rtol 1e-12 and event location of the separation."""
+    (Johnson 1985, ch. 11) with rtol 1e-12 and event location of the separation."""
     from scipy.integrate import solve_ivp
 
     k = 4.0 / 3.0 * E_star * math.sqrt(R_star) / m_star

@@ -1,6 +1,6 @@
 """Named tangential loading paths at constant overlap, for comparing tangential laws with the BEM reference.
 
-Sizes are in units of the slip displacement s = 3 mu N / (16 G* a) (Mindlin 1949; Johnson 1985 eq. 7.43:
+Sizes are in units of the slip displacement s = 3 mu N / (16 G* a) (Mindlin 1949; Johnson 1985 section 7.2:
 the tangential displacement at which a monotonic Cattaneo-Mindlin loading reaches full slip), which for
 Hertz contact is s = mu delta E*/(4 G*) = mu delta / kappa. Every path starts at the origin (the state
 at first contact: no traction, u = 0) and is sampled with ``steps`` equal arc-length increments after it,
@@ -34,7 +34,7 @@ _DENSE = 20000
 
 def slip_displacement(delta, mu, kappa):
     """Tangential displacement at full slip of a Hertz contact at overlap delta [m]: mu delta / kappa
-    (= 3 mu N / (16 G* a), Johnson 1985 eq. 7.43), kappa = 4 G*/E*."""
+    (= 3 mu N / (16 G* a), Johnson 1985 section 7.2), kappa = 4 G*/E*."""
     return mu * delta / kappa
 
 
