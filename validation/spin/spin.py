@@ -74,7 +74,8 @@ def main():
               "is kept exactly. With the contact frame turning with the mean spin of the two bodies about the "
               "normal (the kernel's objective frame, wn = 0.5 (w1 + w2).n, here w2 = 0), the tangential history "
               "turns at wz/2 while the slip does not, which gives a small impulse across the plane; with the frame "
-              "fixed (`frame_spin=False`, LAMMPS's choice) the trajectory is exactly that without the spin. "
+              "fixed (`frame_spin=False`, LAMMPS's choice) the trajectory is that without the spin, to rounding "
+              "error. "
               "Impact at 11.3 deg (vt = 1 m/s), no other spin:", "",
               "| wz [rad/s] | wz t_c [rad] | f/mu (turning frame) | f/mu (fixed frame) | f_across/mu (turning) | "
               "rebound out of plane [deg] |", "|---|---|---|---|---|---|"]
