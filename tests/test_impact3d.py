@@ -1,7 +1,6 @@
 """3D impacts with any spin vector: planar reduction, rotation about the normal, rolling, spin about the
 normal, momentum identities across the impact plane, sweeps and bad input."""
 import math
-import warnings
 
 import numpy as np
 import pytest

@@ -1,15 +1,14 @@
 """3D speed-accuracy chart: every tangential law of dem_contact.dem.contact3d against the boundary-element
 reference on the five curved paths at constant overlap. Writes chart3d.csv, chart3d.png and chart3d.md
 beside this file; the BEM forces are read from bem_paths_n64.csv (recomputed with --recompute, about
-3 minutes at 64 elements across; --check FILE compares with a finer reference written the same way) and the
+a minute at 64 elements across; --check FILE compares with a finer reference written the same way) and the
 spinning impacts from validation/spin/bem_spin_reference.csv (written by validation/spin/spin.py).
 
-    PYTHONPATH=$PWD python validation/chart/chart3d.py [--recompute] [--check bem_paths_n128.csv]
+    PYTHONPATH=$PWD python validation/chart/chart3d.py [--recompute] [--check validation/chart/bem_paths_n128.csv]
+    PYTHONPATH=$PWD python validation/chart/chart3d.py --write-reference 128 validation/chart/bem_paths_n128.csv
 """
 import pathlib
 import sys
-
-import numpy as np
 
 from dem_contact.plots import chart3d_figure
 from dem_contact.studies import chart3d as c
@@ -21,6 +20,12 @@ SPIN_REF = HERE.parent / "spin" / "bem_spin_reference.csv"
 
 
 def main():
+    if "--write-reference" in sys.argv:        # a reference at another grid, for --check (about 4 minutes at 128)
+        i = sys.argv.index("--write-reference")
+        n, out = int(sys.argv[i + 1]), sys.argv[i + 2]
+        paths = c.chart_paths()
+        c.write_reference(out, paths, c.reference_forces(paths, n_across=n, progress=True), n)
+        return
     if "--recompute" in sys.argv or not REF.exists():
         paths = c.chart_paths()
         forces = c.reference_forces(paths, n_across=c.N_ACROSS, progress=True)
@@ -43,7 +48,7 @@ def main():
              "contact. Error: max over the path of |T - T_BEM| / (mu N); time: one kernel update, serial loop, "
              "warm JIT, best of 5 runs (shared machine: compare ratios).", "",
              "Regenerate: `PYTHONPATH=$PWD python validation/chart/chart3d.py` (a few seconds; the reference is "
-             "read from `bem_paths_n64.csv`, `--recompute` rebuilds it).", "",
+             "read from `bem_paths_n64.csv`, `--recompute` rebuilds it, about a minute).", "",
              "| law | " + " | ".join(labels) + " | max | ns per update |",
              "|---|" + "---|" * (len(labels) + 2)]
     for law in dict.fromkeys(r.law for r in rows):
