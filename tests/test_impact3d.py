@@ -74,6 +74,20 @@ def test_out_of_plane_spin_is_the_planar_impact_along_the_slip(scenes, tangentia
         assert q.spin_r[2] == w[2]
 
 
+def test_two_spheres_out_of_plane_spins(steel_sphere):
+    """Two spheres: ds/dt = (1/m* + R1^2/I1 + R2^2/I2) F_t, again the same in every direction: spins of both
+    bodies about any in-plane axes give the planar impact at the incident slip speed, along the slip."""
+    other = dc.Sphere(0.02, dc.STEEL)
+    sc = dc.Scene(steel_sphere, other, mu=0.3, v_ref=3.0)
+    V, w1, w2 = (0.8, 0.3), (150.0, -40.0, 0.0), (-60.0, 90.0, 0.0)
+    q = impact3d(sc, 3.0, V, w1, spin2=w2)
+    s = np.array([V[0] + R * w1[1] + 0.02 * w2[1], V[1] - R * w1[0] - 0.02 * w2[0]])
+    speed = float(np.hypot(*s))
+    r = dc.impact(sc, 3.0, speed, 0.0)
+    P = np.array(q.tangential_impulse)
+    assert np.allclose(-P / q.normal_impulse, r.f * s / speed, rtol=0, atol=1e-10 * 0.3)
+
+
 @pytest.mark.parametrize("tangential", LAWS)
 def test_rotation_about_the_normal(scenes, tangential):
     """Turning the whole incident state about the normal turns every rebound vector with it."""
