@@ -419,11 +419,11 @@ def bem_path_scene(scene, delta, ux, uy, *, n_across=DEFAULT_N_ACROSS, tol=DEFAU
                     substeps=substeps, workers=workers)
 
 
-def time_per_step(n_across, steps=10, *, tol=DEFAULT_TOL, repeats=3, E=208e9, nu=0.3, R_star=0.005, mu=0.3,
-                  workers=1):
-    """Wall time [s] of one step of a partial-slip loading at constant overlap (steel on steel, 0.08 of
-    the slip displacement per step from the unloaded contact), the min over ``repeats`` runs of ``steps``
-    steps, for reports."""
+def time_per_step(n_across, steps=10, *, increment=0.08, tol=DEFAULT_TOL, repeats=3, E=208e9, nu=0.3,
+                  R_star=0.005, mu=0.3, workers=1):
+    """Wall time [s] of one step of a partial-slip loading at constant overlap (steel on steel, steps of
+    ``increment`` slip displacements from the unloaded contact), the min over ``repeats`` runs of
+    ``steps`` steps, for reports."""
     solver = TangentialBEM(E, nu, E, nu, R_star, mu, 1e-4, n_across=n_across, tol=tol, workers=workers)
     delta = 1e-8 / R_star
     s = mu * delta * solver.E_star / (4.0 * solver.G_star)
@@ -433,6 +433,6 @@ def time_per_step(n_across, steps=10, *, tol=DEFAULT_TOL, repeats=3, E=208e9, nu
         solver.step(delta, 0.0, 0.0)
         t0 = time.perf_counter()
         for _ in range(steps):
-            solver.step(delta, 0.08 * s, 0.0)
+            solver.step(delta, increment * s, 0.0)
         best = min(best, (time.perf_counter() - t0) / steps)
     return best
