@@ -6,6 +6,7 @@ Usage (from the repository root, PYTHONPATH set to it):
     python validation/bem/run_bem.py cm        # Cattaneo-Mindlin loading/unloading, n = 16 ... 128
     python validation/bem/run_bem.py impact    # f/mu against the exact MDR reference, EE scene, 5 m/s
     python validation/bem/run_bem.py impact_nu0   # the same with nu = 0 (MDR exact for the model)
+    python validation/bem/run_bem.py spin      # impacts with spin about the incident velocity (out of plane)
     python validation/bem/run_bem.py timing    # wall time per step at 32, 64, 128 elements across
     python validation/bem/run_bem.py paths     # the named curved paths at constant overlap
     python validation/bem/run_bem.py report    # report.md and the figures from the saved results
@@ -138,6 +139,26 @@ def run_impact_nu0():
             print(f"impact nu=0 n={n} angle={ang}: f/mu {b.f_over_mu:.5f} mdr {fm_ref:.5f} "
                   f"diff {b.f_over_mu - fm_ref:+.2e}", flush=True)
             save("impact_nu0", out)
+
+
+SPIN_RATES = (0.0, 50.0, 100.0, 200.0, 400.0)     # rad/s about x (along the incident velocity)
+
+
+def run_spin():
+    """Impacts with out-of-plane spin (about the incident tangential velocity, in the wall plane): the
+    contact-point velocity has a component across the plane of incidence that the impact turns."""
+    scene = ee_scene("mdr_adaptive")
+    vt = 1.5
+    out = []
+    for n in (32, 64):
+        for wx in SPIN_RATES:
+            b = bem_impact(scene, 5.0, vt, spin=(wx, 0.0, 0.0), n_across=n, steps=200)
+            Pm = b.tangential_impulse / (MU * b.normal_impulse)
+            out.append({"n_across": n, "spin_x": wx, "Theta": b.Theta, "f_over_mu": b.f_over_mu,
+                        "Px_over_muPn": Pm[0], "Py_over_muPn": Pm[1], "v_r": b.v_r.tolist(),
+                        "omega_r": b.omega_r.tolist(), "v_cr": b.v_cr.tolist()})
+            print(f"spin n={n} wx={wx}: P/(mu Pn) = ({Pm[0]:+.5f}, {Pm[1]:+.5f}) f/mu {b.f_over_mu:.5f}", flush=True)
+            save("spin", out)
 
 
 # -- timing ---------------------------------------------------------------------------------------------
@@ -314,6 +335,25 @@ def run_report():
             cells = [f"{next(r for r in imp0['bem'][k] if r['angle'] == ang)['diff']:+.1e}" for k in keys]
             lines.append(f"| {ang:g} | {imp0['Theta'][i]:.3f} | {imp0['mdr'][i]:.5f} | " + " | ".join(cells) + " |")
         lines.append("")
+    spin = load("spin")
+    if spin:
+        lines += ["## Impacts with out-of-plane spin", "",
+                  "EE scene, V_n = 5 m/s, V_t = 1.5 m/s along x (Theta = 1 without spin), initial spin omega_x "
+                  "about the incident velocity (in the wall plane), so the contact point also slides across "
+                  "the plane of incidence (v_cy = R omega_x) and the impact turns the slip direction. Tangential "
+                  "impulse on the sphere over mu P_n, f/mu along the incident contact-point velocity, rebound "
+                  "spin; 200 steps; columns 32 and 64 elements across.", "",
+                  "| omega_x [rad/s] | Theta | Px/(mu Pn) 32 | 64 | Py/(mu Pn) 32 | 64 | f/mu 64 | "
+                  "omega_r (x, y) 64 [rad/s] |", "|---|---|---|---|---|---|---|---|"]
+        for wx in sorted({r["spin_x"] for r in spin}):
+            a = next((r for r in spin if r["spin_x"] == wx and r["n_across"] == 32), None)
+            b = next((r for r in spin if r["spin_x"] == wx and r["n_across"] == 64), None)
+            if a is None or b is None:
+                continue
+            lines.append(f"| {wx:g} | {b['Theta']:.3f} | {a['Px_over_muPn']:+.5f} | {b['Px_over_muPn']:+.5f} | "
+                         f"{a['Py_over_muPn']:+.5f} | {b['Py_over_muPn']:+.5f} | {b['f_over_mu']:.5f} | "
+                         f"({b['omega_r'][0]:.2f}, {b['omega_r'][1]:.2f}) |")
+        lines.append("")
     if tim:
         lines += ["## Time per step", "",
                   "Partial-slip loading at constant overlap from the unloaded contact, in steps of 0.08 or 0.01 "
@@ -372,7 +412,7 @@ def run_report():
     print("report written to", os.path.join(HERE, "report.md"))
 
 
-SECTIONS = {"cm": run_cm, "impact": run_impact, "impact_nu0": run_impact_nu0, "timing": run_timing,
+SECTIONS = {"cm": run_cm, "impact": run_impact, "impact_nu0": run_impact_nu0, "spin": run_spin, "timing": run_timing,
             "paths": run_paths, "report": run_report}
 
 if __name__ == "__main__":
