@@ -9,6 +9,7 @@ Usage (from the repository root, PYTHONPATH set to it):
     python validation/bem/run_bem.py spin      # impacts with spin about the incident velocity (out of plane)
     python validation/bem/run_bem.py timing    # wall time per step at 32, 64, 128 elements across
     python validation/bem/run_bem.py paths     # the named curved paths at constant overlap
+    python validation/bem/run_bem.py mdr_paths # a vector MDR (4000 springs) beside the BEM on those paths
     python validation/bem/run_bem.py report    # report.md and the figures from the saved results
 
 Each section writes results/<section>.json next to this script; ``paths`` also writes the force
@@ -205,6 +206,53 @@ def run_paths(runs=PATH_RUNS):
                 np.savetxt(os.path.join(HERE, "paths", f"{shape}_{size:g}_n{n}_s{steps}.csv"),
                            np.column_stack([d, ux, uy, N, Tx, Ty]), delimiter=",",
                            header="delta,ux,uy,N,Tx,Ty", comments="", fmt="%.12e")
+
+
+def vector_mdr_path(d, ux, uy, E_star, G_star, R_star, mu, springs=4000):
+    """Vector MDR (Popov & Hess 2015, with a 2D displacement and a Coulomb circle per spring, radial return)
+    on a path at constant overlap: an independent approximate model to set beside the BEM. Springs on the
+    half-line, doubled by symmetry; returns N, Tx, Ty (force on body 1)."""
+    a = math.sqrt(R_star * d.max())
+    dx = a / springs
+    x = (np.arange(springs) + 0.5) * dx
+    G_M = 4.0 * G_star
+    u = np.zeros((springs, 2))
+    out = np.zeros((d.size, 3))
+    px = py = 0.0
+    for k in range(d.size):
+        w = d[k] - x * x / R_star
+        inside = w > 0.0
+        u[~inside] = 0.0
+        u[inside] += (ux[k] - px, uy[k] - py)
+        px, py = ux[k], uy[k]
+        lim = mu * E_star * np.clip(w, 0.0, None) / G_M
+        m = np.hypot(u[:, 0], u[:, 1])
+        f = np.where(m > lim, lim / np.where(m > 0, m, 1.0), 1.0)
+        u *= f[:, None]
+        out[k] = (2 * E_star * np.sum(np.clip(w, 0.0, None)) * dx, *(-2 * G_M * dx * u.sum(axis=0)))
+    return out.T
+
+
+def run_mdr_paths():
+    """Vector MDR against the BEM (128 across, 800 steps) on the named paths."""
+    scene = ee_scene()
+    pr = scene.pair
+    paths = load("paths") or {}
+    out = {}
+    for shape, size in PATHS:
+        v = paths.get(f"{shape}:{size}:128:800")
+        if v is None:
+            continue
+        d, ux, uy = named_path(shape, size, 800, delta=PATH_DELTA, mu=MU, kappa=pr.kappa)
+        N, Tx, Ty = vector_mdr_path(d, ux, uy, pr.E_star, pr.G_star, pr.R_star, MU)
+        t_mdr = np.array([Tx, Ty]) / (MU * N)
+        t_bem = np.array([v["Tx_over_muN"], v["Ty_over_muN"]])
+        err = np.hypot(*(t_mdr - t_bem))
+        out[f"{shape}:{size}"] = {"max": float(err.max()), "final": float(err[-1]),
+                                  "final_bem": float(np.hypot(*t_bem[:, -1])),
+                                  "final_mdr": float(np.hypot(*t_mdr[:, -1]))}
+        print(f"vector MDR vs BEM {shape} {size}: max {err.max():.4f} final {err[-1]:.4f} mu N", flush=True)
+    save("mdr_paths", out)
 
 
 # -- report ---------------------------------------------------------------------------------------------
@@ -404,6 +452,18 @@ def run_report():
                                for k in (200, 400, 800))
             lines.append(f"| {shape} | {size:g} | {diff(force(shape, size, 32, 400), ref)} | "
                          f"{diff(force(shape, size, 64, 400), ref)} | {steps} | {fin} |")
+        mdr = load("mdr_paths")
+        if mdr:
+            lines += ["", "A vector MDR (4000 springs on the half-line, each with a 2D displacement and its own "
+                      "Coulomb circle, radial return; exact for straight paths, approximate when the path "
+                      "turns) beside the BEM (128 across, 800 steps), same rows: largest and final |T_MDR - "
+                      "T_BEM| / (mu N), and the final |T| / (mu N) of both.", "",
+                      "| path | size | max | final | final BEM | final MDR |", "|---|---|---|---|---|---|"]
+            for shape, size in PATHS:
+                r = mdr.get(f"{shape}:{size}")
+                if r:
+                    lines.append(f"| {shape} | {size:g} | {r['max']:.4f} | {r['final']:.4f} | "
+                                 f"{r['final_bem']:.4f} | {r['final_mdr']:.4f} |")
         lines += ["", "The force histories of the finest runs (128 across, 800 steps) are in `paths/*.csv` "
                   "(delta, ux, uy [m], N, Tx, Ty [N]).", "",
                   "![paths](bem_paths.png)", ""]
@@ -413,7 +473,7 @@ def run_report():
 
 
 SECTIONS = {"cm": run_cm, "impact": run_impact, "impact_nu0": run_impact_nu0, "spin": run_spin, "timing": run_timing,
-            "paths": run_paths, "report": run_report}
+            "paths": run_paths, "mdr_paths": run_mdr_paths, "report": run_report}
 
 if __name__ == "__main__":
     todo = sys.argv[1:] or ["all"]
