@@ -95,9 +95,9 @@ def compliance_coefficients(E1, nu1, E2, nu2):
 
 
 def influence_kernels(n, h, c1, c2):
-    """Influence coefficients (Kxx, Kyy, Kxy) [m/Pa] of a square
-    element of side h with uniform unit traction, at the offsets of a 2n x 2n circulant grid (offset index
-    i stands for i h for i < n, (i - 2n) h otherwise; index n is never used by a zero-padded product)."""
+    """Influence coefficients (Kxx, Kyy, Kxy) [m/Pa] of a square element of side h with uniform unit
+    traction, at the offsets of a 2n x 2n circulant grid (offset index i stands for i h for i < n,
+    (i - 2n) h otherwise; index n is never used by a zero-padded product)."""
     m = 2 * n
     k = np.arange(m)
     off = np.where(k < n, k, k - m) * h
