@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import integrate
 
 import dem_contact as dc
@@ -232,3 +234,34 @@ def test_single_precision_convolutions_agree_with_double():
         steps = np.diff(np.column_stack([s * x, s * y]), axis=0, prepend=0.0)
         out.append(np.array([solver.step(DELTA, *du)[1:] for du in steps]))
     assert np.max(np.abs(out[0] - out[1])) < 1e-5 * 0.3 * N
+
+
+def test_substeps_equal_a_finer_path():
+    """substeps = 2 gives, at the rows, the forces of the path with every row split in two."""
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    x, y = unit_path("circle", 0.6, 16)
+    d = DELTA * (1 + 0.2 * np.sin(np.linspace(0, 3, x.size)))       # varying overlap too
+    _, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, s * x, s * y, n_across=12, substeps=2)
+
+    def fine(v):            # every row split in two: midpoints between rows
+        return np.r_[v[0], np.ravel(np.column_stack([0.5 * (v[:-1] + v[1:]), v[1:]]))]
+    d2 = np.r_[d[0], d[0], fine(d)[1:]]
+    x2, y2 = np.r_[0.5 * s * x[0], fine(s * x)], np.r_[0.5 * s * y[0], fine(s * y)]
+    _, Fx, Fy = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d2, x2, y2, n_across=12)
+    assert np.allclose(Tx, Fx[1::2], rtol=0, atol=1e-9 * np.max(np.abs(Fx)))
+    assert np.allclose(Ty, Fy[1::2], rtol=0, atol=1e-9 * np.max(np.abs(Fx)))
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.lists(st.tuples(st.floats(-1.2, 1.2), st.floats(-1.2, 1.2)), min_size=2, max_size=5))
+def test_random_closed_loops_never_create_energy(vertices):
+    """Work done on the contact over any closed polygon at constant N is >= 0 (to the solve tolerance)."""
+    _, _, _, N = effective(0.3)
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    pts = np.array([(0.0, 0.0), *vertices, (0.0, 0.0)])
+    t = np.linspace(0, 1, 5)[1:]
+    path = np.vstack([[0.0, 0.0]] + [p + (q - p) * t[:, None] for p, q in zip(pts[:-1], pts[1:])]) * s
+    _, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, 0.3, np.full(len(path), DELTA), path[:, 0], path[:, 1], n_across=8)
+    du = np.diff(path, axis=0)
+    work = -np.sum(0.5 * (Tx[1:] + Tx[:-1]) * du[:, 0] + 0.5 * (Ty[1:] + Ty[:-1]) * du[:, 1])
+    assert work > -1e-4 * 0.3 * N * s

@@ -95,9 +95,9 @@ def compliance_coefficients(E1, nu1, E2, nu2):
 
 
 def influence_kernels(n, h, c1, c2):
-    """Influence coefficients (Kxx, Kyy, Kxy) [m/Pa] of a square
-    element of side h with uniform unit traction, at the offsets of a 2n x 2n circulant grid (offset index
-    i stands for i h for i < n, (i - 2n) h otherwise; index n is never used by a zero-padded product)."""
+    """Influence coefficients (Kxx, Kyy, Kxy) [m/Pa] of a square element of side h with uniform unit
+    traction, at the offsets of a 2n x 2n circulant grid (offset index i stands for i h for i < n,
+    (i - 2n) h otherwise; index n is never used by a zero-padded product)."""
     m = 2 * n
     k = np.arange(m)
     off = np.where(k < n, k, k - m) * h
@@ -366,7 +366,7 @@ def _as_path(delta, ux, uy):
 
 
 def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL,
-             workers=1, return_solver=False):
+             substeps=1, workers=1, return_solver=False):
     """Forces along a prescribed contact history, by the boundary-element method (see the module text).
 
     E1, nu1, E2, nu2: materials of the two bodies (E = math.inf: rigid) [Pa, -]; R_star: effective radius
@@ -374,13 +374,18 @@ def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, *, n_across=DEFAULT_N_
     ux, uy: tangential displacement of body 1 relative to body 2 at the contact, components in the tangent
     plane [m], per step, measured from the state before the first row (no traction, u = 0): each step is
     driven by the increment of u since the previous row. n_across: elements across the largest contact
-    diameter 2 sqrt(R* max(delta)).
+    diameter 2 sqrt(R* max(delta)). substeps: solve each row in this many equal steps (delta and u
+    interpolated linearly from the previous row; the first row at its own delta): on turning paths the
+    step error is first order in the step (the slip direction of a step is that of its increment).
 
     Returns (N, Tx, Ty): arrays of the normal force [N] and the tangential force on body 1 [N] (opposing
     the displacement; T = -k u in the elastic limit). With ``return_solver``, also the TangentialBEM.
     """
     d, x, y = _as_path(delta, ux, uy)
     R_star = check_finite("R_star (effective radius, m)", R_star, lo=0.0)
+    if isinstance(substeps, bool) or int(substeps) != substeps or not 1 <= substeps <= 10**4:
+        raise InputError(f"substeps = {substeps!r} must be an integer in [1, 10000]")
+    k = int(substeps)
     dmax = float(d.max())
     n = d.size
     N = np.zeros(n)
@@ -391,9 +396,12 @@ def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, *, n_across=DEFAULT_N_
     solver = TangentialBEM(E1, nu1, E2, nu2, R_star, mu, math.sqrt(R_star * dmax), n_across=n_across,
                            tol=tol, workers=workers)
     px = py = 0.0
+    pd = d[0]
     for i in range(n):
-        N[i], Tx[i], Ty[i] = solver.step(d[i], x[i] - px, y[i] - py)
-        px, py = x[i], y[i]
+        dx, dy = (x[i] - px) / k, (y[i] - py) / k
+        for j in range(1, k + 1):
+            N[i], Tx[i], Ty[i] = solver.step(pd + (d[i] - pd) * j / k, dx, dy)
+        px, py, pd = x[i], y[i], d[i]
     return (N, Tx, Ty, solver) if return_solver else (N, Tx, Ty)
 
 
@@ -404,17 +412,18 @@ def _scene_materials(scene):
     return m1.E, m1.nu, m2.E, m2.nu, scene.pair.R_star
 
 
-def bem_path_scene(scene, delta, ux, uy, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL, workers=1):
+def bem_path_scene(scene, delta, ux, uy, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL, substeps=1, workers=1):
     """``bem_path`` with the materials, R* and mu of a ``Scene`` (dem_contact.laws.model)."""
     E1, nu1, E2, nu2, R = _scene_materials(scene)
-    return bem_path(E1, nu1, E2, nu2, R, scene.mu, delta, ux, uy, n_across=n_across, tol=tol, workers=workers)
+    return bem_path(E1, nu1, E2, nu2, R, scene.mu, delta, ux, uy, n_across=n_across, tol=tol,
+                    substeps=substeps, workers=workers)
 
 
-def time_per_step(n_across, steps=10, *, tol=DEFAULT_TOL, repeats=3, E=208e9, nu=0.3, R_star=0.005, mu=0.3,
-                  workers=1):
-    """Wall time [s] of one step of a partial-slip loading at constant overlap (steel on steel, 0.08 of
-    the slip displacement per step from the unloaded contact), the min over ``repeats`` runs of ``steps``
-    steps, for reports."""
+def time_per_step(n_across, steps=10, *, increment=0.08, tol=DEFAULT_TOL, repeats=3, E=208e9, nu=0.3,
+                  R_star=0.005, mu=0.3, workers=1):
+    """Wall time [s] of one step of a partial-slip loading at constant overlap (steel on steel, steps of
+    ``increment`` slip displacements from the unloaded contact), the min over ``repeats`` runs of
+    ``steps`` steps, for reports."""
     solver = TangentialBEM(E, nu, E, nu, R_star, mu, 1e-4, n_across=n_across, tol=tol, workers=workers)
     delta = 1e-8 / R_star
     s = mu * delta * solver.E_star / (4.0 * solver.G_star)
@@ -424,6 +433,6 @@ def time_per_step(n_across, steps=10, *, tol=DEFAULT_TOL, repeats=3, E=208e9, nu
         solver.step(delta, 0.0, 0.0)
         t0 = time.perf_counter()
         for _ in range(steps):
-            solver.step(delta, 0.08 * s, 0.0)
+            solver.step(delta, increment * s, 0.0)
         best = min(best, (time.perf_counter() - t0) / steps)
     return best
