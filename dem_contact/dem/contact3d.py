@@ -46,7 +46,7 @@ from numba import njit, prange
 from ..errors import InputError, NumericalError
 from ..laws import vector as V
 from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
-                            MDR, MDR_ADAPTIVE, MINDLIN_INCREMENTAL, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
+                            MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
 from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MSTAR, P_MU,
                           P_NSPRING, P_PY, P_RSTAR)
 from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
@@ -562,7 +562,8 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
                    lambda c: f"= {pair_rows[c]}: its params row has no MDR cell count (params[:, P_NSPRING]), "
                              f"which the {'mdr' if tid == MDR else 'mdr_adaptive'} law needs")
         if tid == MDR_ADAPTIVE:
-            _first_bad("pair_rows", cells % 2 != 0, lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
+            _first_bad("pair_rows", cells % 2 != 0,
+                       lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
         else:
             _first_bad("pair_rows", ~(used[:, P_DX] > 0.0),
                        lambda c: f"= {pair_rows[c]}: its params row has no MDR cell width (params[:, P_DX] > 0)")

@@ -35,11 +35,11 @@ from numba import njit
 
 from .contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE, MDR,
                       MDR_ADAPTIVE, MINDLIN_INCREMENTAL, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
-from .slots import (P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MSTAR, P_MU,
-                    P_NSPRING, P_PY, P_RSTAR)
 
-#: numba options of every flat kernel: numpy's error model (no zero-division checks) and the
-#: floating-point contractions that keep results within rounding of the strict build (see README)
+#: numba options of every flat kernel: numpy's error model (no zero-division checks), and of fastmath only
+#: 'contract' (fused multiply-add, as gcc does by default) and 'afn' (library functions such as cbrt may be
+#: approximated): results stay within rounding of the strict build. Not 'nnan' / 'ninf' (a NaN force
+#: signals an outgrown mdr grid, and the checks rely on NaN and inf), not 'reassoc' (cell sums keep order).
 FASTMATH = {"contract", "afn"}
 JIT = dict(cache=True, error_model="numpy", fastmath=FASTMATH)
 
@@ -104,7 +104,7 @@ def hertz(E, R, delta):
     return 4.0 / 3.0 * E * a * delta, a
 
 
-@njit(inline="always", **JIT)
+@njit(**JIT)
 def thornton(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
     """Thornton (1997, J. Appl. Mech. 64:383) elastic-perfectly plastic law, the arithmetic of
     ``normal.thornton`` on its four state values. Returns (N, a, delta*, F*, R_p, delta_p)."""
@@ -128,7 +128,7 @@ def thornton(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
     return 4.0 / 3.0 * E * a * w, a, dstar, fstar, Rp, dp
 
 
-@njit(inline="always", **JIT)
+@njit(**JIT)
 def hertz_damped(E, R, m, gamma, delta, vel):
     """Hertz plus dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, k_n = 2 E* a, clamped at N >= 0
     (as ``normal.hertz_damped``; Tsuji et al. 1992 form)."""
@@ -140,7 +140,7 @@ def hertz_damped(E, R, m, gamma, delta, vel):
     return F, a
 
 
-@njit(inline="always", **JIT)
+@njit(**JIT)
 def linear_normal(kn, gamma, m, R, delta, vel):
     """Linear spring-dashpot (Cundall & Strack 1979), as ``normal.linear``."""
     if delta <= 0.0:
@@ -375,6 +375,18 @@ def radial(u1, u2, umax):
     return u1, u2
 
 
+@njit(**JIT)
+def new_frame(nx, ny, nz, ddx, ddy, ddz):
+    """First axis of a new frame of the tangent plane: along the slip, or any axis of the plane."""
+    ex, ey, ez = carry_unit(ddx, ddy, ddz, nx, ny, nz, 1.0, 0.0)
+    if ex == 0.0 and ey == 0.0 and ez == 0.0:
+        if abs(nx) < 0.9:
+            ex, ey, ez = carry_unit(1.0, 0.0, 0.0, nx, ny, nz, 1.0, 0.0)
+        else:
+            ex, ey, ez = carry_unit(0.0, 1.0, 0.0, nx, ny, nz, 1.0, 0.0)
+    return ex, ey, ez
+
+
 @njit(inline="always", **JIT)
 def mdr_frame(ex, ey, ez, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     """Frame (e1, e2 = n x e1) of the vector MDR cells: e1 carried into the current plane and turned with
@@ -382,12 +394,7 @@ def mdr_frame(ex, ey, ez, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     any axis of the tangent plane. Returns (e1, e2, dd . e1, dd . e2)."""
     ex, ey, ez = carry_unit(ex, ey, ez, nx, ny, nz, cs, sn)
     if ex == 0.0 and ey == 0.0 and ez == 0.0:
-        ex, ey, ez = carry_unit(ddx, ddy, ddz, nx, ny, nz, 1.0, 0.0)
-        if ex == 0.0 and ey == 0.0 and ez == 0.0:
-            if abs(nx) < 0.9:
-                ex, ey, ez = carry_unit(1.0, 0.0, 0.0, nx, ny, nz, 1.0, 0.0)
-            else:
-                ex, ey, ez = carry_unit(0.0, 1.0, 0.0, nx, ny, nz, 1.0, 0.0)
+        ex, ey, ez = new_frame(nx, ny, nz, ddx, ddy, ddz)
     fx = ny * ez - nz * ey
     fy = nz * ex - nx * ez
     fz = nx * ey - ny * ex
