@@ -6,6 +6,8 @@
 """
 from __future__ import annotations
 
+import math
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -353,6 +355,166 @@ def curves_figure(panels, path, *, ncols: int = 2, title=None):
         ax.legend(fontsize=6.5)
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=None):
+    """A prescribed path and the force along it: the tangential path (ux, uy) and the force vector
+    -T/(mu N) drawn on it; Tx/(mu N), Ty/(mu N) and |T|/(mu N) against the row. ``reference``: optional
+    (N, Tx, Ty) of a reference drawn dashed."""
+    N = np.asarray(N, dtype=float)
+    muN = np.where(N > 0, mu * N, np.nan)
+    rows = np.arange(len(N))
+    fig, (a0, a1) = plt.subplots(1, 2, figsize=(11, 4.6))
+    scale = 1e6
+    a0.plot(np.asarray(ux) * scale, np.asarray(uy) * scale, "k-", lw=1.0, label="path")
+    every = max(1, len(N) // 24)
+    extent = max(np.ptp(np.asarray(ux)), np.ptp(np.asarray(uy)), 1e-300) * scale
+    arrow = 0.2 * extent        # length of an arrow of magnitude mu N
+    a0.quiver(np.asarray(ux)[::every] * scale, np.asarray(uy)[::every] * scale,
+              (-np.asarray(Tx) / muN)[::every] * arrow, (-np.asarray(Ty) / muN)[::every] * arrow, color="C0",
+              angles="xy", scale_units="xy", scale=1.0, width=0.004,
+              label="-T/(mu N) (force on body 2; mu N = 0.2 of the path's extent)")
+    a0.set_xlabel("ux [um]")
+    a0.set_ylabel("uy [um]")
+    a0.set_aspect("equal", adjustable="datalim")
+    a0.legend(fontsize=8)
+    for val, lab, c in [(np.asarray(Tx) / muN, "Tx/(mu N)", "C0"), (np.asarray(Ty) / muN, "Ty/(mu N)", "C1"),
+                        (np.hypot(Tx, Ty) / muN, "|T|/(mu N)", "k")]:
+        a1.plot(rows, val, color=c, lw=1.3, label=lab)
+    if reference is not None:
+        Nr, Txr, Tyr = (np.asarray(x, dtype=float) for x in reference)
+        muNr = np.where(Nr > 0, mu * Nr, np.nan)
+        a1.plot(rows, Txr / muNr, "C0--", lw=1.0, label="reference")
+        a1.plot(rows, Tyr / muNr, "C1--", lw=1.0)
+        a1.plot(rows, np.hypot(Txr, Tyr) / muNr, "k--", lw=1.0)
+    a1.set_xlabel("row")
+    a1.set_ylabel("tangential force on body 1 / (mu N)")
+    a1.axhline(0, color="0.7", lw=0.5)
+    a1.legend(fontsize=8)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def spin_figure(rows, path, *, bem_rows=(), planar=None, title=None):
+    """Impacts with out-of-plane spin (``studies.spin``): f/mu in the impact plane (solid) and across it
+    (dashed) against Theta_across, one colour per impact angle, BEM cases as markers; |f|/mu against the
+    magnitude of the Theta vector with the planar curve ``planar`` = (Theta, f/mu); the rebound angle out
+    of the impact plane and e_t against Theta_across."""
+    angles = sorted({r.angle_deg for r in rows})
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8.4))
+    for i, ang in enumerate(angles):
+        pts = sorted((r for r in rows if r.angle_deg == ang), key=lambda r: r.Theta_across)
+        X = np.array([r.Theta_across for r in pts])
+        c = f"C{i}"
+        ax[0, 0].plot(X, [r.f_over_mu for r in pts], "-", color=c, label=f"{ang:g} deg (Theta = {pts[0].Theta:.2f})")
+        ax[0, 0].plot(X, [r.f_across_over_mu for r in pts], "--", color=c)
+        ax[0, 1].plot(np.hypot([r.Theta for r in pts], X), np.hypot([r.f_over_mu for r in pts],
+                      [r.f_across_over_mu for r in pts]), "o", ms=3, color=c, label=f"{ang:g} deg")
+        ax[1, 0].plot(X, [r.out_of_plane_angle_deg for r in pts], "-", color=c, label=f"{ang:g} deg")
+        ax[1, 1].plot(X, [r.e_t for r in pts], "-", color=c, label=f"{ang:g} deg")
+        for b in bem_rows:
+            if b.angle_deg == ang:
+                ax[0, 0].plot(b.Theta_across, b.bem_f_over_mu, "s", mfc="none", color=c, ms=8)
+                ax[0, 0].plot(b.Theta_across, b.bem_f_across_over_mu, "D", mfc="none", color=c, ms=7)
+                ax[1, 0].plot(b.Theta_across, b.bem_out_of_plane_angle_deg, "s", mfc="none", color=c, ms=8)
+    if bem_rows:
+        ax[0, 0].plot([], [], "ks", mfc="none", label="BEM: in plane")
+        ax[0, 0].plot([], [], "kD", mfc="none", label="BEM: across")
+        ax[1, 0].plot([], [], "ks", mfc="none", label="BEM")
+    if planar is not None:
+        ax[0, 1].plot(planar[0], planar[1], "k-", lw=1, label="planar impact, f/mu vs Theta")
+    ax[0, 0].set_ylabel("f/mu: in the impact plane (solid), across it (dashed)")
+    ax[0, 1].set_xlabel("|Theta vector| = 2 |v_slip,i| / ((1 + e_n) mu V_n)")
+    ax[0, 1].set_ylabel("|f vector| / mu")
+    ax[1, 0].set_ylabel("rebound velocity out of the impact plane [deg]")
+    ax[1, 1].set_ylabel("e_t (in the impact plane)")
+    for a in (ax[0, 0], ax[1, 0], ax[1, 1]):
+        a.set_xlabel("Theta_across = 2 v_slip,across / ((1 + e_n) mu V_n)")
+    for a in ax.flat:
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize=7)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+def _shared_labels(ax, pts):
+    """Annotate points (x, y, label), one label per cluster of coinciding points, alternately above and
+    below."""
+    clusters = []
+    for x, y, law in pts:
+        for cl in clusters:
+            if abs(cl[1] / y - 1) < 0.03 and abs(math.log(cl[0] / x)) < 0.3:
+                cl[2].append(law)
+                break
+        else:
+            clusters.append([x, y, [law]])
+    for j, (x, y, names) in enumerate(sorted(clusters)):
+        below = j % 2 == 1
+        ax.annotate(",\n".join(names), (x, y), fontsize=7, xytext=(5, -6 if below else 4), textcoords="offset points",
+                    va="top" if below else "bottom")
+
+
+def chart3d_figure(rows, path, *, title=None, spin_rows=None):
+    """Error of each 3D law against the BEM (max over the curved paths, and per path) versus the time per
+    kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list; ``spin_rows``: optional
+    ``studies.chart3d.SpinImpactRow`` list (a third panel: spinning impacts, error vs time per impact).
+    Laws at the same point share a label."""
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
+    laws = list(dict.fromkeys(r.law for r in rows))
+    paths = [p for p in dict.fromkeys(r.path for r in rows) if p != "max"]
+    cmap = plt.get_cmap("tab20")
+    n = 3 if spin_rows else 2
+    fig, axes = plt.subplots(1, n, figsize=(6.5 * n, 5.4))
+    a0, a1 = axes[0], axes[1]
+    points = []
+    for i, law in enumerate(laws):
+        m = next(r for r in rows if r.law == law and r.path == "max")
+        a0.plot(m.time_per_update_ns, m.error, "o", color=cmap(i % 20), ms=7)
+        points.append((m.time_per_update_ns, m.error, law))
+        a1.plot(range(len(paths)), [next(r.error for r in rows if r.law == law and r.path == p) for p in paths],
+                "o-", color=cmap(i % 20), label=law, ms=4)
+    _shared_labels(a0, points)
+    if spin_rows:
+        a2 = axes[2]
+        pts = []
+        for r in spin_rows:
+            i = laws.index(r.law) if r.law in laws else len(laws)
+            a2.plot(r.time_per_impact_us, r.error, "o", color=cmap(i % 20), ms=7)
+            pts.append((r.time_per_impact_us, r.error, r.law))
+        _shared_labels(a2, pts)
+        a2.set_xscale("log")
+        a2.set_yscale("log")
+        a2.set_xlabel("time per impact [us] (bare kernel, warm JIT)")
+        a2.set_ylabel("max |f - f_BEM| / mu, spinning impacts (EE)")
+        a2.grid(True, which="both", alpha=0.3)
+    a0.set_xscale("log")
+    a0.set_yscale("log")
+    a0.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    a0.xaxis.set_major_formatter(ScalarFormatter())
+    a0.xaxis.set_minor_formatter(NullFormatter())
+    a0.set_xlabel("time per update of the 3D kernel [ns] (serial, warm JIT)")
+    a0.set_ylabel("max |T - T_BEM| / (mu N) over the five curved paths")
+    a1.set_xticks(range(len(paths)))
+    a1.set_xticklabels(paths, rotation=20, fontsize=8)
+    a1.set_yscale("log")
+    a1.set_ylabel("max |T - T_BEM| / (mu N) along the path")
+    for a in (a0, a1):
+        a.grid(True, which="both", alpha=0.3)
+    a1.legend(fontsize=7, ncol=2)
     if title:
         fig.suptitle(title, fontsize=10)
     fig.tight_layout()

@@ -1,201 +1,644 @@
 """Drop-in 3D contact force for DEM codes: any normal x tangential law of ``laws.contact``, in 3D.
 
+    contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+        -> (Fx, Fy, Fz, Ftx, Fty, Ftz)
+
 Conventions (SI units):
 
+- ``params``: float64[n_rows, N_PARAMS] parameter table (``pairs.PairTable.params``), ``row`` the pair's row;
+- ``H``: float64[n_contacts, history_size] the whole state of every contact, row ``c`` for this one
+  (``pairs.PairTable.history_size``; layout in ``laws.vector``);
 - ``n``: unit normal from body 1 to body 2; ``delta`` > 0: overlap [m];
 - ``v``: relative velocity of body 1 with respect to body 2 at the contact point [m/s],
   v = (V1 + w1 x r1) - (V2 + w2 x r2) with r_i the vector from the centre of body i to the contact point;
   the overlap rate is d(delta)/dt = v . n (seen by dashpots) and the slip increment is
-  dd = (v - (v . n) n) dt. In a velocity-Verlet loop pass the half-step velocities (the slip over the step);
-  ``integrator.integrate_impact`` additionally gives dashpots the normal velocity predicted at the end of
-  the step, v . n - (dt / 2) N / m* (the 3D test loop does the same);
+  dd = (v - (v . n) n) dt. In a velocity-Verlet loop pass the half-step velocities;
+- ``wn``: rotation rate of the contact frame about the normal [rad/s], wn = 0.5 (w1 + w2) . n, the mean
+  spin of the two bodies about the normal: the tangential history turns with it, so a pair turned
+  rigidly sees its force turn with it (objectivity). 0.0 keeps the history fixed in space apart from the
+  carry into the tangent plane (as LAMMPS's granular models do). Relative spin about the normal (torsion)
+  is not a tangential load and does not act on the force;
+- ``dt`` > 0 [s];
 - returned: the force on body 1 (normal + tangential) and its tangential part (for the torques
   r1 x F_t on body 1 and -r2 x F_t on body 2). The force on body 2 is the opposite.
 
-State of one contact: the planar history row ``h`` (``laws.slots``, its length is the law's history size)
-and a separate row ``h3`` of ``N_HIST3D`` floats holding the unit axis u of the planar law, so that the
-tangential force on body 1 is F_t = -h[H_T] u (physics.md 5.3 sign: T acts along the displacement,
-the force on body 1 is -T). Slots H_TANG_EXTRA and later of ``h`` stay the planar law's own.
+Each step the stored tangential history (a vector, an axis or a frame, see ``laws.vector``) is carried
+into the current tangent plane keeping its magnitude and turned about the normal by the angle
+2 atan(wn dt / 2) (the Cayley form of the rotation by wn dt: exactly orthogonal, wn dt (1 - (wn dt)^2 / 12)),
+then the law acts on the slip increment:
 
-3D extension of the planar (scalar) tangential laws, every step:
+- ``mindlin_total``, ``ddm``, ``mindlin_incremental``, ``mindlin_rescale``, ``linear``: vector springs
+  (the LAMMPS granular ``mindlin``, ``mindlin/force``, ``mindlin_rescale/force`` arithmetic), Coulomb by
+  scaling the force back to mu N;
+- ``md``, ``md_rescale``: the planar law along the force axis; slip across the axis turns the force;
+- ``mdr``, ``mdr_adaptive``: vector MDR, each cell a displacement in the tangent plane with its own
+  Coulomb circle (radial return).
 
-1. u is carried into the current tangent plane, u <- (u - (u.n) n) / |u - (u.n) n|, which keeps |T|
-   (physics.md 5.4). When h[H_T] = 0 (new or released contact) u is the slip direction dd / |dd|.
-2. The slip increment is split into d_par = dd . u and d_perp = dd - d_par u. d_par drives the planar law
-   (``laws.contact.contact_step``) along u: loading / unloading / reloading of Mindlin-Deresiewicz, the
-   reversal points T*, T**, the mu dN terms and Coulomb slip are those of the planar law for the
-   displacement component along the force axis. A reversal means d_par changing sign.
-3. d_perp turns the force about the normal, keeping the planar law's |T|: the force takes the direction
-   of w = T u + k_0 d_perp, with the elastic stiffness k_0 = 8 G* a (P_KT for the linear tangential law),
-   and the axis follows it, u <- sign(T) w / |w|. The law's own state (T, T*, T**, regime, xi, MDR cells)
-   is not touched, so |T| <= mu N holds as in the planar law; the magnitude change that d_perp would
-   add is of second order in the step and is left out.
-
-When the motion stays in one plane, d_perp is exactly zero and the kernel performs exactly the planar
-law's operations (the planar reduction is tested against ``integrator.integrate_impact``).
+Motion in one plane repeats the planar laws (``laws.contact``) to rounding error. The kernels do not check
+their arguments: call ``check_contacts`` once per set of arrays, or ``contact_forces(..., debug=True)``.
 """
 import math
+import os
 
 import numpy as np
 from numba import njit, prange
 
-from ..laws.contact import LINEAR_TANGENTIAL, contact_step
-from ..laws.slots import H_T, P_GSTAR, P_KT
+from ..errors import InputError, NumericalError
+from ..laws import vector as V
+from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
+                            MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
+from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MSTAR, P_MU,
+                          P_NSPRING, P_PY, P_RSTAR)
+from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
+                           tangential_base)
 
-# slots of the per-contact 3D row h3
-H3_UX = 0      # axis of the planar tangential law, unit vector in the tangent plane (0 when unset)
-H3_UY = 1
-H3_UZ = 2
-N_HIST3D = 3
-
-
-@njit(cache=True)
-def elastic_tangential_stiffness(tid, p, a):
-    """Stiffness that turns the tangential force for slip across its axis [N/m]: the Mindlin stiffness
-    8 G* a (physics.md section 1), or the constant k_t of the linear (Cundall-Strack) law."""
-    if tid == LINEAR_TANGENTIAL:
-        return p[P_KT]
-    return 8.0 * p[P_GSTAR] * a
+__all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
+           "contact_forces_batch", "contact_forces_serial", "contact_forces", "check_contacts",
+           "new_histories", "history_size"]
 
 
-@njit(cache=True)
-def contact_force_xyz(nid, tid, p, h, h3, nx, ny, nz, delta, vx, vy, vz, dt):
-    """One contact step in 3D, scalar arguments (see the module docstring for conventions and the
-    3D extension of the planar laws).
+# The kernels are flattened for speed. One step function per family of tangential laws (``_step_md``,
+# ``_step_spring``, ``_step_mdr``) alone reads and writes the arrays (H[c, j], params[row, j]) and calls
+# only inlined functions of scalars. The batch loops are compiled per family with the step inlined (numba
+# then keeps the reference counting of the arrays out of the loop), and only the family that is used is
+# compiled. ``contact_force`` calls one non-inlined leaf per family (``_leaf_*``), to keep the cold compile
+# of a user's loop short.
 
-    nid, tid: law ids (``laws.contact``); p: parameter row; h: history row, h3: float64[N_HIST3D], both
-    updated in place; (nx, ny, nz): unit normal from body 1 to body 2; delta: overlap [m];
-    (vx, vy, vz): relative velocity of body 1 w.r.t. body 2 at the contact point [m/s]; dt [s].
-    Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
-    """
+@njit(inline="always", **JIT)
+def _kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
+    """Overlap rate v . n, slip increment dd = (v - (v . n) n) dt, and (cos, sin) of the turn of the contact
+    frame about the normal, 2 atan(wn dt / 2) (Cayley form of the rotation by wn dt)."""
     vel = vx * nx + vy * ny + vz * nz
-    ddx = (vx - vel * nx) * dt
-    ddy = (vy - vel * ny) * dt
-    ddz = (vz - vel * nz) * dt
-    ux = h3[H3_UX]
-    uy = h3[H3_UY]
-    uz = h3[H3_UZ]
-    axis = False
-    if h[H_T] != 0.0:
-        # carry the axis into the current tangent plane, keeping |T| (physics.md 5.4)
-        un = ux * nx + uy * ny + uz * nz
-        ux -= un * nx
-        uy -= un * ny
-        uz -= un * nz
-        norm = math.sqrt(ux * ux + uy * uy + uz * uz)
-        if norm > 0.0:
-            ux /= norm
-            uy /= norm
-            uz /= norm
-            axis = True
-    if not axis:
-        dmag = math.sqrt(ddx * ddx + ddy * ddy + ddz * ddz)
-        if dmag > 0.0:
-            ux = ddx / dmag
-            uy = ddy / dmag
-            uz = ddz / dmag
-        else:
-            ux = 0.0
-            uy = 0.0
-            uz = 0.0
-    d_par = ddx * ux + ddy * uy + ddz * uz
-    px = ddx - d_par * ux
-    py = ddy - d_par * uy
-    pz = ddz - d_par * uz
-    N, a, T = contact_step(nid, tid, p, h, delta, vel, d_par)
+    cs = 1.0
+    sn = 0.0
+    if wn != 0.0:
+        q = 0.5 * wn * dt
+        inv = 1.0 / (1.0 + q * q)
+        cs = (1.0 - q * q) * inv
+        sn = 2.0 * q * inv
+    return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
+
+
+@njit(inline="always", **JIT)
+def _normal(nid, E, R, m, gamma, kn, delta_y, F_y, p_y, s0, s1, s2, s3, delta, vel):
+    """The normal law of ``nid``: (N, a) and the four Thornton state values."""
+    if nid == HERTZ:
+        N, a = V.hertz(E, R, delta)
+    elif nid == THORNTON:
+        return V.thornton(E, R, delta_y, F_y, p_y, s0, s1, s2, s3, delta)
+    elif nid == HERTZ_DAMPED:
+        N, a = V.hertz_damped(E, R, m, gamma, delta, vel)
+    else:
+        N, a = V.linear_normal(kn, gamma, m, R, delta, vel)
+    return N, a, s0, s1, s2, s3
+
+
+@njit(inline="always", **JIT)
+def _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    N, a, s0, s1, s2, s3 = _normal(nid, params[row, P_ESTAR], params[row, P_RSTAR], params[row, P_MSTAR],
+                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
+                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
+                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    b = tangential_base(nid)
+    Np = N if N > 0.0 else 0.0
+    G = params[row, P_GSTAR]
+    ux, uy, uz, t_old, d_par, px, py, pz = V.md_axis_start(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z],
+                                                           H[c, b + V.M_T], nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    T, ts, tss, k, s = V.md_scalar(params[row, P_MU], G, Np, Np - H[c, V_N], a, H[c, V_A], d_par,
+                                   tid == MD_RESCALE, t_old, H[c, b + V.M_TS], H[c, b + V.M_TSS],
+                                   int(H[c, b + V.M_REGIME]), H[c, b + V.M_SIGN])
+    ux, uy, uz = V.md_axis_turn(T, 8.0 * G * a, ux, uy, uz, px, py, pz)
+    if nid == THORNTON:
+        H[c, V_DSTAR] = s0
+        H[c, V_FSTAR] = s1
+        H[c, V_RP] = s2
+        H[c, V_DP] = s3
+    H[c, V_N] = Np
+    H[c, V_A] = a
+    H[c, b + W_WORK] += 0.5 * (t_old * d_par + T * (ux * ddx + uy * ddy + uz * ddz))
+    H[c, b + W_X] = ux
+    H[c, b + W_Y] = uy
+    H[c, b + W_Z] = uz
+    H[c, b + V.M_T] = T
+    H[c, b + V.M_TS] = ts
+    H[c, b + V.M_TSS] = tss
+    H[c, b + V.M_REGIME] = k
+    H[c, b + V.M_SIGN] = s
     tx = T * ux
     ty = T * uy
     tz = T * uz
-    if T != 0.0 and (px != 0.0 or py != 0.0 or pz != 0.0):
-        # slip across the axis turns the force about the normal; its magnitude is the planar law's |T|
-        k0 = elastic_tangential_stiffness(tid, p, a)
-        wx = tx + k0 * px
-        wy = ty + k0 * py
-        wz = tz + k0 * pz
-        inv = 1.0 / math.sqrt(wx * wx + wy * wy + wz * wz)
-        if T < 0.0:
-            inv = -inv
-        ux = wx * inv          # T u = |T| w / |w|
-        uy = wy * inv
-        uz = wz * inv
-        tx = T * ux
-        ty = T * uy
-        tz = T * uz
-    h3[H3_UX] = ux
-    h3[H3_UY] = uy
-    h3[H3_UZ] = uz
     return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
 
 
-@njit(cache=True)
-def contact_force(nid, tid, p, h, h3, n, delta, v, dt, out):
-    """``contact_force_xyz`` with vectors: n, v float64[3]; out float64[6] receives the force on body 1
-    (out[0:3]) and its tangential part (out[3:6]). h, h3 are updated in place."""
-    fx, fy, fz, tx, ty, tz = contact_force_xyz(nid, tid, p, h, h3, n[0], n[1], n[2], delta, v[0], v[1], v[2], dt)
-    out[0] = fx
-    out[1] = fy
-    out[2] = fz
-    out[3] = tx
-    out[4] = ty
-    out[5] = tz
+@njit(inline="always", **JIT)
+def _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    N, a, s0, s1, s2, s3 = _normal(nid, params[row, P_ESTAR], params[row, P_RSTAR], params[row, P_MSTAR],
+                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
+                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
+                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    b = tangential_base(nid)
+    Np = N if N > 0.0 else 0.0
+    a_old = H[c, V_A]
+    x = H[c, b + W_X]
+    y = H[c, b + W_Y]
+    z = H[c, b + W_Z]
+    mu = params[row, P_MU]
+    if tid == MINDLIN_TOTAL or tid == DDM:
+        g8 = 8.0 * params[row, P_GSTAR]
+        if tid == DDM:
+            g8 *= 2.0 / 3.0
+        tx, ty, tz, x, y, z, dw = V.spring_total(g8, mu, Np, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    else:
+        if tid == LINEAR_TANGENTIAL:
+            kt = params[row, P_KT]
+            a_old = a
+        else:
+            kt = 8.0 * params[row, P_GSTAR] * a
+        tx, ty, tz, dw = V.spring_incremental(kt, mu, Np, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                                              tid == MINDLIN_RESCALE)
+        x = tx
+        y = ty
+        z = tz
+    if nid == THORNTON:
+        H[c, V_DSTAR] = s0
+        H[c, V_FSTAR] = s1
+        H[c, V_RP] = s2
+        H[c, V_DP] = s3
+    H[c, V_N] = Np
+    H[c, V_A] = a
+    H[c, b + W_WORK] += dw
+    H[c, b + W_X] = x
+    H[c, b + W_Y] = y
+    H[c, b + W_Z] = z
+    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
 
 
-@njit(cache=True)
-def peek_force(nid, tid, p, h, h3, n, delta, v, dt, out):
-    """``contact_force`` evaluated on copies of the history: h and h3 are left unchanged."""
-    contact_force(nid, tid, p, h.copy(), h3.copy(), n, delta, v, dt, out)
+@njit(inline="always", **JIT)
+def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """Vector MDR (``mdr`` and ``mdr_adaptive``; Popov & Hess 2015 with a displacement vector per cell).
+
+    The cells hold 2D displacements in a frame (e1, e2 = n x e1) of the tangent plane (``V.mdr_frame``).
+    The slip increment in the frame, (dd . e1, dd . e2), is added to every cell in contact, with the entry
+    and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle
+    |G_M u| <= mu E* w. mdr_adaptive: the grid of ``mdr.mdr_adaptive`` (cell width in the history), mdr:
+    the fixed grid of ``mdr.mdr`` (NaN when the contact outgrows it)."""
+    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    E = params[row, P_ESTAR]
+    N, a, s0, s1, s2, s3 = _normal(nid, E, params[row, P_RSTAR], params[row, P_MSTAR],
+                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
+                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
+                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    if nid == THORNTON:
+        H[c, V_DSTAR] = s0
+        H[c, V_FSTAR] = s1
+        H[c, V_RP] = s2
+        H[c, V_DP] = s3
+    b = tangential_base(nid)
+    Np = N if N > 0.0 else 0.0
+    a_old = H[c, V_A]
+    H[c, V_N] = Np
+    H[c, V_A] = a
+    n = int(params[row, P_NSPRING])
+    k0 = b + V.R_CELLS
+    adaptive = tid == MDR_ADAPTIVE
+    dx = H[c, b + V.R_DX] if adaptive else params[row, P_DX]
+    if Np <= 0.0 or a <= 0.0:
+        if dx > 0.0:
+            for j in range(2 * max(V.cells(a, dx, n), V.cells(a_old, dx, n))):
+                H[c, k0 + j] = 0.0
+        for j in range(W_X, V.R_CELLS):
+            H[c, b + j] = 0.0
+        return -N * nx, -N * ny, -N * nz, 0.0, 0.0, 0.0
+    if not adaptive and a > n * dx:
+        return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
+    ex, ey, ez, fx, fy, fz, d1, d2 = V.mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
+                                                 ddx, ddy, ddz, cs, sn)
+    if adaptive:
+        if dx <= 0.0 or a_old <= 0.0:
+            for j in range(2 * n):
+                H[c, k0 + j] = 0.0
+            a_old = 0.0
+            dx = 2.0 ** math.floor(math.log2(2.0 * a / n))
+        while a > n * dx:
+            # merge pairs of cells into their length-weighted mean (mdr._merge), both components
+            for j in range(n // 2):
+                x0 = 2 * j * dx
+                l0 = min(max(a_old - x0, 0.0), dx)
+                l1 = min(max(a_old - x0 - dx, 0.0), dx)
+                u1 = 0.0
+                u2 = 0.0
+                if l0 + l1 > 0.0:
+                    u1 = (H[c, k0 + 4 * j] * l0 + H[c, k0 + 4 * j + 2] * l1) / (l0 + l1)
+                    u2 = (H[c, k0 + 4 * j + 1] * l0 + H[c, k0 + 4 * j + 3] * l1) / (l0 + l1)
+                H[c, k0 + 2 * j] = u1
+                H[c, k0 + 2 * j + 1] = u2
+            for j in range(2 * (n // 2), 2 * n):
+                H[c, k0 + j] = 0.0
+            dx *= 2.0
+        while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
+            # split every cell of the lower half in two that keep its mean (mdr._split)
+            for j in range(n // 2 - 1, -1, -1):
+                u1 = H[c, k0 + 2 * j]
+                u2 = H[c, k0 + 2 * j + 1]
+                H[c, k0 + 4 * j] = u1
+                H[c, k0 + 4 * j + 1] = u2
+                H[c, k0 + 4 * j + 2] = u1
+                H[c, k0 + 4 * j + 3] = u2
+            dx *= 0.5
+        H[c, b + V.R_DX] = dx
+    # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
+    GM = 4.0 * params[row, P_GSTAR]
+    umax_per_w = params[row, P_MU] * E * (3.0 * Np / (4.0 * E * a * a * a)) / GM
+    a2 = a * a
+    da = a - a_old
+    m = max(V.cells(a, dx, n), V.cells(a_old, dx, n))
+    full = min(int(min(a, a_old) / dx), m)
+    dx2 = dx * dx / 3.0
+    S1 = 0.0
+    S2 = 0.0
+    for i in range(full):
+        k = k0 + 2 * i
+        u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1)))
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        S1 += u1
+        S2 += u2
+    T1 = S1 * dx
+    T2 = S2 * dx
+    for i in range(full, m):
+        k = k0 + 2 * i
+        x0 = i * dx
+        l_new = min(max(a - x0, 0.0), dx)
+        if l_new <= 0.0:
+            H[c, k] = 0.0
+            H[c, k + 1] = 0.0
+            continue
+        l_old = min(max(a_old - x0, 0.0), dx)
+        u1 = H[c, k] + d1
+        u2 = H[c, k + 1] + d2
+        if l_new > l_old:
+            # the part entering during the step takes the increment after its entry (mdr._advance)
+            xm = x0 + 0.5 * (l_old + l_new)
+            f = (a - xm) / da * (l_new - l_old)
+            u1 = (u1 * l_old + d1 * f) / l_new
+            u2 = (u2 * l_old + d2 * f) / l_new
+        x1 = x0 + l_new
+        u1, u2 = V.radial(u1, u2, umax_per_w * (a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0))
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        T1 += u1 * l_new
+        T2 += u2 * l_new
+    T1 *= 2.0 * GM
+    T2 *= 2.0 * GM
+    H[c, b + W_WORK] += 0.5 * ((H[c, b + V.R_T1] + T1) * d1 + (H[c, b + V.R_T2] + T2) * d2)
+    H[c, b + W_X] = ex
+    H[c, b + W_Y] = ey
+    H[c, b + W_Z] = ez
+    H[c, b + V.R_T1] = T1
+    H[c, b + V.R_T2] = T2
+    tx = T1 * ex + T2 * fx
+    ty = T1 * ey + T2 * fy
+    tz = T1 * ez + T2 * fz
+    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
 
 
-@njit(cache=True)
-def reset_contact(h, h3):
-    """Zero the history of a contact (call on separation, before the slots are reused)."""
-    h[:] = 0.0
-    h3[:] = 0.0
+@njit(**JIT)
+def _leaf_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
-@njit(cache=True)
-def swap_bodies(h, h3):
-    """Exchange bodies 1 and 2 of a contact: the normal, the relative velocity, the displacement and the
-    tangential force all change sign, which is the sign of the axis u (the scalar state along u is
-    unchanged). Swapping twice is the identity."""
-    h3[H3_UX] = -h3[H3_UX]
-    h3[H3_UY] = -h3[H3_UY]
-    h3[H3_UZ] = -h3[H3_UZ]
+@njit(**JIT)
+def _leaf_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
-@njit(cache=True)
-def _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces):
-    fx, fy, fz, tx, ty, tz = contact_force_xyz(
-        nid, tid, params[pair[c]], H[c], H3[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-        velocities[c, 0], velocities[c, 1], velocities[c, 2], dt)
-    forces[c, 0] = fx
-    forces[c, 1] = fy
-    forces[c, 2] = fz
-    tforces[c, 0] = tx
-    tforces[c, 1] = ty
-    tforces[c, 2] = tz
+@njit(**JIT)
+def _leaf_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
-@njit(parallel=True, cache=True)
-def contact_forces_batch(nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces):
-    """Advance many contacts by one step in parallel (prange over contacts).
+@njit(inline="always", **JIT)
+def _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """The step of the law family of ``tid`` (ids assumed valid: NaN for an unknown one)."""
+    if tid == MDR_ADAPTIVE or tid == MDR:
+        return _leaf_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    if tid == MD or tid == MD_RESCALE:
+        return _leaf_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    if tid >= MINDLIN_TOTAL and tid <= DDM:
+        return _leaf_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
 
-    params: float64[n_rows, N_PARAMS] pair table (``pairs.pair_table``); pair: int64[n] row of each contact;
-    H: float64[n, n_hist], H3: float64[n, N_HIST3D] histories (updated); normals, velocities:
-    float64[n, 3]; overlaps: float64[n]; dt [s]; forces, tforces: float64[n, 3] receive the force on
-    body 1 and its tangential part."""
-    for c in prange(overlaps.shape[0]):
-        _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces)
+
+@njit(inline="always", **JIT)
+def _check_ids(nid, tid):
+    if nid < HERTZ or nid > LINEAR_NORMAL:
+        raise InputError("unknown normal law id (valid: 0 hertz, 1 thornton, 2 hertz_damped, 3 linear)")
+    if tid < MD or tid > MDR_ADAPTIVE:
+        raise InputError("unknown tangential law id (valid: 0 to 8, see laws.contact)")
 
 
-@njit(cache=True)
-def contact_forces_serial(nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces):
-    """``contact_forces_batch`` on one thread."""
+@njit(inline="always", **JIT)
+def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """One contact step in 3D (see the module docstring). Updates H[c, :] in place.
+    Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
+    Unknown law ids raise InputError; nothing else is checked (``check_contacts``)."""
+    _check_ids(nid, tid)
+    return _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+@njit(**JIT)
+def peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """``contact_force`` on a copy of the contact's history: H is left unchanged."""
+    tmp = H[c:c + 1].copy()
+    return contact_force(nid, tid, params, row, tmp, 0, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+@njit(**JIT)
+def reset_contact(H, c):
+    """Zero the history of contact c (call on separation, before the row is reused)."""
+    for j in range(H.shape[1]):
+        H[c, j] = 0.0
+
+
+@njit(**JIT)
+def swap_bodies(nid, tid, params, row, H, c):
+    """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
+    tangential force change sign. Swapping twice is the identity."""
+    b = tangential_base(nid)
+    for j in range(W_X, W_X + 3):
+        H[c, b + j] = -H[c, b + j]
+    if tid == MDR or tid == MDR_ADAPTIVE:
+        # e1 -> -e1 and n -> -n keep e2 = n x e1: the second components change sign
+        H[c, b + V.R_T2] = -H[c, b + V.R_T2]
+        for i in range(int(params[row, P_NSPRING])):
+            H[c, b + V.R_CELLS + 2 * i + 1] = -H[c, b + V.R_CELLS + 2 * i + 1]
+
+
+@njit(**JIT)
+def rotate_history(nid, H, c, Q):
+    """Turn the tangential history of contact c rigidly by the rotation matrix Q (float64[3, 3], proper
+    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n."""
+    b = tangential_base(nid)
+    x = H[c, b + W_X]
+    y = H[c, b + W_X + 1]
+    z = H[c, b + W_X + 2]
+    for i in range(3):
+        H[c, b + W_X + i] = Q[i, 0] * x + Q[i, 1] * y + Q[i, 2] * z
+
+
+@njit(**JIT)
+def tangential_work(nid, H, c):
+    """Work absorbed by the tangential force of contact c since its history was zeroed [J]: the sum over
+    steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created."""
+    return H[c, tangential_base(nid) + W_WORK]
+
+
+def _family(tid):
+    """Law family of a (checked) tangential law id: 0 md, 1 vector springs, 2 mdr."""
+    if tid in (MD, MD_RESCALE):
+        return 0
+    if tid in (MDR, MDR_ADAPTIVE):
+        return 2
+    return 1
+
+
+@njit(**JIT)
+def _serial_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
     for c in range(overlaps.shape[0]):
-        _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces)
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-def new_histories(n_contacts: int, history_size: int):
-    """Zeroed histories of ``n_contacts`` contacts: (H float64[n, history_size], H3 float64[n, N_HIST3D]).
-    ``history_size`` is ``Scene.history_size`` or ``PairTable.history_size``."""
-    return np.zeros((n_contacts, history_size)), np.zeros((n_contacts, N_HIST3D))
+@njit(**JIT)
+def _serial_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(**JIT)
+def _serial_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+_SERIAL = (_serial_md, _serial_spring, _serial_mdr)
+_BATCH = (_batch_md, _batch_spring, _batch_mdr)
+
+
+def _valid_ids(nid, tid):
+    nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
+    return nid, _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+
+
+def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    """Advance every contact by one step, in parallel (numba prange over contacts), with the loop compiled
+    for the law family of ``tid`` only. The law ids are checked, nothing else (``check_contacts``).
+
+    params: float64[n_rows, N_PARAMS]; pair_rows: int64[n] row of each contact; H: float64[n, history_size]
+    (updated); normals, velocities: float64[n, 3]; overlaps, wn: float64[n]; dt [s]; forces, tforces:
+    float64[n, 3] receive the force on body 1 and its tangential part."""
+    nid, tid = _valid_ids(nid, tid)
+    _BATCH[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+
+
+def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    """``contact_forces_batch`` on one thread."""
+    nid, tid = _valid_ids(nid, tid)
+    _SERIAL[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+
+
+def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
+    """Zeroed histories of ``n_contacts`` contacts, float64[n_contacts, history_size];
+    ``history_size`` is ``PairTable.history_size``."""
+    return np.zeros((n_contacts, history_size))
+
+
+# ------------------------------------------------------------------------------------------- checked entry
+
+_NORMAL_NAMES = "0 hertz, 1 thornton, 2 hertz_damped, 3 linear"
+_TANGENTIAL_NAMES = ("0 md, 1 md_rescale, 2 mindlin_total, 3 mindlin_incremental, 4 mindlin_rescale, 5 linear, "
+                     "6 ddm, 7 mdr, 8 mdr_adaptive")
+UNIT_TOL = 1e-6
+
+
+def _law_id(name, value, valid, names):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or int(value) not in valid:
+        raise InputError(f"{name} = {value!r} is not a law id (valid: {names})")
+    return int(value)
+
+
+def _array(name, a, ndim, dtype, shape=None, writeable=False):
+    if not isinstance(a, np.ndarray):
+        raise InputError(f"{name} must be a numpy array of {np.dtype(dtype).name}, got {type(a).__name__}")
+    if a.dtype != dtype:
+        raise InputError(f"{name} must have dtype {np.dtype(dtype).name}, got {a.dtype}")
+    if a.ndim != ndim:
+        raise InputError(f"{name} must be {ndim}-dimensional, got shape {a.shape}")
+    if shape is not None:
+        for k, (got, want) in enumerate(zip(a.shape, shape)):
+            if want is not None and got != want:
+                raise InputError(f"{name} must have shape {tuple('n' if w is None else w for w in shape)} "
+                                 f"with n = {shape[0] if shape[0] is not None else 'the number of contacts'}, "
+                                 f"got {a.shape}")
+    if not a.flags.c_contiguous:
+        raise InputError(f"{name} must be C-contiguous (np.ascontiguousarray)")
+    if writeable and not a.flags.writeable:
+        raise InputError(f"{name} must be writeable")
+
+
+def _first_bad(name, bad, what):
+    """Raise for the first True of the boolean per-contact array ``bad``."""
+    if np.any(bad):
+        c = int(np.argmax(bad))
+        raise InputError(f"{name}[{c}] {what(c)}")
+
+
+def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
+                   tforces=None):
+    """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
+    ``contact_force`` call that uses the same arrays): law ids, dtypes, shapes, C-contiguity, row indices
+    in range, history rows long enough for the laws, unit normals (within 1e-6), dt > 0 and finite inputs.
+    Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
+    again when they are reallocated); the jitted kernels themselves do not check."""
+    nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
+    tid = _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+    _array("params", params, 2, np.float64, (None, N_PARAMS))
+    if params.shape[0] == 0:
+        raise InputError("params must have at least one row (pairs.pair_table)")
+    _first_bad("params", ~np.all(np.isfinite(params), axis=1), lambda r: "is not finite")
+    _array("overlaps", overlaps, 1, np.float64)
+    n = overlaps.shape[0]
+    _array("pair_rows", pair_rows, 1, np.int64, (n,))
+    _array("H", H, 2, np.float64, (n, None))
+    _array("normals", normals, 2, np.float64, (n, 3))
+    _array("velocities", velocities, 2, np.float64, (n, 3))
+    _array("wn", wn, 1, np.float64, (n,))
+    for name, a in (("forces", forces), ("tforces", tforces)):
+        if a is not None:
+            _array(name, a, 2, np.float64, (n, 3), writeable=True)
+    if not (isinstance(dt, (float, int, np.floating, np.integer)) and not isinstance(dt, (bool, np.bool_))
+            and math.isfinite(dt) and dt > 0.0):
+        raise InputError(f"dt = {dt!r} must be a finite time step > 0 [s]")
+    rows = params.shape[0]
+    _first_bad("pair_rows", (pair_rows < 0) | (pair_rows >= rows),
+               lambda c: f"= {pair_rows[c]} is not a row of params (valid: 0 to {rows - 1})")
+    if n == 0:
+        return
+    used = params[pair_rows]
+    if tid in (MDR, MDR_ADAPTIVE):
+        cells = used[:, P_NSPRING]
+        _first_bad("pair_rows", (cells < 2) | (cells != np.floor(cells)) | (cells > 10**6),
+                   lambda c: f"= {pair_rows[c]}: its params row has no MDR cell count (params[:, P_NSPRING]), "
+                             f"which the {'mdr' if tid == MDR else 'mdr_adaptive'} law needs")
+        if tid == MDR_ADAPTIVE:
+            _first_bad("pair_rows", cells % 2 != 0,
+                       lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
+        else:
+            _first_bad("pair_rows", ~(used[:, P_DX] > 0.0),
+                       lambda c: f"= {pair_rows[c]}: its params row has no MDR cell width (params[:, P_DX] > 0)")
+        need = history_size(nid, tid, int(cells.max()))
+    else:
+        need = history_size(nid, tid)
+    if H.shape[1] < need:
+        raise InputError(f"H has rows of length {H.shape[1]}; these laws and params need {need} "
+                         f"(PairTable.history_size, contact3d.history_size)")
+    _first_bad("H", ~np.all(np.isfinite(H), axis=1), lambda c: "(the history of the contact) is not finite")
+    _first_bad("normals", ~np.all(np.isfinite(normals), axis=1), lambda c: "is not finite")
+    length = np.sqrt(np.einsum("ij,ij->i", normals, normals))
+    _first_bad("normals", np.abs(length - 1.0) > UNIT_TOL,
+               lambda c: f"has length {length[c]:.9g} (a unit vector is needed, within {UNIT_TOL:g})")
+    _first_bad("overlaps", ~np.isfinite(overlaps), lambda c: "is not finite")
+    _first_bad("velocities", ~np.all(np.isfinite(velocities), axis=1), lambda c: "is not finite")
+    _first_bad("wn", ~np.isfinite(wn), lambda c: "is not finite")
+
+
+@njit(boundscheck=True, **JIT)
+def _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, need):
+    """``contact_forces_serial`` with bounds checks and per-contact checks of what the kernel relies on;
+    returns (-1, 0) or (first bad contact, reason: 1 row, 2 history row length, 3 normal, 4 non-finite
+    input, 5 non-finite force)."""
+    for c in range(overlaps.shape[0]):
+        row = pair_rows[c]
+        if row < 0 or row >= params.shape[0]:
+            return c, 1
+        if H.shape[1] < need:
+            return c, 2
+        nx = normals[c, 0]
+        ny = normals[c, 1]
+        nz = normals[c, 2]
+        if not abs(math.sqrt(nx * nx + ny * ny + nz * nz) - 1.0) <= UNIT_TOL:
+            return c, 3
+        s = overlaps[c] + velocities[c, 0] + velocities[c, 1] + velocities[c, 2] + wn[c]
+        if not math.isfinite(s):
+            return c, 4
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = contact_force(
+            nid, tid, params, row, H, c, nx, ny, nz, overlaps[c], velocities[c, 0], velocities[c, 1],
+            velocities[c, 2], wn[c], dt)
+        if not math.isfinite(forces[c, 0] + forces[c, 1] + forces[c, 2]):
+            return c, 5
+    return -1, 0
+
+
+_DEBUG_REASONS = {1: "pair_rows[{c}] is not a row of params", 2: "H rows are too short for the laws",
+                  3: "normals[{c}] is not a unit vector", 4: "an input of contact {c} is not finite"}
+
+
+def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, *,
+                   parallel=True, debug=None):
+    """Checked batch step: ``check_contacts``, then ``contact_forces_batch`` (``parallel``) or
+    ``contact_forces_serial``. ``debug`` (default: the environment variable DEM_CONTACT_DEBUG set to
+    1): run a serial loop compiled with numba's bounds checks that also checks every contact's inputs and
+    force, and raises ``InputError`` / ``NumericalError`` naming the first bad contact."""
+    check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    if debug is None:
+        debug = os.environ.get("DEM_CONTACT_DEBUG", "") not in ("", "0")
+    if debug:
+        need = H.shape[1]
+        if tid in (MDR, MDR_ADAPTIVE) and len(pair_rows):
+            need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
+        elif tid not in (MDR, MDR_ADAPTIVE):
+            need = history_size(nid, tid)
+        c, reason = _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
+                                  forces, tforces, need)
+        if reason == 5:
+            raise NumericalError(f"contact {c}: the force is not finite (overlap {overlaps[c]:.6g} m"
+                                 f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
+        if reason:
+            raise InputError(_DEBUG_REASONS[reason].format(c=c))
+    elif parallel:
+        contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt), forces,
+                             tforces)
+    else:
+        contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
+                              forces, tforces)

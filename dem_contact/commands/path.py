@@ -1,0 +1,124 @@
+"""``dem-contact path``: the forces of a contact law along a prescribed loading path."""
+from __future__ import annotations
+
+import json
+
+from ..errors import InputError
+from ..laws.model import TANGENTIAL_LAWS
+from ..materials import STEEL
+
+ORDER = 6
+
+
+def add_parser(sub):
+    from ..reference.paths import SHAPES
+
+    shapes = ("circle: the circle through the origin of radius SIZE, centre (SIZE, 0); load-circle: along x "
+              "to SIZE, then once round the circle of radius SIZE about the origin; l-turn: along x to SIZE, "
+              "then along y by SIZE; figure-eight: u = SIZE (sin t, sin t cos t), t from 0 to 2 pi; "
+              "load-unload: along x to SIZE, back to -SIZE and again to SIZE")
+    p = sub.add_parser(
+        "path", help="forces of a contact law along a prescribed path of overlap and tangential displacement",
+        description="Drive one contact (the 3D per-contact kernel, normal along z) along a path and print, per "
+                    "row, the normal force N and the tangential force (Tx, Ty) on body 1 [N] (it opposes the "
+                    "displacement). The path is a CSV with the header delta,ux,uy and one row per step: "
+                    "overlap [m] (<= 0: no contact, the history is released) and the tangential displacement "
+                    "of body 1 relative to body 2 at the contact point, components in the tangent plane [m]; "
+                    "the contact starts unloaded before the first row. Or a named path at constant overlap "
+                    "(--shape), sizes in units of the slip displacement mu delta / kappa. SI units.")
+    p.add_argument("path_csv", nargs="?", default=None, metavar="PATH.csv",
+                   help="the path (header delta,ux,uy); or use --shape")
+    g = p.add_argument_group("named path (instead of PATH.csv)")
+    g.add_argument("--shape", choices=SHAPES, default=None, help=shapes)
+    g.add_argument("--size", type=float, default=None,
+                   help="size of the named path in units of the slip displacement mu delta / kappa (default: "
+                        "0.6; 1.5 for l-turn; 1 for load-unload)")
+    g.add_argument("--overlap", type=float, default=1e-5, help="constant overlap of the named path [m] (default 1e-5)")
+    g.add_argument("--steps", type=int, default=400,
+                   help="steps of the named path after its first row (the loaded contact at u = 0; default 400)")
+    s = p.add_argument_group("contact (SI units; defaults: steel sphere of radius 10 mm on a steel wall)")
+    s.add_argument("--radius", type=float, default=0.01, help="sphere radius [m] (default 0.01)")
+    s.add_argument("--E", type=float, default=STEEL.E, help="sphere Young's modulus [Pa] (default 208e9)")
+    s.add_argument("--nu", type=float, default=STEEL.nu, help="sphere Poisson ratio (default 0.3)")
+    s.add_argument("--wall-E", type=float, default=STEEL.E, help="wall Young's modulus [Pa] (default 208e9)")
+    s.add_argument("--wall-nu", type=float, default=STEEL.nu, help="wall Poisson ratio (default 0.3)")
+    s.add_argument("--rigid-wall", action="store_true", help="the wall is rigid")
+    s.add_argument("--rigid-sphere", action="store_true", help="the sphere is rigid")
+    s.add_argument("--mu", type=float, default=0.3, help="friction coefficient >= 0 (default 0.3)")
+    s.add_argument("--normal", choices=["hertz", "thornton"], default="hertz",
+                   help="normal law (default hertz; dashpot laws need a rate, which a path does not have)")
+    s.add_argument("--yield-stress", type=float, default=None, help="sphere's yield stress Y [Pa] (thornton)")
+    s.add_argument("--tangential", choices=[t for t in TANGENTIAL_LAWS if t != "linear"], default=None,
+                   help="tangential law (default: the library default)")
+    s.add_argument("--reference", action="store_true",
+                   help="use the boundary-element reference (exact 3D Cattaneo-Mindlin, slow) instead of a law")
+    s.add_argument("--n-across", type=int, default=64,
+                   help="with --reference: boundary elements across the largest contact (default 64)")
+    o = p.add_argument_group("output")
+    o.add_argument("--json", action="store_true", help="print one JSON object with the lists N, Tx, Ty [N]")
+    o.add_argument("--csv", default=None, metavar="FILE", help="write delta, ux, uy, N, Tx, Ty per row to FILE")
+    o.add_argument("--plot", default=None, metavar="FILE.png",
+                   help="draw the path and the force (T/(mu N), both components and magnitude) to a PNG")
+    p.set_defaults(run=run)
+
+
+def _scene(args):
+    from ..laws.model import Scene
+    from ..materials import Material, Sphere, Wall
+
+    if args.yield_stress is not None and args.normal != "thornton":
+        raise InputError("--yield-stress applies to --normal thornton only")
+    if args.normal == "thornton" and args.yield_stress is None:
+        raise InputError("--normal thornton needs --yield-stress (the sphere's yield stress Y [Pa])")
+    sphere_mat = (Material.rigid(rho=STEEL.rho) if args.rigid_sphere else
+                  Material(E=args.E, nu=args.nu, rho=STEEL.rho, yield_stress=args.yield_stress))
+    wall = Wall.rigid() if args.rigid_wall else Wall(Material(E=args.wall_E, nu=args.wall_nu, rho=STEEL.rho))
+    laws = {} if args.tangential is None else {"tangential": args.tangential}
+    return Scene(Sphere(args.radius, sphere_mat), wall, mu=args.mu, normal=args.normal, **laws)
+
+
+def run(args) -> int:
+    from ..reference.paths import scene_path
+    from ..studies.paths import read_path_csv, reference_path, run_path, write_path_csv
+
+    scene = _scene(args)
+    if args.reference and args.tangential is not None:
+        raise InputError("give either --reference or --tangential, not both")
+    if args.reference and args.normal != "hertz":
+        raise InputError("--reference solves the Hertz contact: it takes --normal hertz only")
+    if args.n_across != 64 and not args.reference:
+        raise InputError("--n-across applies to --reference only")
+    if (args.path_csv is None) == (args.shape is None):
+        raise InputError("give either a path CSV (PATH.csv) or --shape")
+    named = args.shape is not None
+    if not named and (args.size is not None or args.overlap != 1e-5 or args.steps != 400):
+        raise InputError("--size, --overlap and --steps apply to --shape only")
+    if named:
+        size = args.size if args.size is not None else {"l-turn": 1.5, "load-unload": 1.0}.get(args.shape, 0.6)
+        if not args.overlap > 0:
+            raise InputError(f"--overlap = {args.overlap:g} must be > 0 [m]")
+        delta, ux, uy = scene_path(args.shape, size, args.steps, scene, args.overlap)
+    else:
+        delta, ux, uy = read_path_csv(args.path_csv)
+    if args.reference:
+        N, Tx, Ty = reference_path(scene, delta, ux, uy, n_across=args.n_across)
+        law = f"boundary-element reference ({args.n_across} elements across)"
+    else:
+        N, Tx, Ty = run_path(scene, delta, ux, uy)
+        law = f"{scene.normal} / {scene.tangential}"
+    if args.csv:
+        write_path_csv(args.csv, delta, ux, uy, N, Tx, Ty)
+    if args.plot:
+        from ..plots import path_figure
+        title = (f"{args.shape} path" if named else args.path_csv) + f": {law}, mu = {scene.mu:g}"
+        path_figure(delta, ux, uy, N, Tx, Ty, scene.mu, args.plot, title=title)
+    if args.json:
+        print(json.dumps({"N": [float(x) + 0.0 for x in N], "Tx": [float(x) + 0.0 for x in Tx],
+                          "Ty": [float(x) + 0.0 for x in Ty],
+                          "law": law, "model": scene.describe()}, allow_nan=False))
+        return 0
+    print(f"# {law}; mu = {scene.mu:g}, kappa = {scene.pair.kappa:.4f}; {len(N)} rows; forces on body 1 [N]")
+    print("N,Tx,Ty")
+    for n, tx, ty in zip(N, Tx, Ty):
+        print(f"{n + 0.0:.10g},{tx + 0.0:.10g},{ty + 0.0:.10g}")      # + 0.0: no negative zeros
+    return 0

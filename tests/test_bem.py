@@ -1,0 +1,267 @@
+"""The boundary-element reference (dem_contact.reference): element integrals, Mindlin's stiffness, the
+Cattaneo-Mindlin curves, gross slip, symmetry, dissipation, the planar MDR impact, and the named paths."""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import integrate
+
+import dem_contact as dc
+from dem_contact.errors import InputError
+from dem_contact.reference import bem as B
+from dem_contact.reference.impact import bem_impact, hertz_overlap_history
+from dem_contact.reference.paths import SHAPES, named_path, slip_displacement, unit_path
+
+E, R, DELTA = 208e9, 0.005, 2e-6          # steel on steel, R* = 5 mm, a = 0.1 mm
+
+
+def effective(nu):
+    G = E / (2 * (1 + nu))
+    G_star = 1 / (2 * (2 - nu) / G)
+    E_star = 1 / (2 * (1 - nu**2) / E)
+    a = math.sqrt(R * DELTA)
+    N = 4 / 3 * E_star * math.sqrt(R) * DELTA**1.5
+    return G_star, E_star, a, N
+
+
+def cattaneo_mindlin_error(nu, n, mu=0.3, k=12):
+    """Largest |T_bem - T_CM| / (mu N) over loading to 0.8 of the slip displacement and unloading to -0.8
+    (Mindlin & Deresiewicz 1953; Johnson 1985 section 7.2)."""
+    G_star, _, a, N = effective(nu)
+    s = 3 * mu * N / (16 * G_star * a)
+    u_load = np.linspace(0, 0.8 * s, k + 1)[1:]
+    u_un = np.linspace(0.8 * s, -0.8 * s, 2 * k + 1)[1:]
+    u = np.r_[u_load, u_un]
+    Nb, Tx, Ty = B.bem_path(E, nu, E, nu, R, mu, np.full(u.size, DELTA), u, 0 * u, n_across=n)
+    T_load = mu * N * (1 - (1 - u_load / s) ** 1.5)
+    T_un = T_load[-1] - 2 * mu * N * (1 - (1 - (u_load[-1] - u_un) / (2 * s)) ** 1.5)
+    assert np.allclose(Nb, N, rtol=1e-14)
+    assert np.max(np.abs(Ty)) < 1e-6 * mu * N          # single-precision convolutions
+    return np.max(np.abs(-Tx - np.r_[T_load, T_un])) / (mu * N)
+
+
+def test_element_integrals_match_quadrature():
+    h, c1, c2 = 1.0, 0.7, 0.3
+    K = B.influence_kernels(4, h, c1, c2)
+    # self element: the integral of 1/r over a square from its centre is 4 h ln(1 + sqrt 2)
+    ln = math.log(1 + math.sqrt(2))      # and of x^2/r^3 half of it, by symmetry
+    assert K[0][0, 0] == pytest.approx(c1 * 4 * h * ln + c2 * 2 * h * ln, rel=1e-13)
+    assert K[2][0, 0] == pytest.approx(0.0, abs=1e-15)
+    for i, j in ((1, 0), (2, 1), (-1, 3), (-3, -2)):
+        X, Y = i * h, j * h
+
+        def quad(f):
+            return integrate.dblquad(lambda y, x: f(X - x, Y - y), -h / 2, h / 2, -h / 2, h / 2,
+                                     epsabs=1e-13, epsrel=1e-12)[0]
+        kxx = quad(lambda x, y: c1 / np.hypot(x, y) + c2 * x * x / np.hypot(x, y) ** 3)
+        kyy = quad(lambda x, y: c1 / np.hypot(x, y) + c2 * y * y / np.hypot(x, y) ** 3)
+        kxy = quad(lambda x, y: c2 * x * y / np.hypot(x, y) ** 3)
+        assert K[0][i, j] == pytest.approx(kxx, rel=1e-9)
+        assert K[1][i, j] == pytest.approx(kyy, rel=1e-9)
+        assert K[2][i, j] == pytest.approx(kxy, rel=1e-9, abs=1e-12)
+
+
+def test_stuck_contact_has_mindlin_stiffness():
+    """No slip (mu large): T = -8 G* a u (Mindlin 1949; Johnson 1985 section 7.2), to the grid's accuracy."""
+    for nu in (0.0, 0.3):
+        G_star, _, a, _ = effective(nu)
+        u = 1e-9
+        _, Tx, Ty = B.bem_path(E, nu, E, nu, R, 1e6, [DELTA, DELTA], [0.0, u], [0.0, 0.0], n_across=32)
+        assert -Tx[1] / u == pytest.approx(8 * G_star * a, rel=0.01)
+        assert abs(Ty[1]) < 1e-6 * abs(Tx[1])
+
+
+def test_cattaneo_mindlin_loading_unloading_within_one_percent():
+    assert cattaneo_mindlin_error(0.3, 32) < 0.01
+
+
+def test_cattaneo_mindlin_converges_with_the_grid():
+    """With nu = 0 the Cattaneo-Mindlin solution is exact for the discretised problem's continuum limit:
+    the error falls at about second order in the element size."""
+    e12, e24 = cattaneo_mindlin_error(0.0, 12), cattaneo_mindlin_error(0.0, 24)
+    assert e24 < e12 / 2.5
+
+
+def test_gross_slip_force_is_mu_N_against_the_slip_in_any_direction():
+    mu = 0.3
+    _, _, a, N = effective(0.3)
+    for angle in (0.0, 0.4, 2.0):
+        c, s = math.cos(angle), math.sin(angle)
+        L = 3 * slip_displacement(DELTA, mu, 0.8235)
+        t = np.linspace(0, 1, 7)
+        Nb, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, mu, np.full(t.size, DELTA), c * L * t, s * L * t, n_across=16)
+        assert Tx[-1] == pytest.approx(-mu * N * c, rel=1e-6, abs=1e-6 * mu * N)
+        assert Ty[-1] == pytest.approx(-mu * N * s, rel=1e-6, abs=1e-6 * mu * N)
+
+
+def test_quarter_turn_and_mirror_symmetry():
+    """The square grid is symmetric under quarter turns and mirrors: rotated paths give rotated forces."""
+    _, _, a, N = effective(0.3)
+    x, y = unit_path("figure-eight", 0.6, 24)
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    d = np.full(x.size, DELTA)
+    _, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, s * x, s * y, n_across=12)
+    _, Rx, Ry = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, -s * y, s * x, n_across=12)      # turned by 90 deg
+    _, Mx, My = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, s * x, -s * y, n_across=12)      # mirrored in x
+    tol = 1e-5 * 0.3 * N
+    assert np.allclose(Rx, -Ty, atol=tol) and np.allclose(Ry, Tx, atol=tol)
+    assert np.allclose(Mx, Tx, atol=tol) and np.allclose(My, -Ty, atol=tol)
+
+
+def test_closed_loops_dissipate():
+    """Work done on the contact over a closed tangential loop at constant N is >= 0 (no energy created)."""
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    for shape, size in (("circle", 0.6), ("figure-eight", 0.6), ("load-unload", 0.8)):
+        x, y = unit_path(shape, size, 40)
+        _, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, 0.3, np.full(x.size, DELTA), s * x, s * y, n_across=12)
+        work = -np.sum(0.5 * (Tx[1:] + Tx[:-1]) * np.diff(s * x) + 0.5 * (Ty[1:] + Ty[:-1]) * np.diff(s * y))
+        assert work > 0
+
+
+def test_rigid_wall_and_separation():
+    """A rigid body adds no compliance (the stiffness is that of the elastic body alone); an open contact
+    carries no force and drops its traction."""
+    nu = 0.3
+    G = E / (2 * (1 + nu))
+    a = math.sqrt(R * DELTA)
+    u = 1e-9
+    N, Tx, _ = B.bem_path(E, nu, math.inf, 0.0, R, 1e6, [DELTA, DELTA, 0.0, DELTA],
+                          [0.0, u, u, 2 * u], [0.0] * 4, n_across=32)
+    assert -Tx[1] / u == pytest.approx(8 * G / (2 - nu) * a, rel=0.01)
+    assert N[2] == 0.0 and Tx[2] == 0.0
+    assert Tx[3] == pytest.approx(Tx[1], rel=1e-6)   # the contact restarts unloaded: only the increment acts
+
+
+def test_bad_inputs_raise_input_error():
+    with pytest.raises(InputError, match="n_across"):
+        B.bem_path(E, 0.3, E, 0.3, R, 0.3, [DELTA], [0.0], [0.0], n_across=2)
+    with pytest.raises(InputError, match="same length"):
+        B.bem_path(E, 0.3, E, 0.3, R, 0.3, [DELTA, DELTA], [0.0], [0.0])
+    with pytest.raises(InputError, match="finite"):
+        B.bem_path(E, 0.3, E, 0.3, R, 0.3, [DELTA], [math.nan], [0.0])
+    with pytest.raises(InputError, match="mu"):
+        B.bem_path(E, 0.3, E, 0.3, R, -1.0, [DELTA], [0.0], [0.0])
+    with pytest.raises(InputError, match="rigid"):
+        B.bem_path(math.inf, 0.3, math.inf, 0.3, R, 0.3, [DELTA], [0.0], [0.0])
+    solver = B.TangentialBEM(E, 0.3, E, 0.3, R, 0.3, 1e-4, n_across=8)
+    with pytest.raises(InputError, match="a_max"):
+        solver.step(4e-6, 0.0, 0.0)
+    with pytest.raises(InputError, match="shape"):
+        unit_path("spiral", 0.5, 10)
+    two_spheres = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Sphere(0.01, dc.STEEL), mu=0.3)
+    with pytest.raises(InputError, match="Wall"):
+        bem_impact(two_spheres, 5.0, 1.0)
+    wall_scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    with pytest.raises(InputError, match="spin"):
+        bem_impact(wall_scene, 5.0, 1.0, spin=(1.0, 2.0))
+
+
+def test_hertz_overlap_history_closed_forms():
+    """The normal motion behind bem_impact: Hertz contact time and overlap (Johnson 1985, ch. 11)."""
+    from dem_contact.laws import closed_forms as cf
+    Es, Rs, m, v = 114.29e9, 0.01, 0.032882, 5.0
+    _, tc, dmax, vout = hertz_overlap_history(Es, Rs, m, v, None)
+    assert tc == pytest.approx(cf.hertz_contact_time(Es, Rs, m, v), rel=1e-4)
+    assert dmax == pytest.approx(cf.hertz_max_overlap(Es, Rs, m, v), rel=1e-12)
+    assert vout == pytest.approx(-v, rel=1e-9)
+
+
+def test_impact_matches_planar_mdr():
+    """Planar oblique impact, EE steel scene at 5 m/s: f/mu of the BEM against the exact MDR reference,
+    within 5e-3 on a coarse grid (16 elements across, 80 steps); gross sliding gives f/mu = 1."""
+    scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, tangential="mdr", v_ref=5.0)
+    for angle in (10.0, 30.0):
+        vt = 5.0 * math.tan(math.radians(angle))
+        ref = dc.impact(scene, 5.0, vt, steps_per_contact=1000)
+        b = bem_impact(scene, 5.0, vt, n_across=16, steps=80)
+        assert b.Theta == pytest.approx(ref.Theta, rel=1e-8)
+        assert abs(b.f_over_mu - ref.f_over_mu) < 5e-3
+        assert b.tangential_impulse[1] == pytest.approx(0.0, abs=1e-7 * b.normal_impulse)
+    # gross sliding: |T| = mu N at every step once the contact covers an element centre
+    b = bem_impact(scene, 5.0, 5.0 * math.tan(math.radians(70.0)), n_across=8, steps=20, series=True)
+    T, N = b.series["tangential_force"], b.series["normal_force"]
+    covered = np.abs(T[:, 0]) > 0
+    assert covered.sum() >= 16
+    assert np.allclose(-T[covered, 0], 0.3 * N[covered], rtol=1e-4)     # to the solve tolerance
+    assert abs(b.f_over_mu - 1.0) < 1e-3
+
+
+def test_impact_spin_and_momentum():
+    """Angular momentum about the contact point is conserved (the tangential force acts there):
+    m R V + I (omega_y, -omega_x) is unchanged; spin about the normal is kept; a turned incident velocity
+    gives the same f/mu to the grid's isotropy."""
+    scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    m, I, Rs = scene.sphere.mass, scene.sphere.inertia, scene.sphere.radius
+    b = bem_impact(scene, 5.0, 1.0, spin=(10.0, -40.0, 3.0), n_across=8, steps=24)
+    L0 = m * Rs * np.array([1.0, 0.0]) + I * np.array([-40.0, -10.0])
+    L1 = m * Rs * b.v_r + I * np.array([b.omega_r[1], -b.omega_r[0]])
+    assert np.allclose(L1, L0, rtol=1e-12, atol=1e-15)
+    assert b.omega_r[2] == 3.0
+    c, s = math.cos(0.5), math.sin(0.5)
+    b0 = bem_impact(scene, 5.0, 2.0, n_across=8, steps=24)
+    b1 = bem_impact(scene, 5.0, (2.0 * c, 2.0 * s), n_across=8, steps=24)
+    assert b1.f_over_mu == pytest.approx(b0.f_over_mu, rel=0.02)     # the square grid is nearly isotropic
+
+
+def test_named_paths():
+    for shape in SHAPES:
+        x, y = unit_path(shape, 0.6, 40)
+        assert x.size == 41 and x[0] == 0.0 and y[0] == 0.0
+        steps = np.hypot(np.diff(x), np.diff(y))
+        assert np.all(steps > 0)
+    for shape in ("circle", "figure-eight", "load-unload"):
+        x, y = unit_path(shape, 0.6, 40)
+        assert abs(x[-1] - (0.6 if shape == "load-unload" else 0.0)) < 1e-12 and abs(y[-1]) < 1e-12
+    x, y = unit_path("circle", 0.3, 400)
+    assert np.allclose(np.hypot(x - 0.3, y), 0.3)
+    x, y = unit_path("l-turn", 1.5, 10)
+    assert (x[5], y[5]) == (1.5, 0.0) and (x[-1], y[-1]) == (1.5, 1.5)
+    d, ux, uy = named_path("load-circle", 0.5, 20, delta=DELTA, mu=0.3, kappa=0.8235)
+    assert np.all(d == DELTA)
+    assert np.hypot(ux[-1], uy[-1]) == pytest.approx(0.5 * 0.3 * DELTA / 0.8235)
+
+
+def test_single_precision_convolutions_agree_with_double():
+    _, _, _, N = effective(0.3)
+    x, y = unit_path("circle", 0.6, 16)
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    d = np.full(x.size, DELTA)
+    out = []
+    for single in (True, False):
+        solver = B.TangentialBEM(E, 0.3, E, 0.3, R, 0.3, math.sqrt(R * DELTA), n_across=12, single=single)
+        steps = np.diff(np.column_stack([s * x, s * y]), axis=0, prepend=0.0)
+        out.append(np.array([solver.step(DELTA, *du)[1:] for du in steps]))
+    assert np.max(np.abs(out[0] - out[1])) < 1e-5 * 0.3 * N
+
+
+def test_substeps_equal_a_finer_path():
+    """substeps = 2 gives, at the rows, the forces of the path with every row split in two."""
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    x, y = unit_path("circle", 0.6, 16)
+    d = DELTA * (1 + 0.2 * np.sin(np.linspace(0, 3, x.size)))       # varying overlap too
+    _, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, s * x, s * y, n_across=12, substeps=2)
+
+    def fine(v):            # every row split in two: midpoints between rows
+        return np.r_[v[0], np.ravel(np.column_stack([0.5 * (v[:-1] + v[1:]), v[1:]]))]
+    d2 = np.r_[d[0], d[0], fine(d)[1:]]
+    x2, y2 = np.r_[0.5 * s * x[0], fine(s * x)], np.r_[0.5 * s * y[0], fine(s * y)]
+    _, Fx, Fy = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d2, x2, y2, n_across=12)
+    assert np.allclose(Tx, Fx[1::2], rtol=0, atol=1e-9 * np.max(np.abs(Fx)))
+    assert np.allclose(Ty, Fy[1::2], rtol=0, atol=1e-9 * np.max(np.abs(Fx)))
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.lists(st.tuples(st.floats(-1.2, 1.2), st.floats(-1.2, 1.2)), min_size=2, max_size=5))
+def test_random_closed_loops_never_create_energy(vertices):
+    """Work done on the contact over any closed polygon at constant N is >= 0 (to the solve tolerance)."""
+    _, _, _, N = effective(0.3)
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    pts = np.array([(0.0, 0.0), *vertices, (0.0, 0.0)])
+    t = np.linspace(0, 1, 5)[1:]
+    path = np.vstack([[0.0, 0.0]] + [p + (q - p) * t[:, None] for p, q in zip(pts[:-1], pts[1:])]) * s
+    _, Tx, Ty = B.bem_path(E, 0.3, E, 0.3, R, 0.3, np.full(len(path), DELTA), path[:, 0], path[:, 1], n_across=8)
+    du = np.diff(path, axis=0)
+    work = -np.sum(0.5 * (Tx[1:] + Tx[:-1]) * du[:, 0] + 0.5 * (Ty[1:] + Ty[:-1]) * du[:, 1])
+    assert work > -1e-4 * 0.3 * N * s

@@ -1,0 +1,62 @@
+"""The 3D chart against the BEM and the out-of-plane spin study (small sizes)."""
+import numpy as np
+import pytest
+
+from dem_contact.impacts.presets import preset_scene
+from dem_contact.studies import chart3d as c
+from dem_contact.studies.spin import bem_spin_cases, spin_sweep
+
+
+@pytest.fixture(scope="module")
+def small_chart():
+    paths = c.chart_paths(steps=60, paths=(("circle", 0.3), ("l-turn", 1.5)))
+    forces = c.reference_forces(paths, n_across=16)
+    return paths, forces
+
+
+def test_vector_mdr_follows_the_bem_on_curved_paths(small_chart):
+    """The vector MDR law within 0.03 mu N of the BEM on the circle through the origin of radius 0.3 and the
+    L-turn after full slip (16 elements across: the BEM's own error is below 0.005 mu N there)."""
+    paths, forces = small_chart
+    rows = c.chart3d(paths, forces, laws=(("mdr_adaptive", "mdr_adaptive", {}),), repeats=1)
+    assert [r.path for r in rows] == ["circle 0.3", "l-turn 1.5", "max"]
+    assert all(r.error < 0.03 for r in rows)
+    assert all(r.time_per_update_ns > 0 for r in rows)
+
+
+def test_chart_error_is_zero_against_itself(small_chart, tmp_path):
+    paths, _ = small_chart
+    sc = c.chart_scene("md")
+    own = {p: c.run_path(sc, *paths[p]) for p in paths}
+    c.write_reference(tmp_path / "ref.csv", paths, own, 0)
+    paths2, own2, n = c.read_reference(tmp_path / "ref.csv")
+    assert n == 0 and list(paths2) == list(paths)
+    for p in paths:
+        assert all(np.array_equal(a, b) for a, b in zip(own[p], own2[p]))
+        assert all(np.array_equal(a, b) for a, b in zip(paths[p], paths2[p]))
+    rows = c.chart3d(paths2, own2, laws=(("md", "md", {}),), repeats=1)
+    assert max(r.error for r in rows) == 0.0
+
+
+def test_spin_study_against_the_bem():
+    """A spin about the incident direction: the impulse-ratio vector of the default law within 0.01 of the
+    BEM impact's (16 elements across, 60 steps), and exactly the planar impact along the slip."""
+    sc = preset_scene("EE", 5.0)
+    rows = spin_sweep(sc, 5.0, (30.0,), np.array([-2.0, 1.5]))
+    assert max(r.planar_deviation for r in rows) < 1e-12
+    b = bem_spin_cases(sc, [(30.0, 1.5)], 5.0, n_across=16, steps=60, laws=("mdr_adaptive",))[0]
+    assert b.Theta_across == pytest.approx(1.5, rel=1e-3)
+    assert b.error < 0.01
+    assert b.out_of_plane_angle_deg == pytest.approx(b.bem_out_of_plane_angle_deg, abs=0.2)
+
+
+def test_spin_reference_round_trip_and_chart(tmp_path):
+    from dem_contact.studies.spin import bem_spin_reference, read_bem_spin_reference, write_rows
+
+    sc = preset_scene("EE", 5.0)
+    ref = bem_spin_reference(sc, [(30.0, 1.5)], 5.0, n_across=8, steps=30)
+    write_rows(ref, tmp_path / "ref.csv")
+    back = read_bem_spin_reference(tmp_path / "ref.csv")
+    assert back == ref
+    rows = c.spin_impact_chart(back, laws=(("mdr_adaptive", "mdr_adaptive", {}),), repeats=1)
+    assert rows[0].law == "mdr_adaptive" and rows[0].error < 0.05 and rows[0].time_per_impact_us > 0

@@ -1,0 +1,80 @@
+"""3D speed-accuracy chart: every tangential law of dem_contact.dem.contact3d against the boundary-element
+reference on the five curved paths at constant overlap. Writes chart3d.csv, chart3d.png and chart3d.md
+beside this file; the BEM forces are read from bem_paths_n64.csv (recomputed with --recompute, about
+a minute at 64 elements across; --check FILE compares with a finer reference written the same way) and the
+spinning impacts from validation/spin/bem_spin_reference.csv (written by validation/spin/spin.py).
+
+    PYTHONPATH=$PWD python validation/chart/chart3d.py [--recompute] [--check validation/chart/bem_paths_n128.csv]
+    PYTHONPATH=$PWD python validation/chart/chart3d.py --write-reference 128 validation/chart/bem_paths_n128.csv
+"""
+import pathlib
+import sys
+
+from dem_contact.plots import chart3d_figure
+from dem_contact.studies import chart3d as c
+from dem_contact.studies.spin import read_bem_spin_reference
+
+HERE = pathlib.Path(__file__).parent
+REF = HERE / "bem_paths_n64.csv"
+SPIN_REF = HERE.parent / "spin" / "bem_spin_reference.csv"
+
+
+def main():
+    if "--write-reference" in sys.argv:        # a reference at another grid, for --check (about 4 minutes at 128)
+        i = sys.argv.index("--write-reference")
+        n, out = int(sys.argv[i + 1]), sys.argv[i + 2]
+        paths = c.chart_paths()
+        c.write_reference(out, paths, c.reference_forces(paths, n_across=n, progress=True), n)
+        return
+    if "--recompute" in sys.argv or not REF.exists():
+        paths = c.chart_paths()
+        forces = c.reference_forces(paths, n_across=c.N_ACROSS, progress=True)
+        c.write_reference(REF, paths, forces, c.N_ACROSS)
+    paths, forces, n_across = c.read_reference(REF)
+    rows = c.chart3d(paths, forces)
+    c.write_csv(rows, HERE / "chart3d.csv")
+    spin_ref = read_bem_spin_reference(SPIN_REF)
+    spin_rows = c.spin_impact_chart(spin_ref)
+    c.write_csv(spin_rows, HERE / "chart3d_spin.csv")
+    chart3d_figure(rows, HERE / "chart3d.png", spin_rows=spin_rows,
+                   title=f"3D laws against the BEM ({n_across} elements across), steel on steel, mu = 0.3, "
+                         f"overlap {c.DELTA:g} m, {c.PATH_STEPS} steps per path")
+    labels = list(paths)
+    lines = ["# 3D laws against the boundary-element reference", "",
+             f"Steel sphere (R = 10 mm) on a steel wall, mu = 0.3, constant overlap {c.DELTA:g} m; paths of "
+             "`dem_contact.reference.paths.COMPARISON_SET` (sizes in slip displacements mu delta / kappa), "
+             f"{c.PATH_STEPS} steps each, driven through `dem_contact.studies.paths.run_path` (the 3D kernel, "
+             f"contact frame fixed). Reference: `dem_contact.reference.bem` with {n_across} elements across the "
+             "contact. Error: max over the path of |T - T_BEM| / (mu N); time: one kernel update, serial loop, "
+             "warm JIT, best of 5 runs (shared machine: compare ratios).", "",
+             "Regenerate: `PYTHONPATH=$PWD python validation/chart/chart3d.py` (a few seconds; the reference is "
+             "read from `bem_paths_n64.csv`, `--recompute` rebuilds it, about a minute).", "",
+             "| law | " + " | ".join(labels) + " | max | ns per update |",
+             "|---|" + "---|" * (len(labels) + 2)]
+    for law in dict.fromkeys(r.law for r in rows):
+        per = {r.path: r for r in rows if r.law == law}
+        lines.append(f"| {law} | " + " | ".join(f"{per[p].error:.3f}" for p in labels) +
+                     f" | {per['max'].error:.3f} | {per['max'].time_per_update_ns:.0f} |")
+    for arg in sys.argv:
+        if arg.startswith("--check"):
+            fine = pathlib.Path(sys.argv[sys.argv.index(arg) + 1])
+            fpaths, fforces, fn = c.read_reference(fine)
+            lines += ["", f"BEM grid: {n_across} against {fn} elements across, max |T_{n_across} - T_{fn}| / (mu N) "
+                      "per path: " + ", ".join(
+                          f"{p} {c.force_error(*forces[p], fforces[p], 0.3):.4f}" for p in labels if p in fforces)]
+    b = spin_ref[0]
+    lines += ["", "## Spinning impacts", "",
+              f"EE scene (steel, R = 10 mm, V_n = 5 m/s, mu = 0.3), {len(spin_ref)} impacts with a spin about the "
+              "incident tangential direction (`validation/spin/bem_spin_reference.csv`: angles and Theta_across "
+              f"there), against the BEM impact ({b.n_across} elements across, {b.steps} steps); each law's "
+              f"`impact3d` at {b.steps} steps per contact. Error: max |f - f_BEM| / mu of the impulse-ratio "
+              "vectors; time: one impact in the bare kernel (warm JIT, best of 20).", "",
+              "| law | error | us per impact |", "|---|---|---|"]
+    for r in spin_rows:
+        lines.append(f"| {r.law} | {r.error:.1e} | {r.time_per_impact_us:.1f} |")
+    lines += ["", "![chart](chart3d.png)", ""]
+    (HERE / "chart3d.md").write_text("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
