@@ -363,17 +363,18 @@ def reset_contact(H, c):
 
 
 @njit(**JIT)
-def swap_bodies(nid, tid, params, row, H, c):
+def swap_bodies(tid, H, c, nid=HERTZ):
     """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
-    tangential force change sign. Swapping twice is the identity."""
+    tangential force change sign. Swapping twice is the identity. ``nid``: the normal law (its id matters
+    for ``thornton`` only, whose history row is longer)."""
     b = tangential_base(nid)
     for j in range(W_X, W_X + 3):
         H[c, b + j] = -H[c, b + j]
     if tid == MDR or tid == MDR_ADAPTIVE:
         # e1 -> -e1 and n -> -n keep e2 = n x e1: the second components change sign
         H[c, b + V.R_T2] = -H[c, b + V.R_T2]
-        for i in range(int(params[row, P_NSPRING])):
-            H[c, b + V.R_CELLS + 2 * i + 1] = -H[c, b + V.R_CELLS + 2 * i + 1]
+        for k in range(b + V.R_CELLS + 1, H.shape[1], 2):
+            H[c, k] = -H[c, k]
 
 
 @njit(**JIT)
