@@ -165,7 +165,9 @@ def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, compa
         print(f"no fit: {fit_error}")
     tc = critical_theta(fit, scene.pair.kappa, crit.Theta if crit else None) if fit else None
     print("Theta_c: " + "; ".join([
-        f"fit crossing 1 = {tc.fit:.4f} +/- {fit.Theta_c_err:.4f} (0.99 at {tc.fit_099:.4f})" if tc else "fit: none",
+        (f"fit crossing 1 = {tc.fit:.4f} +/- {fit.Theta_c_err:.4f} (statistical) +/- "
+         f"{fit.Theta_c_model_err:.2g} (model form of eq. 4.5){' EXTRAPOLATED' if fit.extrapolated else ''} "
+         f"(0.99 at {tc.fit_099:.4f})") if tc else "fit: none",
         f"simulation = {crit.Theta:.4f} (angle {crit.angle_deg:.4f} deg)" if crit else "simulation: not run "
         "(fixed total speed)",
         f"eq. 4.1 = {theory:.4f}"]))
@@ -173,7 +175,7 @@ def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, compa
         print(f"published fit ({comparison['case']}): Theta_c (paper) = {comparison['Theta_c_paper']:g}; "
               f"max |f/mu - published| over 0 <= Theta <= {comparison['max_curve_difference_range'][1]:g}: "
               f"{comparison['max_curve_difference']:.4f}")
-    for w in res.warnings:
+    for w in res.warnings + (fit.warnings if fit is not None else []):
         print(f"warning: {w}")
     if plot_path:
         print(f"figure written to {plot_path}")

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
-                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact)
+                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact, is_sliding)
 from ..laws.slots import H_A
 from ..materials import Sphere, check_finite
 from ..laws.model import Scene
@@ -54,6 +54,11 @@ class ImpactResult:
     Theta use the contact-patch velocity when there is initial spin (eq. 7.1). rebound_angle_deg is
     the angle of the rebound velocity of the centre from the normal, positive in the direction of the
     incident tangential velocity; patch_rebound_angle_deg the same for the contact-patch velocity.
+
+    persistent_sliding: |T| >= (1 - SLIDE_TOL) mu N at every step until the last SLIDE_IMPULSE_TOL of the
+    normal impulse (``integrator.SLIDE_TOL`` = 1e-3, ``SLIDE_IMPULSE_TOL`` = 1e-4), the criterion of the
+    direct critical angle; sliding_fraction: the fraction of the normal impulse delivered before the first
+    step below (1 - SLIDE_TOL) mu N (1 when there is none).
     """
 
     vn_i: float
@@ -79,6 +84,7 @@ class ImpactResult:
     max_overlap: float
     max_force: float
     persistent_sliding: bool
+    sliding_fraction: float
     steps: int
     dt: float
     energy: EnergyBudget
@@ -244,7 +250,8 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         rebound_angle_deg=math.degrees(math.atan2(vt_r, -vn_r)),
         patch_rebound_angle_deg=math.degrees(math.atan2(v_tr, -vn_r)),
         normal_impulse=PN, tangential_impulse=PT, contact_time=out[O_TC], max_overlap=out[O_DMAX],
-        max_force=out[O_FMAX], persistent_sliding=bool(out[O_SLID] > 0.5), steps=int(out[O_STEPS]), dt=dt,
+        max_force=out[O_FMAX], persistent_sliding=bool(is_sliding(out[O_SLID])),
+        sliding_fraction=float(out[O_SLID]), steps=int(out[O_STEPS]), dt=dt,
         energy=energy, energy_created=created, coulomb_violation=max(coul, 0.0), warnings=msgs,
         model=scene.describe(),
         settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "vn": vn, "vt": vt, "spin": spin},
