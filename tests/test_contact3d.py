@@ -65,8 +65,7 @@ def wall_impact_3d(nid, tid, p, h, h3, m_wall, e1, e2, vn0, vt0, w10, inv_m, R, 
 
 def _scene(normal, tangential, vn):
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
-    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential,
-                 e_n=0.8, v_ref=vn)
+    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, v_ref=vn)
 
 
 def _frame(rotated):

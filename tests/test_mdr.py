@@ -109,7 +109,7 @@ def test_grid_needs_extent_and_reports_overflow():
     with pytest.raises(InputError, match="mdr_springs"):
         mdr_scene(mdr_springs=1)
     sc = mdr_scene(v_ref=2.0, mdr_springs=20)
-    with pytest.raises(NumericalError, match="exceeds the extent of the mdr springs"):
+    with pytest.raises(InputError, match="exceed the extent of the mdr springs"):
         dc.impact(sc, 5.0, 1.0, steps_per_contact=50)
     # an explicit extent that covers the contact works; the grid of v_ref covers impacts at v_ref
     ok = mdr_scene(v_ref=None, mdr_max_radius=1.1 * sc.max_contact_radius(5.0), mdr_springs=20)

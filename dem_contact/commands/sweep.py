@@ -12,7 +12,7 @@ from ..rebound.fit import critical_theta, fit_wu
 from ..materials import STEEL
 from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
 from ..impacts.sweep import critical_angle, sweep_angles, sweep_speed
-from .common import add_scene_options, dump_json, scene_from_args
+from .common import add_scene_options, check_output_file, dump_json, scene_from_args
 
 ORDER = 2
 
@@ -82,11 +82,21 @@ def published_key(args):
 
 def run(args) -> int:
     angles = parse_angles(args.angles)
-    scene = scene_from_args(args)
     if args.steps_per_contact is not None and args.dt is not None:
         raise InputError("give either --steps-per-contact or --dt, not both")
     if args.dt is not None:
         raise InputError("sweep takes --steps-per-contact, not --dt (each impact gets its own time step)")
+    if args.mu <= 0:
+        raise InputError(f"--mu {args.mu:g}: a sweep needs mu > 0 (Theta, f/mu and the fit of eq. 4.5 are "
+                         f"defined through mu); for a frictionless impact use dem-contact impact")
+    if args.no_plot and args.plot is not None:
+        raise InputError("--plot and --no-plot contradict each other")
+    if args.csv:
+        check_output_file("--csv", args.csv)
+    if args.plot:
+        check_output_file("--plot", args.plot, (".png",))
+    # the largest normal speed of the sweep places the mdr springs and the calibrations
+    scene = scene_from_args(args, v_ref=args.speed)
     opts = dict(steps_per_contact=args.steps_per_contact, scheme=args.scheme, progress=not args.no_progress)
     if args.speed is not None:
         res = sweep_speed(scene, angles, args.speed, **opts)

@@ -17,6 +17,7 @@ from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
                          S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact, is_sliding)
 from ..laws.slots import H_A
+from ..laws import closed_forms as cf
 from ..materials import Sphere, check_finite
 from ..laws.model import Scene
 
@@ -30,6 +31,12 @@ MIN_STEPS_PER_CONTACT = 2.0
 MAX_CONTACT_TIMES = 50.0
 #: Relative tolerance (of the initial kinetic energy) above which energy counts as created.
 ENERGY_CREATION_TOL = 1e-6
+#: Work budget: at most this many steps per contact time (about 10 s per impact with the mdr reference).
+MAX_STEPS_PER_CONTACT = 1e7
+#: Memory budget of a returned time series [bytes].
+MAX_SERIES_BYTES = 2**30
+#: Every SI magnitude of an impact (peak overlap, force, contact time, energy) must lie in this range.
+SCALE_RANGE = (1e-100, 1e100)
 
 SCHEMES = ("located", "standard")
 
@@ -122,7 +129,7 @@ def _json_safe(x):
 
 
 def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, dt: float | None = None):
-    """Validated time step [s] and the steps per contact it gives."""
+    """Validated time step [s] and the steps per contact it gives (at most MAX_STEPS_PER_CONTACT)."""
     tc = scene.contact_time(vn)
     if dt is not None and steps_per_contact is not None:
         raise InputError("give either dt or steps_per_contact, not both")
@@ -132,9 +139,12 @@ def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, d
         if spc < MIN_STEPS_PER_CONTACT:
             raise InputError(f"dt = {dt:g} s cannot resolve the contact: it must be <= t_c / "
                              f"{MIN_STEPS_PER_CONTACT:g} = {tc / MIN_STEPS_PER_CONTACT:g} s (t_c = {tc:g} s)")
+        if not spc <= MAX_STEPS_PER_CONTACT:
+            raise InputError(f"dt = {dt:g} s asks for {spc:.3g} steps per contact time (t_c = {tc:g} s); the limit "
+                             f"is {MAX_STEPS_PER_CONTACT:g}: dt must be >= {tc / MAX_STEPS_PER_CONTACT:.3g} s")
         return dt, spc
     spc = DEFAULT_STEPS_PER_CONTACT if steps_per_contact is None else steps_per_contact
-    spc = check_finite("steps_per_contact", spc, lo=MIN_STEPS_PER_CONTACT, lo_open=False)
+    spc = check_finite("steps_per_contact", spc, lo=MIN_STEPS_PER_CONTACT, hi=MAX_STEPS_PER_CONTACT, lo_open=False)
     return tc / spc, spc
 
 
@@ -143,6 +153,63 @@ def check_incident(vn, vt, spin):
     vt = check_finite("vt (tangential velocity, m/s)", vt)
     spin = check_finite("spin (initial angular velocity, rad/s)", spin)
     return vn, vt, spin
+
+
+def speed_range(scene: Scene) -> tuple:
+    """Normal speeds [m/s] for which the scene's elastic Hertz scales (peak overlap ~ vn^0.8, peak force
+    ~ vn^1.2, contact time ~ vn^-0.2, kinetic energy ~ vn^2) all lie inside SCALE_RANGE."""
+    pr = scene.pair
+    lo, hi = math.log(SCALE_RANGE[0]), math.log(SCALE_RANGE[1])
+    d1 = cf.hertz_max_overlap(pr.E_star, pr.R_star, pr.m_star, 1.0)
+    scales = [(d1, 0.8), (4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * d1**1.5, 1.2),
+              (cf.HERTZ_TC_FACTOR * d1, -0.2), (0.5 * pr.m_star, 2.0)]
+    v_lo, v_hi = -math.inf, math.inf
+    for q1, k in scales:
+        a, b = (lo - math.log(q1)) / k, (hi - math.log(q1)) / k
+        a, b = min(a, b), max(a, b)
+        v_lo, v_hi = max(v_lo, a), min(v_hi, b)
+    return math.exp(v_lo), math.exp(v_hi)
+
+
+def check_scales(scene: Scene, vn: float, vt: float, spin: float, spin2: float = 0.0):
+    """Raise InputError when the impact's magnitudes leave the range that double precision computes
+    faithfully (a force that underflows to 0, an energy that overflows): every SI magnitude of the
+    impact (peak overlap, force, contact time, kinetic energy) must lie inside SCALE_RANGE."""
+    v_lo, v_hi = speed_range(scene)
+    if not v_lo <= vn <= v_hi:
+        raise InputError(f"vn = {vn:g} m/s is outside the range this scene can be computed in, [{v_lo:.3g}, "
+                         f"{v_hi:.3g}] m/s (peak overlap, force, contact time and kinetic energy must stay within "
+                         f"[{SCALE_RANGE[0]:g}, {SCALE_RANGE[1]:g}] SI)")
+    m = scene.pair.m_star
+    v_max = math.sqrt(2.0 * SCALE_RANGE[1] / m)
+    if not abs(vt) <= v_max:
+        raise InputError(f"vt = {vt:g} m/s: its kinetic energy exceeds {SCALE_RANGE[1]:g} J; |vt| must be <= "
+                         f"{v_max:.3g} m/s for this sphere")
+    for name, w, body in (("spin", spin, scene.sphere), ("spin2", spin2, scene.body2)):
+        if isinstance(body, Sphere):
+            w_max = math.sqrt(2.0 * SCALE_RANGE[1] / body.inertia)
+            if not abs(w) <= w_max:
+                raise InputError(f"{name} = {w:g} rad/s: its kinetic energy exceeds {SCALE_RANGE[1]:g} J; "
+                                 f"|{name}| must be <= {w_max:.3g} rad/s for this sphere")
+
+
+def check_series_budget(max_steps: int):
+    """Refuse a time series that would need more than MAX_SERIES_BYTES of memory."""
+    need = max_steps * N_SERIES * 8
+    if need > MAX_SERIES_BYTES:
+        raise InputError(f"series: up to {max_steps} steps x {N_SERIES} columns need {need / 2**30:.3g} GiB; the "
+                         f"limit is {MAX_SERIES_BYTES / 2**30:g} GiB: lower steps_per_contact (or raise dt)")
+
+
+def check_mdr_reach(scene: Scene, vn_max: float):
+    """InputError when the springs of the mdr law cannot cover the contact at normal speed vn_max."""
+    if scene.tangential != "mdr":
+        return
+    a = scene.max_contact_radius(vn_max)
+    if a > scene.mdr_max_radius:
+        raise InputError(f"vn = {vn_max:g} m/s: the contact radius ({a:.4g} m) would exceed the extent of the mdr "
+                         f"springs ({scene.mdr_max_radius:.4g} m, placed for v_ref = {scene.v_ref} m/s): build the "
+                         f"scene with v_ref >= {vn_max:g} m/s or a larger mdr_max_radius")
 
 
 def body_inertia(scene: Scene):
@@ -165,13 +232,21 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     the last step) or "standard" (the contact ends at the first step without overlap, as in LIGGGHTS and
     LAMMPS). series: also return the time histories.
     """
+    if not isinstance(scene, Scene):
+        raise InputError(f"scene must be a Scene, got {type(scene).__name__}")
     vn, vt, spin = check_incident(vn, vt, spin)
     spin2 = check_finite("spin2 (initial angular velocity of body 2, rad/s)", spin2)
+    if spin2 != 0.0 and not isinstance(scene.body2, Sphere):
+        raise InputError("spin2 applies to a second sphere only: a wall does not turn")
     if scheme not in SCHEMES:
         raise InputError(f"scheme {scheme!r} is unknown; choose one of: {', '.join(SCHEMES)}")
+    check_scales(scene, vn, vt, spin, spin2)
     dt, spc = time_step(scene, vn, steps_per_contact, dt)
+    check_mdr_reach(scene, vn)
     inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     max_steps = int(math.ceil(MAX_CONTACT_TIMES * spc)) + 10
+    if series:
+        check_series_budget(max_steps)
     out = np.zeros(N_OUT)
     ser = np.zeros((max_steps if series else 0, N_SERIES))
     h = scene.new_history()
@@ -194,8 +269,15 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure)."""
     status = int(out[O_STATUS])
     if status == STATUS_MAX_STEPS:
+        hint = ""
+        if scene.normal == "thornton":
+            hint = (f"; a thornton contact with a limiting pressure p_y = {scene.p_y:g} Pa far below the Hertz "
+                    f"pressure of the impact deforms plastically for much longer than the Hertz contact: check "
+                    f"p_y, or give a larger dt")
+        elif scene.normal == "linear":
+            hint = "; the linear law's stiffness is matched at v_ref: check v_ref against the impact speed"
         raise NumericalError(f"the contact did not end within {int(out[O_STEPS])} steps "
-                             f"({MAX_CONTACT_TIMES:g} elastic contact times)")
+                             f"({MAX_CONTACT_TIMES:g} elastic Hertz contact times at vn = {vn:g} m/s){hint}")
     if status == STATUS_NONFINITE:
         raise NumericalError(f"non-finite state (NaN or overflow) after {int(out[O_STEPS])} steps: the "
                              f"{scene.normal}/{scene.tangential} laws blew up at dt = {dt:g} s")
@@ -207,15 +289,36 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     e_n = -vn_r / vn
     v_ti = vt + R1 * spin + R2 * spin2
     v_tr = vt_r + R1 * w_r + R2 * w2_r
-    f = PT / PN if PN > 0 else math.nan
+    state = {"final normal velocity": vn_r, "final tangential velocity": vt_r, "final spin": w_r,
+             "final spin of body 2": w2_r, "normal impulse": PN, "tangential impulse": PT,
+             "contact time": out[O_TC], "max overlap": out[O_DMAX], "max force": out[O_FMAX],
+             "normal work": out[O_WN], "tangential work": out[O_WT]}
+    bad = [k for k, v in state.items() if not math.isfinite(v)]
+    if bad:
+        raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
+                             f"laws at dt = {dt:g} s")
+    if not PN > 0.0 or not out[O_TC] > 0.0:
+        raise NumericalError(f"the contact produced no normal impulse (normal impulse {PN:g} N s, contact time "
+                             f"{out[O_TC]:g} s): its forces underflow double precision")
+    f = PT / PN
+    # undefined (NaN, None in JSON): f/mu and the dimensionless groups at mu = 0, e_t at vt = 0
     fm = f / mu if mu > 0 else math.nan
-    with np.errstate(divide="ignore", invalid="ignore"):
-        denom = (1.0 + e_n) * mu * vn
-        Theta = 2.0 * v_ti / denom if mu > 0 else math.inf
-        Psi_r = 2.0 * v_tr / denom if mu > 0 else math.inf
-        Omega_i = 2.0 * R1 * spin / (5.0 * denom) if mu > 0 else math.nan
-        Omega_r = 2.0 * R1 * w_r / (5.0 * denom) if mu > 0 else math.nan
+    denom = (1.0 + e_n) * mu * vn
+    if mu > 0 and denom > 0:
+        Theta = 2.0 * v_ti / denom
+        Psi_r = 2.0 * v_tr / denom
+        Omega_i = 2.0 * R1 * spin / (5.0 * denom)
+        Omega_r = 2.0 * R1 * w_r / (5.0 * denom)
+    else:
+        Theta = Psi_r = Omega_i = Omega_r = math.nan
     e_t = vt_r / vt if vt != 0 else math.nan
+    defined = {"e_n": e_n, "f": f, "f_over_mu": fm if mu > 0 else 0.0, "Theta": Theta if mu > 0 else 0.0,
+               "Psi_r": Psi_r if mu > 0 else 0.0, "Omega_r": Omega_r if mu > 0 else 0.0,
+               "e_t": e_t if vt != 0 else 0.0}
+    bad = [k for k, v in defined.items() if not math.isfinite(v)]
+    if bad:
+        raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
+                             f"laws at dt = {dt:g} s")
     I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
     I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
     E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2

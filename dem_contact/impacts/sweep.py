@@ -21,12 +21,15 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import InputError, NumericalError
-from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident,
-                     impact, time_step)
+from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident, check_mdr_grid,
+                     check_mdr_reach, check_scales, impact, time_step)
 from .integrator import N_OUT, N_SERIES, integrate_impact
 from ..materials import Material, Sphere, Wall, check_finite
 from ..laws.model import Scene
 
+#: Work budget of one sweep: total steps per contact time summed over its impacts (about 1e8 steps per
+#: second and core with the default law).
+MAX_SWEEP_STEPS = 1e10
 #: Impacts per progress-bar update are chosen so that the bar advances about this many times.
 PROGRESS_UPDATES = 20
 
@@ -112,10 +115,16 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     n = vn.size
     for i in range(n):
         check_incident(vn[i], vt[i], spin[i])
+        check_scales(scene, vn[i], vt[i], spin[i])
     dts = np.empty(n)
     spcs = np.empty(n)
     for i in range(n):
         dts[i], spcs[i] = time_step(scene, vn[i], steps_per_contact, None)
+    work = float(np.sum(spcs))
+    if work > MAX_SWEEP_STEPS:
+        raise InputError(f"the sweep asks for {work:.3g} steps ({n} impacts x {work / n:.3g} steps per contact); "
+                         f"the limit is {MAX_SWEEP_STEPS:.3g}: use fewer impacts or fewer steps per contact")
+    check_mdr_reach(scene, float(vn.max()))
     max_steps = np.ceil(MAX_CONTACT_TIMES * spcs).astype(np.int64) + 10
     inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     out = np.zeros((n, N_OUT))
@@ -143,6 +152,7 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
         warnings.simplefilter("ignore")  # recorded per impact in ImpactResult.warnings
         for i in range(n):
             try:
+                check_mdr_grid(scene, hist[i], vn[i])
                 points.append(build_result(scene, out[i], vn[i], vt[i], spin[i], 0.0, dts[i], spcs[i], scheme))
             except NumericalError as err:
                 raise NumericalError(f"impact {i} (vn = {vn[i]:g} m/s, vt = {vt[i]:g} m/s, spin = "

@@ -8,6 +8,8 @@ from scipy.optimize import brentq
 
 from ..errors import InputError
 
+#: Smallest V_y / V_i of a thornton calibration from e_n (e_n ~ 0.003 there).
+THORNTON_MIN_VELOCITY_RATIO = 1e-12
 #: t_c = HERTZ_TC_FACTOR * delta_max / V  (physics.md section 2)
 HERTZ_TC_FACTOR = 2.9433
 
@@ -65,7 +67,11 @@ def thornton_yield_pressure_for_restitution(E_star, R_star, m_star, e_n, v):
     (inverts the closed form; 0 < e_n < 1)."""
     if not 0.0 < e_n < 1.0:
         raise InputError(f"e_n = {e_n:g} cannot be calibrated with the thornton law: valid range (0, 1)")
-    r = brentq(lambda r: thornton_restitution_ratio(r) - e_n, 1e-12, 1.0, xtol=1e-15, rtol=1e-15)
+    e_min = thornton_restitution_ratio(THORNTON_MIN_VELOCITY_RATIO)
+    if e_n < e_min:
+        raise InputError(f"e_n = {e_n:g} cannot be calibrated with the thornton law: valid range [{e_min:.3g}, 1)")
+    r = brentq(lambda r: thornton_restitution_ratio(r) - e_n, THORNTON_MIN_VELOCITY_RATIO, 1.0, xtol=1e-15,
+               rtol=1e-15)
     return thornton_yield_pressure_for_velocity(E_star, R_star, m_star, r * v)
 
 
