@@ -31,6 +31,15 @@ MIN_STEPS_PER_CONTACT = 2.0
 MAX_CONTACT_TIMES = 50.0
 #: Relative tolerance (of the initial kinetic energy) above which energy counts as created.
 ENERGY_CREATION_TOL = 1e-6
+#: Final kinetic energy above the initial one by more than this fraction of it counts as energy gained
+#: (rounding of the energies is about 1e-15 of them).
+KE_ROUNDING_TOL = 1e-12
+#: Energy-balance error (initial - final - work of the forces) above this fraction is warned about.
+ENERGY_BALANCE_TOL = 1e-3
+#: Range of validity of the contact laws: Hertz and Mindlin-Deresiewicz theory assume a contact radius
+#: small against the radius of curvature (Johnson 1985, section 4.2); beyond a = 0.2 R* (overlap 0.04 R*) the
+#: result is flagged.
+VALIDITY_A_OVER_R = 0.2
 #: Work budget: at most this many steps per contact time (about 10 s per impact with the mdr reference).
 MAX_STEPS_PER_CONTACT = 1e7
 #: Memory budget of a returned time series [bytes].
@@ -66,6 +75,13 @@ class ImpactResult:
     normal impulse (``integrator.SLIDE_TOL`` = 1e-3, ``SLIDE_IMPULSE_TOL`` = 1e-4), the criterion of the
     direct critical angle; sliding_fraction: the fraction of the normal impulse delivered before the first
     step below (1 - SLIDE_TOL) mu N (1 when there is none).
+
+    energy_created: the tangential law did negative work at some time (a passive law cannot);
+    energy_gained: the final kinetic energy exceeds the initial one beyond rounding (KE_ROUNDING_TOL),
+    whatever the cause (the works of the normal and tangential forces are in ``energy``). Both are also
+    in ``warnings``, with an impulse ratio |f| > mu, an energy-balance error above ENERGY_BALANCE_TOL and a
+    contact beyond the laws' range of validity (a > VALIDITY_A_OVER_R R*). NaN marks what is undefined:
+    e_t at vt = 0; f/mu, Theta, Psi_r, Omega_i, Omega_r at mu = 0.
     """
 
     vn_i: float
@@ -102,6 +118,7 @@ class ImpactResult:
     settings: dict = field(default_factory=dict)
     omega2_r: float = 0.0
     series: dict | None = None
+    energy_gained: bool = False
 
     def to_dict(self, series: bool = False) -> dict:
         """JSON-ready dict (NaN and inf become None)."""
@@ -331,9 +348,31 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     if created:
         msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
                     f"(running work reached {out[O_MINWT]:.3e} J)")
+    works = f"work absorbed by the normal force {WN:.4g} J, by the tangential force {WT:.4g} J"
+    gained_total = E1 - E0 > KE_ROUNDING_TOL * E0
+    # the normal motion alone: a passive normal law cannot return more than it received (e_n <= 1)
+    gained_normal = e_n * e_n - 1.0 > KE_ROUNDING_TOL
+    if gained_total:
+        msgs.append(f"kinetic energy gained: the final kinetic energy exceeds the initial one by "
+                    f"{(E1 - E0) / E0:.3g} of it ({works})")
+    if gained_normal:
+        msgs.append(f"kinetic energy gained in the normal motion: e_n = {e_n:.8g} > 1 ({works})")
+    gained = bool(gained_total or gained_normal)
     coul = out[O_COULOMB]
     if coul > 1e-9 * max(mu * out[O_FMAX], 1e-300):
         msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
+    if mu > 0 and abs(f) > mu * (1.0 + 1e-9):
+        why = (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
+               "smaller than the compressive force the Coulomb limit acts on") if scene.normal == "linear" else ""
+        msgs.append(f"impulse ratio |f| exceeds mu by {abs(f) / mu - 1.0:.3g} of mu{why}")
+    if abs(energy.error) > ENERGY_BALANCE_TOL * E0:
+        msgs.append(f"energy balance error {energy.error / E0:.3g} of the initial kinetic energy (more than "
+                    f"{ENERGY_BALANCE_TOL:g}): refine the time step")
+    a_over_R = math.sqrt(out[O_DMAX] / scene.pair.R_star)
+    if a_over_R > VALIDITY_A_OVER_R:
+        msgs.append(f"contact beyond the range of the contact laws: the contact radius reached "
+                    f"{a_over_R:.3g} R* (overlap {out[O_DMAX] / scene.pair.R_star:.3g} R*); Hertz-Mindlin "
+                    f"theory assumes a small contact, a <= {VALIDITY_A_OVER_R:g} R*")
     if spc < 10:
         msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
     for msg in msgs:
@@ -358,4 +397,4 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         energy=energy, energy_created=created, coulomb_violation=max(coul, 0.0), warnings=msgs,
         model=scene.describe(),
         settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "vn": vn, "vt": vt, "spin": spin},
-        omega2_r=w2_r, series=series_dict)
+        omega2_r=w2_r, series=series_dict, energy_gained=gained)
