@@ -57,7 +57,7 @@ def test_coulomb_excess_is_flagged(steel_sphere, steel_wall):
 
 
 def test_advise_recommends_sliding_above_critical_angle(steel_sphere, steel_wall):
-    """Above the critical angle (Theta > Theta_c, physics.md 6) the rigid-body sliding formulas are
+    """Above the critical angle (Theta > Theta_c, Wu, Thornton & Li 2009, section 4) the rigid-body sliding formulas are
     exact: advise measures ~0 error for them and recommends them; below it sliding is wrong by f/mu."""
     sc = dc.Scene(steel_sphere, steel_wall, mu=0.1, v_ref=5.0)
     # Theta = 2 tan(angle) / (2 mu) > 10 for angles above 45 deg at mu = 0.1

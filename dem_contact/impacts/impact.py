@@ -1,7 +1,7 @@
 """One oblique impact: set-up, integration, and the rebound quantities of Wu, Thornton & Li (2009).
 
 ``impact(scene, vn, vt, spin)`` returns an ``ImpactResult`` with e_n, e_t, the impulse ratio f, the
-dimensionless groups Theta, Psi_r, Omega_i, Omega_r (physics.md section 0, eqs 2.1-2.20 and 7.1) and
+dimensionless groups Theta, Psi_r, Omega_i, Omega_r (Wu, Thornton & Li 2009, eqs 2.1-2.20 and 7.1) and
 the energy budget.
 """
 from __future__ import annotations
@@ -66,7 +66,7 @@ class EnergyBudget:
 class ImpactResult:
     """Outcome of one impact. Velocities in m/s, spins in rad/s, times in s, lengths in m, forces in N.
 
-    Sign conventions (physics.md section 0): vn > 0 towards the wall; v_t = V_t + R omega; e_t and
+    Sign conventions (Wu, Thornton & Li 2009, section 2): vn > 0 towards the wall; v_t = V_t + R omega; e_t and
     Theta use the contact-patch velocity when there is initial spin (eq. 7.1). rebound_angle_deg is
     the angle of the rebound velocity of the centre from the normal, positive in the direction of the
     incident tangential velocity; patch_rebound_angle_deg the same for the contact-patch velocity.

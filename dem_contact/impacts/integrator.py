@@ -2,7 +2,7 @@
 
 Three kinds of motion, relative to the contact: the normal approach (overlap delta, rate vn, effective
 mass m*), the tangential motion of the centres (vt, mass m*) and the spins w1, w2 of the bodies. The
-contact-patch slip velocity is v_t = vt + R1 w1 + R2 w2 (physics.md section 0: rolling without slip has
+contact-patch slip velocity is v_t = vt + R1 w1 + R2 w2 (Wu, Thornton & Li 2009, section 2: rolling without slip has
 v_t = 0). The tangential force T acts against v_t:
     m* dvn/dt = -N,  m* dvt/dt = -T,  I_i dw_i/dt = -R_i T.
 For a wall, R2 = 0 and 1/I2 = 0.

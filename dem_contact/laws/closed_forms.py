@@ -1,4 +1,4 @@
-"""Closed-form results used to set up and to check simulations (physics.md sections 2-4).
+"""Closed-form results used to set up and to check simulations (Johnson 1985, section 11.4; Thornton 1997; Tsuji, Tanaka & Ishida 1992).
 
 Plain Python functions of SI quantities; none of them integrates anything.
 """
@@ -10,7 +10,7 @@ from ..errors import InputError
 
 #: Smallest V_y / V_i of a thornton calibration from e_n (e_n ~ 0.003 there).
 THORNTON_MIN_VELOCITY_RATIO = 1e-12
-#: t_c = HERTZ_TC_FACTOR * delta_max / V  (physics.md section 2)
+#: t_c = HERTZ_TC_FACTOR * delta_max / V  (Johnson 1985, section 11.4)
 HERTZ_TC_FACTOR = 2.9433
 
 
@@ -30,7 +30,7 @@ def hertz_max_force(E_star, R_star, m_star, v):
 
 
 def thornton_yield_overlap(E_star, R_star, p_y):
-    """delta_y = R* (pi p_y / (2 E*))^2 [m] (physics.md section 3)."""
+    """delta_y = R* (pi p_y / (2 E*))^2 [m] (Thornton 1997, J. Appl. Mech. 64:383)."""
     return R_star * (math.pi * p_y / (2.0 * E_star)) ** 2
 
 

@@ -1,4 +1,4 @@
-"""Exact reference for the tangential problem: the method of dimensionality reduction (physics.md 7).
+"""Exact reference for the tangential problem: the method of dimensionality reduction (Popov & Hess 2015, chapter 6).
 
 Popov & Hess map the axisymmetric Cattaneo-Mindlin problem (arbitrary histories of N and a
 unidirectional T, constant mu, uncoupled normal/tangential response) onto a row of independent springs.
@@ -102,7 +102,7 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
 
 @njit(cache=True)
 def mdr(p, h, N, a, a_old, dd):
-    """MDR tangential force T [N] in the direction of the increment ``dd`` [m] (physics.md 7), fixed grid.
+    """MDR tangential force T [N] in the direction of the increment ``dd`` [m] (Popov & Hess 2015, chapter 6), fixed grid.
 
     N >= 0: normal force after the step [N]; a, a_old: contact radius after and before the step [m].
     Reads and writes H_T and the cell displacements h[H_TANG_EXTRA : H_TANG_EXTRA + n]."""
@@ -184,7 +184,7 @@ def _shrink_edge(h, k0, n, dx, a, a_old):
 
 @njit(cache=True)
 def mdr_adaptive(p, h, N, a, a_old, dd):
-    """MDR with few cells on a grid that follows the contact (no grid to set up; physics.md 7).
+    """MDR with few cells on a grid that follows the contact (no grid to set up; Popov & Hess 2015, chapter 6).
 
     Same cells as ``mdr`` (n = P_NSPRING, even), but the cell width dx, stored in h[H_TANG_EXTRA], is set
     at first contact to R* times the power of 2 in (a / n, 2 a / n] (scale-free: problems with the same

@@ -1,4 +1,4 @@
-"""Speed-accuracy chart of the tangential laws against the exact reference (MDR, physics.md 7).
+"""Speed-accuracy chart of the tangential laws against the exact reference (MDR, Popov & Hess 2015, chapter 6).
 
 For each tangential law, normal law (hertz, thornton), integrator end (located / standard) and number of
 steps per contact, the impacts of a Theta grid in [0, Theta_max] (EE steel scene of Wu et al. 2009 by
