@@ -267,8 +267,12 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     out = np.zeros(N_OUT)
     ser = np.zeros((max_steps if series else 0, N_SERIES))
     h = scene.new_history()
-    integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, vn, vt, spin, spin2,
-                     inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", out, ser)
+    try:
+        integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, vn, vt, spin, spin2,
+                         inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", out, ser)
+    except ArithmeticError as e:      # e.g. a division by zero inside a law: never a bare traceback
+        raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
+                             f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
     check_mdr_grid(scene, h, vn)
     return build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser)
 

@@ -108,7 +108,7 @@ def mdr(p, h, N, a, a_old, dd):
     Reads and writes H_T and the cell displacements h[H_TANG_EXTRA : H_TANG_EXTRA + n]."""
     n = int(p[P_NSPRING])
     dx = p[P_DX]
-    if N <= 0.0 or a <= 0.0:
+    if N <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
         _release(h, H_TANG_EXTRA, max(_cells(a, dx, n), _cells(a_old, dx, n)))
         return 0.0
     if a > n * dx:
@@ -199,7 +199,7 @@ def mdr_adaptive(p, h, N, a, a_old, dd):
     n = int(p[P_NSPRING])
     k0 = H_TANG_EXTRA + 1
     dx = h[H_TANG_EXTRA]
-    if N <= 0.0 or a <= 0.0:
+    if N <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
         if dx > 0.0:
             _release(h, k0, max(_cells(a, dx, n), _cells(a_old, dx, n)))
         h[H_TANG_EXTRA] = 0.0

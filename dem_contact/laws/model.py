@@ -107,6 +107,8 @@ def hertz_damping_for_restitution(e_n: float) -> float:
             raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
         return -vn
 
+    if restitution(0.0) <= e_n:
+        return 0.0      # the undamped law already gives e_n within the calibration's resolution
     hi = 1.0
     while restitution(hi) > e_n:
         hi *= 2.0

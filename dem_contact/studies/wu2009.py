@@ -201,7 +201,7 @@ def run_validation(outdir: str, log=print) -> str:
     w("- **eq. 4.1** is Maw's criterion for the Cattaneo-Mindlin contact of elastic spheres with e_n = 1: "
       "persistent sliding starts where the contact-patch velocity at the end of the impact just reaches "
       "zero (psi_2 = -1 at psi_1 = 7 kappa - 1, exact in the MDR reference). **sim** lands on it when the "
-      "law slides at every step from first touch above that limit (see the laws table: "
+      "law slides persistently from first touch above that limit (see the laws table: "
       + ", ".join(f"{n} {(c.crit.Theta - c.theory) / c.theory:+.2%}" for n, c, e in law_rows if c is not None)
       + "); a law that falls short of full slip in the first steps, where the contact is tiny, pushes it "
       "up. For PE, Theta contains (1 + e_n) < 2 and the elastic criterion is only indicative.")
