@@ -110,3 +110,11 @@ def test_identical_dimensionless_problems_give_identical_numbers(tangential, nor
         out.append(np.array([r.e_n, r.e_t, r.f_over_mu, r.Omega_r, r.Psi_r, r.contact_time / st,
                              r.max_overlap / sL, r.sliding_fraction]))
     assert np.max(np.abs(out[0] - out[1])) < 1e-12
+
+
+def test_direct_critical_theta_at_50000_steps():
+    """The reported failure: at 50,000 steps per contact the direct Theta_c of the default law had drifted
+    to 163; persistent sliding as defined now keeps it on eq. 4.1."""
+    scene = preset_scene("EE", 5.0)
+    c = critical_angle(scene, 5.0, steps_per_contact=50000, tol_deg=1e-4)
+    assert abs(c.Theta / rm.theta_c_theory(scene.pair.kappa) - 1.0) < 1e-3

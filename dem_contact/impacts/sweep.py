@@ -148,9 +148,13 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     try:
         for s in range(0, n, chunk):
             e = min(n, s + chunk)
-            sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[s:e], vn[s:e], vt[s:e],
-                         spin[s:e], w2[s:e], inv_m, R1, R2, inv_I1, inv_I2, dts[s:e], max_steps[s:e], locate,
-                         out[s:e])
+            try:
+                sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[s:e], vn[s:e], vt[s:e],
+                             spin[s:e], w2[s:e], inv_m, R1, R2, inv_I1, inv_I2, dts[s:e], max_steps[s:e], locate,
+                             out[s:e])
+            except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
+                raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
+                                     f"{e - 1} ({type(err).__name__}: {err})") from None
             if bar is not None:
                 bar.update(e - s)
     finally:
