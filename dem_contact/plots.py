@@ -311,10 +311,11 @@ def speed_accuracy_figure(rows, path, *, quantity: str = "err_f_over_mu"):
                 x, y = r.time_per_impact_us, getattr(r, quantity)
                 lx, ly = np.log10(x), np.log10(y)
                 dy = 3
-                while any(abs(lx - px) < 0.25 and abs(ly - py - dy / 40.0) < 0.12 for px, py in placed):
+                while any(abs(lx - px) < 0.6 and abs(ly + dy / 40.0 - py) < 0.15 for px, py in placed):
                     dy -= 9
                 placed.append((lx, ly + dy / 40.0))
-                ax.annotate(f"{r.tangential} {r.steps_per_contact:g}", (x, y), fontsize=6, xytext=(3, dy),
+                std = " std" if r.scheme == "standard" else ""
+                ax.annotate(f"{r.tangential} {r.steps_per_contact:g}{std}", (x, y), fontsize=6, xytext=(3, dy),
                             textcoords="offset points",
                             arrowprops=dict(arrowstyle="-", lw=0.4, color="0.5") if dy != 3 else None)
         ax.set_xscale("log")

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..rebound.fit import critical_theta, fit_wu
-from ..materials import STEEL
+from ..materials import STEEL, check_finite
 from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
 from ..impacts.sweep import critical_angle, sweep_angles, sweep_speed
 from .common import add_scene_options, check_output_file, dump_json, scene_from_args
@@ -86,6 +86,8 @@ def run(args) -> int:
         raise InputError("give either --steps-per-contact or --dt, not both")
     if args.dt is not None:
         raise InputError("sweep takes --steps-per-contact, not --dt (each impact gets its own time step)")
+    if args.speed is not None:
+        check_finite("--speed (total impact speed, m/s)", args.speed, lo=0.0)
     if args.mu <= 0:
         raise InputError(f"--mu {args.mu:g}: a sweep needs mu > 0 (Theta, f/mu and the fit of eq. 4.5 are "
                          f"defined through mu); for a frictionless impact use dem-contact impact")
