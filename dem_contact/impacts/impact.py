@@ -81,7 +81,7 @@ class ImpactResult:
     whatever the cause (the works of the normal and tangential forces are in ``energy``). Both are also
     in ``warnings``, with an impulse ratio |f| > mu, an energy-balance error above ENERGY_BALANCE_TOL and a
     contact beyond the laws' range of validity (a > VALIDITY_A_OVER_R R*). NaN marks what is undefined:
-    e_t at vt = 0; f/mu, Theta, Psi_r, Omega_i, Omega_r at mu = 0.
+    e_t at vt = 0 (|vt| < 1e-100 vn); f/mu, Theta, Psi_r, Omega_i, Omega_r at mu = 0.
     """
 
     vn_i: float
@@ -332,10 +332,12 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         Omega_r = 2.0 * R1 * w_r / (5.0 * denom)
     else:
         Theta = Psi_r = Omega_i = Omega_r = math.nan
-    e_t = vt_r / vt if vt != 0 else math.nan
+    # e_t = vt_r / vt is undefined at vt = 0 and overflows for |vt| below 1e-100 of vn: NaN there
+    tiny_vt = abs(vt) < 1e-100 * vn
+    e_t = vt_r / vt if not tiny_vt else math.nan
     defined = {"e_n": e_n, "f": f, "f_over_mu": fm if mu > 0 else 0.0, "Theta": Theta if mu > 0 else 0.0,
                "Psi_r": Psi_r if mu > 0 else 0.0, "Omega_r": Omega_r if mu > 0 else 0.0,
-               "e_t": e_t if vt != 0 else 0.0}
+               "e_t": e_t if not tiny_vt else 0.0}
     bad = [k for k, v in defined.items() if not math.isfinite(v)]
     if bad:
         raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
