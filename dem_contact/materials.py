@@ -1,4 +1,5 @@
-"""Materials, bodies and the effective properties of a contacting pair (physics.md section 1).
+"""Materials, bodies and the effective properties of a contacting pair (Johnson, *Contact Mechanics*, 1985,
+section 4.2; the Mindlin tangential compliance as in Wu, Thornton & Li 2009, eq. 2.9).
 
 All quantities are SI: Pa, kg/m^3, m, kg. A rigid material has ``E = inf``; its compliance terms are 0.
 """
@@ -10,7 +11,7 @@ from dataclasses import dataclass
 from .errors import InputError
 
 #: Default conversion from uniaxial yield stress Y to Thornton's limiting contact pressure, p_y = 1.6 Y.
-#: With it the yield velocity equals Johnson's first-yield velocity (physics.md section 3).
+#: With it the yield velocity equals Johnson's first-yield velocity (Johnson 1985, eq. 11.24; Thornton 1997).
 YIELD_PRESSURE_PER_YIELD_STRESS = 1.6
 
 
@@ -34,6 +35,11 @@ def check_finite(name: str, value, lo=None, hi=None, lo_open=True, hi_open=False
     return x
 
 
+#: Range of moduli, densities and yield pressures [SI] accepted: far wider than any material, narrow enough
+#: that the contact quantities built from them stay ordinary double-precision numbers.
+MATERIAL_RANGE = (1e-30, 1e30)
+
+
 @dataclass(frozen=True)
 class Material:
     """An isotropic material.
@@ -51,17 +57,24 @@ class Material:
 
     def __post_init__(self):
         E = check_finite("E (Young's modulus, Pa)", self.E, lo=0.0, allow_inf=True)
+        if not math.isinf(E):
+            check_finite("E (Young's modulus, Pa)", E, lo=MATERIAL_RANGE[0], hi=MATERIAL_RANGE[1], lo_open=False)
         nu = check_finite("nu (Poisson ratio)", self.nu, lo=-1.0, hi=0.5)
-        rho = check_finite("rho (density, kg/m^3)", self.rho, lo=0.0)
+        rho = check_finite("rho (density, kg/m^3)", self.rho, lo=MATERIAL_RANGE[0], hi=MATERIAL_RANGE[1],
+                           lo_open=False)
         object.__setattr__(self, "E", E)
         object.__setattr__(self, "nu", nu)
         object.__setattr__(self, "rho", rho)
         if self.yield_pressure is not None and self.yield_stress is not None:
             raise InputError("give either yield_pressure or yield_stress, not both")
         if self.yield_pressure is not None:
-            object.__setattr__(self, "yield_pressure", check_finite("yield_pressure (Pa)", self.yield_pressure, lo=0.0))
+            object.__setattr__(self, "yield_pressure", check_finite("yield_pressure (Pa)", self.yield_pressure,
+                                                                    lo=MATERIAL_RANGE[0], hi=MATERIAL_RANGE[1],
+                                                                    lo_open=False))
         if self.yield_stress is not None:
-            object.__setattr__(self, "yield_stress", check_finite("yield_stress (Pa)", self.yield_stress, lo=0.0))
+            object.__setattr__(self, "yield_stress", check_finite("yield_stress (Pa)", self.yield_stress,
+                                                                  lo=MATERIAL_RANGE[0], hi=MATERIAL_RANGE[1],
+                                                                  lo_open=False))
 
     @classmethod
     def rigid(cls, rho: float = 7850.0) -> "Material":
@@ -91,6 +104,11 @@ class Material:
 STEEL = Material(E=208e9, nu=0.3, rho=7850.0)
 
 
+#: Range of the magnitudes (SI) that bodies may have (mass, moment of inertia): inside it products and
+#: powers of the impact quantities stay ordinary double-precision numbers.
+BODY_RANGE = (1e-100, 1e100)
+
+
 @dataclass(frozen=True)
 class Sphere:
     """A sphere of ``radius`` [m] made of ``material``."""
@@ -99,7 +117,18 @@ class Sphere:
     material: Material
 
     def __post_init__(self):
-        object.__setattr__(self, "radius", check_finite("radius (m)", self.radius, lo=0.0))
+        r = check_finite("radius (m)", self.radius, lo=0.0)
+        object.__setattr__(self, "radius", r)
+        if not isinstance(self.material, Material):
+            raise InputError(f"material of a Sphere must be a Material, got {self.material!r}")
+        # mass and moment of inertia must be ordinary floats (no overflow, no underflow to 0)
+        cm = 4.0 / 3.0 * math.pi * self.material.rho          # m = cm R^3, I = 0.4 cm R^5
+        lo = max((BODY_RANGE[0] / cm) ** (1 / 3), (BODY_RANGE[0] / (0.4 * cm)) ** 0.2)
+        hi = min((BODY_RANGE[1] / cm) ** (1 / 3), (BODY_RANGE[1] / (0.4 * cm)) ** 0.2)
+        if not lo <= r <= hi:
+            raise InputError(f"radius = {r:g} m with density {self.material.rho:g} kg/m^3 gives a mass or moment "
+                             f"of inertia outside [{BODY_RANGE[0]:g}, {BODY_RANGE[1]:g}] (SI): radius must be in "
+                             f"[{lo:.3g}, {hi:.3g}] m for this density")
 
     @property
     def mass(self) -> float:
@@ -117,6 +146,10 @@ class Wall:
 
     material: Material
 
+    def __post_init__(self):
+        if not isinstance(self.material, Material):
+            raise InputError(f"material of a Wall must be a Material, got {self.material!r}")
+
     @classmethod
     def rigid(cls) -> "Wall":
         return cls(Material.rigid())
@@ -124,7 +157,7 @@ class Wall:
 
 @dataclass(frozen=True)
 class PairProperties:
-    """Effective properties of a contacting pair (physics.md section 1).
+    """Effective properties of a contacting pair (Johnson 1985; Wu, Thornton & Li 2009, section 2).
 
     E_star, G_star [Pa]; R_star [m]; m_star [kg]; kappa = 4 G*/E* (ratio of tangential to normal
     stiffness); p_y the limiting contact pressure of the softer yielding body [Pa] or None.
@@ -150,7 +183,7 @@ def pair_properties(body1: Sphere, body2: Sphere | Wall) -> PairProperties:
     """Effective E*, G*, R*, m*, kappa of sphere ``body1`` against a sphere or a wall ``body2``.
 
     1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2,  1/G* = (2-nu1)/G1 + (2-nu2)/G2,  1/R* = 1/R1 + 1/R2,
-    1/m* = 1/m1 + 1/m2 (a wall has 1/R2 = 0, 1/m2 = 0), kappa = 4 G*/E*  (physics.md section 1).
+    1/m* = 1/m1 + 1/m2 (a wall has 1/R2 = 0, 1/m2 = 0), kappa = 4 G*/E*  (Johnson 1985; Wu et al. 2009).
     """
     m1, m2 = body1.material, body2.material
     cE = _compliance_E(m1) + _compliance_E(m2)

@@ -17,6 +17,20 @@ import numpy as np  # noqa: E402
 from .rebound import models as rm  # noqa: E402
 
 DPI = 100
+#: mathtext labels of the rebound quantities
+LABELS = {"Theta": r"$\Theta$", "f_over_mu": r"$f/\mu$", "Psi_r": r"$\Psi_r$", "Omega_r": r"$\Omega_r$",
+          "e_t": r"$e_t$", "e_n": r"$e_n$", "collapse": r"$\kappa\Theta/(7\kappa-1)$"}
+#: style of the critical-angle lines: distinct colours and dash patterns
+THETA_C_STYLES = {"fit": dict(color="C0", ls="--", lw=1.3), "simulation": dict(color="k", ls="-", lw=1.0),
+                  "eq. 4.1": dict(color="C3", ls=":", lw=1.8)}
+
+
+def _physical(m):
+    """Blank the model curves where the fit is unphysical (f/mu < 0 near Theta = 0, which makes e_t > 1)."""
+    bad = m["f_over_mu"] < 0.0
+    if np.any(bad):
+        m = {k: np.where(bad, np.nan, v) if k != "Theta" else v for k, v in m.items()}
+    return m
 
 
 def _model_curves(Theta_max, kappa, fit=None, published=None):
@@ -24,11 +38,11 @@ def _model_curves(Theta_max, kappa, fit=None, published=None):
     T = np.linspace(0.0, Theta_max, 600)
     curves = []
     if fit is not None:
-        curves.append((f"fit eq. 4.5 (Theta_c = {fit.Theta_c:.3f})", dict(color="C0", lw=1.6),
-                       rm.wu(T, fit.c, fit.Theta_c)))
+        curves.append((rf"fit eq. 4.5 ($\Theta_c$ = {fit.Theta_c:.3f})", dict(color="C0", lw=1.6),
+                       _physical(rm.wu(T, fit.c, fit.Theta_c))))
     if published is not None:
-        curves.append((f"published fit (Theta_c = {published['Theta_c_paper']:.4g})",
-                       dict(color="k", ls="--", lw=1.2), rm.wu(T, published["c"])))
+        curves.append((rf"published fit ($\Theta_c$ = {published['Theta_c_paper']:.4g})",
+                       dict(color="k", ls="--", lw=1.2), _physical(rm.wu(T, published["c"]))))
     if kappa is not None:
         curves.append(("bilinear (eqs 5.1-5.6)", dict(color="C2", ls="-.", lw=1.0), rm.bilinear(T, kappa)))
     curves.append(("rigid body (eqs 5.7-5.9)", dict(color="C3", ls=":", lw=1.0), rm.rigid_body(T)))
@@ -36,36 +50,38 @@ def _model_curves(Theta_max, kappa, fit=None, published=None):
 
 
 def sweep_figure(res, path, *, fit=None, published=None, kappa=None, title=None, Theta_c=None,
-                 Theta_max: float = 12.0):
+                 Theta_max: float | None = None):
     """Six panels: f/mu vs Theta; f/mu vs kappa Theta/(7 kappa - 1); Psi_r, Omega_r, e_t vs Theta;
     e_n vs impact angle. ``res``: SweepResult; ``fit``: fit.WuFit; ``published``: a row of
     rebound_models.PUBLISHED_FITS; ``Theta_c``: optional dict label -> value drawn as vertical lines.
-    Points with Theta > ``Theta_max`` are not drawn. Writes a PNG to ``path``."""
+    Points with Theta > ``Theta_max`` (default: none) are not drawn. Writes a PNG to ``path``."""
     kappa = res.model.get("kappa") if kappa is None else kappa
     T = res.Theta
     finite = T[np.isfinite(T)]
-    tmax = min(float(finite.max()), Theta_max) if finite.size else Theta_max
+    tmax = float(finite.max()) if finite.size else 10.0
+    if Theta_max is not None:
+        tmax = min(tmax, Theta_max)
     sel = T <= tmax
     curves = _model_curves(tmax, kappa, fit, published)
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
     sl = res.persistent_sliding[sel]
-    panels = [("f_over_mu", "f / mu", axes[0, 0]), ("Psi_r", "Psi_r", axes[0, 2]),
-              ("Omega_r", "Omega_r", axes[1, 0]), ("e_t", "e_t", axes[1, 1])]
+    panels = [(k, LABELS[k], ax) for k, ax in (("f_over_mu", axes[0, 0]), ("Psi_r", axes[0, 2]),
+                                                ("Omega_r", axes[1, 0]), ("e_t", axes[1, 1]))]
     for key, lab, ax in panels:
         y = getattr(res, key)[sel]
         ax.plot(T[sel][~sl], y[~sl], "o", ms=3.5, mfc="none", color="C1", label="simulation")
         ax.plot(T[sel][sl], y[sl], "s", ms=3.0, mfc="none", color="C4", label="simulation, persistent sliding")
         for name, style, m in curves:
             ax.plot(m["Theta"], m[key], label=name, **style)
-        ax.set_xlabel("Theta")
+        ax.set_xlabel(LABELS["Theta"])
         ax.set_ylabel(lab)
         ax.set_xlim(0, tmax)
         ax.grid(alpha=0.3)
-    axes[1, 1].set_ylim(-0.6, 1.05)
     if Theta_c:
         for i, (name, v) in enumerate(Theta_c.items()):
             if v is not None and np.isfinite(v):
-                axes[0, 0].axvline(v, color=f"C{5 + i}", lw=0.8, alpha=0.8, label=f"Theta_c {name} = {v:.3f}")
+                style = THETA_C_STYLES.get(name, dict(color=f"C{5 + i}", ls="-.", lw=1.0))
+                axes[0, 0].axvline(v, alpha=0.9, label=rf"$\Theta_c$ {name} = {v:.3f}", **style)
     axes[0, 0].set_ylim(0, 1.08)
     axes[0, 0].legend(fontsize=7, loc="lower right")
     ax = axes[0, 1]
@@ -74,15 +90,15 @@ def sweep_figure(res, path, *, fit=None, published=None, kappa=None, title=None,
         ax.plot(x, res.f_over_mu[sel], "o", ms=3.5, mfc="none", color="C1", label="simulation")
         for name, style, m in curves:
             ax.plot(rm.collapse_variable(m["Theta"], kappa), m["f_over_mu"], label=name, **style)
-        ax.set_xlabel("kappa Theta / (7 kappa - 1)")
-        ax.set_ylabel("f / mu")
+        ax.set_xlabel(LABELS["collapse"])
+        ax.set_ylabel(LABELS["f_over_mu"])
         ax.set_xlim(0, rm.collapse_variable(tmax, kappa))
         ax.set_ylim(0, 1.08)
         ax.grid(alpha=0.3)
     ax = axes[1, 2]
     ax.plot(res.theta_deg, res.e_n, "o-", ms=3, mfc="none", color="C1")
-    ax.set_xlabel("impact angle theta_i [deg]")
-    ax.set_ylabel("e_n")
+    ax.set_xlabel(r"impact angle $\theta_i$ [deg]")
+    ax.set_ylabel(LABELS["e_n"])
     lo, hi = float(np.nanmin(res.e_n)), float(np.nanmax(res.e_n))
     pad = max(0.02, 0.1 * (hi - lo))
     ax.set_ylim(lo - pad, min(hi + pad, 1.05))
@@ -117,8 +133,8 @@ def overlay_figure(results: dict, path, *, quantity: str = "f_over_mu", collapse
     if kappa is not None and not collapse:
         m = rm.bilinear(Tm, kappa)
         ax.plot(Tm, m[quantity], ls="-.", lw=1.0, color="gray", label="bilinear")
-    ax.set_xlabel("kappa Theta / (7 kappa - 1)" if collapse else "Theta")
-    ax.set_ylabel(ylabel or quantity.replace("_over_", " / "))
+    ax.set_xlabel(LABELS["collapse"] if collapse else LABELS["Theta"])
+    ax.set_ylabel(ylabel or LABELS.get(quantity, quantity))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     if title:
@@ -292,9 +308,18 @@ def speed_accuracy_figure(rows, path, *, quantity: str = "err_f_over_mu"):
         if front:
             ax.step([r.time_per_impact_us for r in front], [getattr(r, quantity) for r in front], "k-",
                     where="post", lw=2.5, alpha=0.35, label="Pareto front")
+            placed = []       # label positions (log10 x, log10 y): labels closer than these are moved
             for r in front:
-                ax.annotate(f"{r.tangential} {r.steps_per_contact:g}", (r.time_per_impact_us, getattr(r, quantity)),
-                            fontsize=6, xytext=(3, 3), textcoords="offset points")
+                x, y = r.time_per_impact_us, getattr(r, quantity)
+                lx, ly = np.log10(x), np.log10(y)
+                dy = 3
+                while any(abs(lx - px) < 0.6 and abs(ly + dy / 40.0 - py) < 0.15 for px, py in placed):
+                    dy -= 9
+                placed.append((lx, ly + dy / 40.0))
+                std = " std" if r.scheme == "standard" else ""
+                ax.annotate(f"{r.tangential} {r.steps_per_contact:g}{std}", (x, y), fontsize=6, xytext=(3, dy),
+                            textcoords="offset points",
+                            arrowprops=dict(arrowstyle="-", lw=0.4, color="0.5") if dy != 3 else None)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("time per impact [us] (serial, warm JIT)")

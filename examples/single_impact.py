@@ -1,7 +1,7 @@
 """One oblique impact of a steel sphere on a steel wall (the EE scene of Wu, Thornton & Li 2009).
 
 Usage: python examples/single_impact.py [--vn 5] [--angle 30] [--tangential md] [--steps 1000]
-Prints the rebound quantities and checks the momentum identity Omega_r = Omega_i - f/mu (physics.md 0).
+Prints the rebound quantities and checks the momentum identity Omega_r = Omega_i - f/mu (Wu, Thornton & Li 2009, eq. 2.22).
 """
 import argparse
 import math

@@ -8,7 +8,7 @@ import dem_contact as dc
 from dem_contact.studies import advise as adv
 from dem_contact.studies import chart, stability
 from dem_contact.impacts.impact import build_result
-from dem_contact.impacts.integrator import N_OUT, O_COULOMB, O_FMAX, O_PN, O_PT, O_STATUS, O_VN
+from dem_contact.impacts.integrator import N_OUT, O_COULOMB, O_FMAX, O_TC, O_PN, O_PT, O_STATUS, O_VN
 
 
 def test_chart_errors_and_pareto():
@@ -50,13 +50,14 @@ def test_coulomb_excess_is_flagged(steel_sphere, steel_wall):
     sc = dc.Scene(steel_sphere, steel_wall, mu=0.3)
     out = np.zeros(N_OUT)
     out[O_VN], out[O_PN], out[O_PT], out[O_FMAX], out[O_COULOMB], out[O_STATUS] = -5.0, 1.0, 0.1, 1e4, 1.0, 0
+    out[O_TC] = 5e-5
     with pytest.warns(RuntimeWarning, match="Coulomb"):
         r = build_result(sc, out, 5.0, 1.0, 0.0, 0.0, 1e-7, 100.0, "located")
     assert r.coulomb_violation == 1.0
 
 
 def test_advise_recommends_sliding_above_critical_angle(steel_sphere, steel_wall):
-    """Above the critical angle (Theta > Theta_c, physics.md 6) the rigid-body sliding formulas are
+    """Above the critical angle (Theta > Theta_c, Wu, Thornton & Li 2009, section 4) the rigid-body sliding formulas are
     exact: advise measures ~0 error for them and recommends them; below it sliding is wrong by f/mu."""
     sc = dc.Scene(steel_sphere, steel_wall, mu=0.1, v_ref=5.0)
     # Theta = 2 tan(angle) / (2 mu) > 10 for angles above 45 deg at mu = 0.1

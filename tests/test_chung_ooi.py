@@ -1,4 +1,4 @@
-"""Chung & Ooi (2011) benchmark tests against their analytic answers (physics.md section 8)."""
+"""Chung & Ooi (2011) benchmark tests against their analytic answers (Chung & Ooi 2011)."""
 import math
 
 import numpy as np

@@ -74,8 +74,7 @@ def scene_history(sc, n=1):
 
 def _scene(normal, tangential, vn):
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
-    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential,
-                 e_n=0.8, v_ref=vn)
+    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, v_ref=vn)
 
 
 def _frame(rotated):

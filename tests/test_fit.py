@@ -1,4 +1,6 @@
 """Fit of eq. 4.5: recovery of known curves from noisy data, exclusion of sliding points, Theta_c."""
+import warnings
+
 import numpy as np
 import pytest
 
@@ -60,3 +62,40 @@ def test_critical_theta_collects_three_estimates():
     assert ct.theory == pytest.approx(5.7857, abs=1e-4)
     assert ct.fit == f.Theta_c and ct.simulation == 5.78
     assert set(ct.to_dict()) == {"fit", "fit_099", "simulation", "theory"}
+
+
+def _tangential_curve(T, tc=5.786):
+    """A curve that rises like f/mu and meets 1 tangentially at tc (as simulated curves do)."""
+    x = np.clip(T / tc, 0.0, 1.0)
+    return 1.0 - (1.0 - x) ** 2 * (1.0 - 0.05 * x)
+
+
+def test_model_form_error_is_reported_apart_and_does_not_shrink():
+    """Noise-free points that eq. 4.5 cannot follow: the statistical error shrinks with more points, the
+    crossings of a coarse and a dense fit differ by many statistical errors, and the model-form error covers
+    that difference and the true meeting point with 1."""
+    tc = 5.786
+    fits = []
+    for n in (60, 6000):
+        T = np.linspace(0.0, tc, n, endpoint=False)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            fits.append(fit_wu(T, _tangential_curve(T, tc)))
+    coarse, dense = fits
+    assert dense.Theta_c_err < coarse.Theta_c_err / 5
+    assert abs(coarse.Theta_c - dense.Theta_c) > 3 * dense.Theta_c_err
+    assert abs(coarse.Theta_c - dense.Theta_c) < dense.Theta_c_model_err
+    assert dense.Theta_c_model_err == pytest.approx(coarse.Theta_c_model_err, rel=0.3)
+    assert abs(dense.Theta_c - tc) < 1.5 * dense.Theta_c_model_err      # a scale, not a bound
+    assert not dense.extrapolated and dense.warnings == []
+
+
+def test_extrapolated_theta_c_is_flagged():
+    """A fit over 0-5 degrees of the EE scene (Theta < 0.6) says nothing reliable about Theta_c."""
+    c = rm.PUBLISHED_FITS["EE"]["c"]
+    T = np.linspace(0.0, 0.6, 6)
+    with pytest.warns(RuntimeWarning, match="extrapolation"):
+        f = fit_wu(T, rm.wu_curve(T, c) + np.array([0, 1, -1, 1, -1, 0]) * 1e-3)
+    assert f.extrapolated and f.Theta_c > f.Theta_max
+    assert f.Theta_c_model_err == float("inf")
+    assert f.to_dict()["Theta_c_model_err"] is None

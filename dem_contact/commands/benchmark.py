@@ -5,7 +5,7 @@ import os
 
 from ..errors import InputError
 from ..materials import check_finite
-from .common import dump_json
+from .common import check_output_dir, check_output_file, dump_json
 
 ORDER = 6
 
@@ -38,6 +38,10 @@ def run(args) -> int:
             raise InputError(f"--test {n} is not a Chung & Ooi test: valid tests 1-8")
     if args.steps_per_contact is not None:
         check_finite("--steps-per-contact", args.steps_per_contact, lo=2.0, lo_open=False)
+    if args.plot:
+        check_output_dir("--plot", args.plot)
+    if args.report:
+        check_output_file("--report", args.report)
     results = co.run_suite(tests, args.steps_per_contact)
     figures = {}
     if args.plot:

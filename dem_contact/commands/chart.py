@@ -5,6 +5,7 @@ import os
 import sys
 
 from ..errors import InputError
+from .common import check_output_dir
 
 ORDER = 4
 
@@ -38,6 +39,7 @@ def run(args) -> int:
     from ..studies import chart
     from ..plots import speed_accuracy_figure
 
+    check_output_dir("--out", args.out)
     if args.stability:
         return run_stability(args)
     steps = args.steps or (chart.FULL_STEPS if args.full else chart.DEFAULT_STEPS)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 
 from ..errors import InputError
 from ..impacts.presets import CASES, DEFAULT_TANGENTIAL, preset_scene
@@ -58,9 +59,10 @@ def add_scene_options(p, vn_default=5.0):
                         "ends at the first step without overlap, as in LIGGGHTS and LAMMPS")
 
 
-def scene_from_args(args) -> Scene:
-    """Build the Scene that the options describe (validated)."""
-    return preset_scene(args.case, args.vn, radius=args.radius, density=args.density, E=args.E, nu=args.nu,
+def scene_from_args(args, v_ref: float | None = None) -> Scene:
+    """Build the Scene that the options describe (validated); v_ref: the largest normal speed of the run
+    (default --vn), which places the mdr springs and the calibrations."""
+    return preset_scene(args.case, args.vn if v_ref is None else v_ref, radius=args.radius, density=args.density, E=args.E, nu=args.nu,
                         wall_E=args.wall_E, wall_nu=args.wall_nu, rigid_sphere=args.rigid_sphere,
                         rigid_wall=args.rigid_wall, mu=args.mu, normal=args.normal, tangential=args.tangential,
                         yield_pressure=args.yield_pressure, yield_stress=args.yield_stress, e_n=args.e_n,
@@ -79,3 +81,40 @@ def angle_to_vt(vn: float, angle_deg: float) -> float:
     if not -90.0 < angle_deg < 90.0:
         raise InputError(f"angle = {angle_deg:g} deg is outside the valid range (-90, 90)")
     return vn * math.tan(math.radians(angle_deg))
+
+
+def check_output_file(option: str, path: str, suffixes: tuple | None = None) -> str:
+    """Check, before any computation, that ``path`` can be written (its directory exists and accepts a
+    file) and ends in one of ``suffixes``; raise InputError naming ``option`` otherwise."""
+    if suffixes and os.path.splitext(path)[1].lower() not in suffixes:
+        raise InputError(f"{option} {path!r}: the file name must end in {' or '.join(suffixes)}")
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        raise InputError(f"{option} {path!r}: the directory {parent} does not exist")
+    if os.path.isdir(path):
+        raise InputError(f"{option} {path!r} is a directory, not a file")
+    existed = os.path.exists(path)
+    try:
+        with open(path, "a"):
+            pass
+    except OSError as e:
+        raise InputError(f"{option} {path!r} cannot be written: {e.strerror}") from None
+    if not existed:
+        os.remove(path)
+    return path
+
+
+def check_output_dir(option: str, path: str) -> str:
+    """Check, before any computation, that directory ``path`` exists or can be created and accepts files."""
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError as e:
+        raise InputError(f"{option} {path!r}: the directory cannot be created: {e.strerror}") from None
+    probe = os.path.join(path, ".dem_contact_write_test")
+    try:
+        with open(probe, "w"):
+            pass
+        os.remove(probe)
+    except OSError as e:
+        raise InputError(f"{option} {path!r}: the directory does not accept files: {e.strerror}") from None
+    return path

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import warnings
 
+from ..errors import InputError
 from ..impacts.impact import impact
 from .common import add_scene_options, angle_to_vt, dump_json, scene_from_args, time_options
 
@@ -27,10 +28,11 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    scene = scene_from_args(args)
+    if args.series and not args.json:
+        raise InputError("--series acts with --json only (the time series is printed in the JSON object)")
     if args.vt is not None and args.angle is not None:
-        from ..errors import InputError
         raise InputError("give either --vt or --angle, not both")
+    scene = scene_from_args(args)
     vt = args.vt if args.vt is not None else angle_to_vt(args.vn, 20.0 if args.angle is None else args.angle)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the warnings are reported in the result
@@ -43,15 +45,18 @@ def run(args) -> int:
           f"kappa = {m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} "
           f"steps per contact (dt = {r.dt:.4g} s)")
     print(f"incident: vn = {r.vn_i:g} m/s, vt = {r.vt_i:g} m/s, spin = {r.omega_i:g} rad/s "
-          f"(angle {r.theta_i_deg:.4g} deg, Theta = {r.Theta:.6g})")
+          f"(angle {r.theta_i_deg:.4g} deg, Theta = {r.Theta:.6g})" if r.Theta == r.Theta else
+          f"(angle {r.theta_i_deg:.4g} deg, Theta undefined at mu = 0)")
     rows = [
         ("e_n", r.e_n, ""), ("e_t", r.e_t, ""), ("f", r.f, ""), ("f/mu", r.f_over_mu, ""),
         ("Psi_r", r.Psi_r, ""), ("Omega_r", r.Omega_r, ""), ("omega_r", r.omega_r, "rad/s"),
         ("rebound angle", r.rebound_angle_deg, "deg"), ("contact time", r.contact_time, "s"),
         ("max overlap", r.max_overlap, "m"), ("max force", r.max_force, "N"),
     ]
+    undefined = {"e_t": "undefined (vt = 0)", "f/mu": "undefined (mu = 0)", "Psi_r": "undefined (mu = 0)",
+                 "Omega_r": "undefined (mu = 0)"}
     for name, val, unit in rows:
-        print(f"  {name:15s} {val:.8g} {unit}")
+        print(f"  {name:15s} {val:.8g} {unit}" if val == val else f"  {name:15s} {undefined[name]}")
     print(f"  persistent sliding: {'yes' if r.persistent_sliding else 'no'}; steps: {r.steps}")
     e = r.energy
     print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "

@@ -9,10 +9,10 @@ import numpy as np
 
 from ..errors import InputError
 from ..rebound.fit import critical_theta, fit_wu
-from ..materials import STEEL
+from ..materials import STEEL, check_finite
 from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
 from ..impacts.sweep import critical_angle, sweep_angles, sweep_speed
-from .common import add_scene_options, dump_json, scene_from_args
+from .common import add_scene_options, check_output_file, dump_json, scene_from_args
 
 ORDER = 2
 
@@ -82,11 +82,23 @@ def published_key(args):
 
 def run(args) -> int:
     angles = parse_angles(args.angles)
-    scene = scene_from_args(args)
     if args.steps_per_contact is not None and args.dt is not None:
         raise InputError("give either --steps-per-contact or --dt, not both")
     if args.dt is not None:
         raise InputError("sweep takes --steps-per-contact, not --dt (each impact gets its own time step)")
+    if args.speed is not None:
+        check_finite("--speed (total impact speed, m/s)", args.speed, lo=0.0)
+    if args.mu <= 0:
+        raise InputError(f"--mu {args.mu:g}: a sweep needs mu > 0 (Theta, f/mu and the fit of eq. 4.5 are "
+                         f"defined through mu); for a frictionless impact use dem-contact impact")
+    if args.no_plot and args.plot is not None:
+        raise InputError("--plot and --no-plot contradict each other")
+    if args.csv:
+        check_output_file("--csv", args.csv)
+    if args.plot:
+        check_output_file("--plot", args.plot, (".png",))
+    # the largest normal speed of the sweep places the mdr springs and the calibrations
+    scene = scene_from_args(args, v_ref=args.speed)
     opts = dict(steps_per_contact=args.steps_per_contact, scheme=args.scheme, progress=not args.no_progress)
     if args.speed is not None:
         res = sweep_speed(scene, angles, args.speed, **opts)
@@ -165,7 +177,9 @@ def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, compa
         print(f"no fit: {fit_error}")
     tc = critical_theta(fit, scene.pair.kappa, crit.Theta if crit else None) if fit else None
     print("Theta_c: " + "; ".join([
-        f"fit crossing 1 = {tc.fit:.4f} +/- {fit.Theta_c_err:.4f} (0.99 at {tc.fit_099:.4f})" if tc else "fit: none",
+        (f"fit crossing 1 = {tc.fit:.4f} +/- {fit.Theta_c_err:.4f} (statistical) +/- "
+         f"{fit.Theta_c_model_err:.2g} (model form of eq. 4.5){' EXTRAPOLATED' if fit.extrapolated else ''} "
+         f"(0.99 at {tc.fit_099:.4f})") if tc else "fit: none",
         f"simulation = {crit.Theta:.4f} (angle {crit.angle_deg:.4f} deg)" if crit else "simulation: not run "
         "(fixed total speed)",
         f"eq. 4.1 = {theory:.4f}"]))
@@ -173,7 +187,7 @@ def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, compa
         print(f"published fit ({comparison['case']}): Theta_c (paper) = {comparison['Theta_c_paper']:g}; "
               f"max |f/mu - published| over 0 <= Theta <= {comparison['max_curve_difference_range'][1]:g}: "
               f"{comparison['max_curve_difference']:.4f}")
-    for w in res.warnings:
+    for w in res.warnings + (fit.warnings if fit is not None else []):
         print(f"warning: {w}")
     if plot_path:
         print(f"figure written to {plot_path}")

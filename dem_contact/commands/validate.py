@@ -17,5 +17,8 @@ def add_parser(sub):
 def run(args) -> int:
     from ..studies.wu2009 import run_validation
 
+    from .common import check_output_dir
+
+    check_output_dir("--out", args.out)
     print(f"report written to {run_validation(args.out)}")
     return 0

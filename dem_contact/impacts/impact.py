@@ -1,7 +1,7 @@
 """One oblique impact: set-up, integration, and the rebound quantities of Wu, Thornton & Li (2009).
 
 ``impact(scene, vn, vt, spin)`` returns an ``ImpactResult`` with e_n, e_t, the impulse ratio f, the
-dimensionless groups Theta, Psi_r, Omega_i, Omega_r (physics.md section 0, eqs 2.1-2.20 and 7.1) and
+dimensionless groups Theta, Psi_r, Omega_i, Omega_r (Wu, Thornton & Li 2009, eqs 2.1-2.20 and 7.1) and
 the energy budget.
 """
 from __future__ import annotations
@@ -15,13 +15,14 @@ import numpy as np
 from ..errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
-                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact)
+                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact, is_sliding)
 from ..laws.slots import H_A
+from ..laws import closed_forms as cf
 from ..materials import Sphere, check_finite
 from ..laws.model import Scene
 
 #: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed. With the
-#: default mdr_adaptive law f/mu is then within 5e-4 of its converged value and 1.1e-3 of converged MDR
+#: default mdr_adaptive law f/mu is then within 3.5e-4 of its converged value and 7e-4 of converged MDR
 #: (validation/chart); md needs about 1000 steps for 1e-3 of discretisation error.
 DEFAULT_STEPS_PER_CONTACT = 50
 #: Fewer steps per contact than this cannot resolve a contact: rejected.
@@ -30,6 +31,21 @@ MIN_STEPS_PER_CONTACT = 2.0
 MAX_CONTACT_TIMES = 50.0
 #: Relative tolerance (of the initial kinetic energy) above which energy counts as created.
 ENERGY_CREATION_TOL = 1e-6
+#: Final kinetic energy above the initial one by more than this fraction of it counts as energy gained
+#: (rounding of the energies is about 1e-15 of them).
+KE_ROUNDING_TOL = 1e-12
+#: Energy-balance error (initial - final - work of the forces) above this fraction is warned about.
+ENERGY_BALANCE_TOL = 1e-3
+#: Range of validity of the contact laws: Hertz and Mindlin-Deresiewicz theory assume a contact radius
+#: small against the radius of curvature (Johnson 1985, section 4.2); beyond a = 0.2 R* (overlap 0.04 R*) the
+#: result is flagged.
+VALIDITY_A_OVER_R = 0.2
+#: Work budget: at most this many steps per contact time (about 10 s per impact with the mdr reference).
+MAX_STEPS_PER_CONTACT = 1e7
+#: Memory budget of a returned time series [bytes].
+MAX_SERIES_BYTES = 2**30
+#: Every SI magnitude of an impact (peak overlap, force, contact time, energy) must lie in this range.
+SCALE_RANGE = (1e-100, 1e100)
 
 SCHEMES = ("located", "standard")
 
@@ -50,10 +66,22 @@ class EnergyBudget:
 class ImpactResult:
     """Outcome of one impact. Velocities in m/s, spins in rad/s, times in s, lengths in m, forces in N.
 
-    Sign conventions (physics.md section 0): vn > 0 towards the wall; v_t = V_t + R omega; e_t and
+    Sign conventions (Wu, Thornton & Li 2009, section 2): vn > 0 towards the wall; v_t = V_t + R omega; e_t and
     Theta use the contact-patch velocity when there is initial spin (eq. 7.1). rebound_angle_deg is
     the angle of the rebound velocity of the centre from the normal, positive in the direction of the
     incident tangential velocity; patch_rebound_angle_deg the same for the contact-patch velocity.
+
+    persistent_sliding: |T| >= (1 - SLIDE_TOL) mu N at every step until the last SLIDE_IMPULSE_TOL of the
+    normal impulse (``integrator.SLIDE_TOL`` = 1e-3, ``SLIDE_IMPULSE_TOL`` = 1e-4), the criterion of the
+    direct critical angle; sliding_fraction: the fraction of the normal impulse delivered before the first
+    step below (1 - SLIDE_TOL) mu N (1 when there is none).
+
+    energy_created: the tangential law did negative work at some time (a passive law cannot);
+    energy_gained: the final kinetic energy exceeds the initial one beyond rounding (KE_ROUNDING_TOL),
+    whatever the cause (the works of the normal and tangential forces are in ``energy``). Both are also
+    in ``warnings``, with an impulse ratio |f| > mu, an energy-balance error above ENERGY_BALANCE_TOL and a
+    contact beyond the laws' range of validity (a > VALIDITY_A_OVER_R R*). NaN marks what is undefined:
+    e_t at vt = 0 (|vt| < 1e-100 vn); f/mu, Theta, Psi_r, Omega_i, Omega_r at mu = 0.
     """
 
     vn_i: float
@@ -79,6 +107,7 @@ class ImpactResult:
     max_overlap: float
     max_force: float
     persistent_sliding: bool
+    sliding_fraction: float
     steps: int
     dt: float
     energy: EnergyBudget
@@ -89,6 +118,7 @@ class ImpactResult:
     settings: dict = field(default_factory=dict)
     omega2_r: float = 0.0
     series: dict | None = None
+    energy_gained: bool = False
 
     def to_dict(self, series: bool = False) -> dict:
         """JSON-ready dict (NaN and inf become None)."""
@@ -117,7 +147,7 @@ def _json_safe(x):
 
 def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, dt: float | None = None):
     """Validated time step [s] and the steps per contact it gives (default: the scene's model practice,
-    ``Scene.steps_per_contact``, else DEFAULT_STEPS_PER_CONTACT)."""
+    ``Scene.steps_per_contact``, else DEFAULT_STEPS_PER_CONTACT; at most MAX_STEPS_PER_CONTACT)."""
     tc = scene.contact_time(vn)
     if dt is not None and steps_per_contact is not None:
         raise InputError("give either dt or steps_per_contact, not both")
@@ -127,11 +157,14 @@ def time_step(scene: Scene, vn: float, steps_per_contact: float | None = None, d
         if spc < MIN_STEPS_PER_CONTACT:
             raise InputError(f"dt = {dt:g} s cannot resolve the contact: it must be <= t_c / "
                              f"{MIN_STEPS_PER_CONTACT:g} = {tc / MIN_STEPS_PER_CONTACT:g} s (t_c = {tc:g} s)")
+        if not spc <= MAX_STEPS_PER_CONTACT:
+            raise InputError(f"dt = {dt:g} s asks for {spc:.3g} steps per contact time (t_c = {tc:g} s); the limit "
+                             f"is {MAX_STEPS_PER_CONTACT:g}: dt must be >= {tc / MAX_STEPS_PER_CONTACT:.3g} s")
         return dt, spc
     if steps_per_contact is None:
         steps_per_contact = getattr(scene, "steps_per_contact", None) or DEFAULT_STEPS_PER_CONTACT
-    spc = steps_per_contact
-    spc = check_finite("steps_per_contact", spc, lo=MIN_STEPS_PER_CONTACT, lo_open=False)
+    spc = check_finite("steps_per_contact", steps_per_contact, lo=MIN_STEPS_PER_CONTACT, hi=MAX_STEPS_PER_CONTACT,
+                       lo_open=False)
     return tc / spc, spc
 
 
@@ -140,6 +173,63 @@ def check_incident(vn, vt, spin):
     vt = check_finite("vt (tangential velocity, m/s)", vt)
     spin = check_finite("spin (initial angular velocity, rad/s)", spin)
     return vn, vt, spin
+
+
+def speed_range(scene: Scene) -> tuple:
+    """Normal speeds [m/s] for which the scene's elastic Hertz scales (peak overlap ~ vn^0.8, peak force
+    ~ vn^1.2, contact time ~ vn^-0.2, kinetic energy ~ vn^2) all lie inside SCALE_RANGE."""
+    pr = scene.pair
+    lo, hi = math.log(SCALE_RANGE[0]), math.log(SCALE_RANGE[1])
+    d1 = cf.hertz_max_overlap(pr.E_star, pr.R_star, pr.m_star, 1.0)
+    scales = [(d1, 0.8), (4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * d1**1.5, 1.2),
+              (cf.HERTZ_TC_FACTOR * d1, -0.2), (0.5 * pr.m_star, 2.0)]
+    v_lo, v_hi = -math.inf, math.inf
+    for q1, k in scales:
+        a, b = (lo - math.log(q1)) / k, (hi - math.log(q1)) / k
+        a, b = min(a, b), max(a, b)
+        v_lo, v_hi = max(v_lo, a), min(v_hi, b)
+    return math.exp(v_lo), math.exp(v_hi)
+
+
+def check_scales(scene: Scene, vn: float, vt: float, spin: float, spin2: float = 0.0):
+    """Raise InputError when the impact's magnitudes leave the range that double precision computes
+    faithfully (a force that underflows to 0, an energy that overflows): every SI magnitude of the
+    impact (peak overlap, force, contact time, kinetic energy) must lie inside SCALE_RANGE."""
+    v_lo, v_hi = speed_range(scene)
+    if not v_lo <= vn <= v_hi:
+        raise InputError(f"vn = {vn:g} m/s is outside the range this scene can be computed in, [{v_lo:.3g}, "
+                         f"{v_hi:.3g}] m/s (peak overlap, force, contact time and kinetic energy must stay within "
+                         f"[{SCALE_RANGE[0]:g}, {SCALE_RANGE[1]:g}] SI)")
+    m = scene.pair.m_star
+    v_max = math.sqrt(2.0 * SCALE_RANGE[1] / m)
+    if not abs(vt) <= v_max:
+        raise InputError(f"vt = {vt:g} m/s: its kinetic energy exceeds {SCALE_RANGE[1]:g} J; |vt| must be <= "
+                         f"{v_max:.3g} m/s for this sphere")
+    for name, w, body in (("spin", spin, scene.sphere), ("spin2", spin2, scene.body2)):
+        if isinstance(body, Sphere):
+            w_max = math.sqrt(2.0 * SCALE_RANGE[1] / body.inertia)
+            if not abs(w) <= w_max:
+                raise InputError(f"{name} = {w:g} rad/s: its kinetic energy exceeds {SCALE_RANGE[1]:g} J; "
+                                 f"|{name}| must be <= {w_max:.3g} rad/s for this sphere")
+
+
+def check_series_budget(max_steps: int):
+    """Refuse a time series that would need more than MAX_SERIES_BYTES of memory."""
+    need = max_steps * N_SERIES * 8
+    if need > MAX_SERIES_BYTES:
+        raise InputError(f"series: up to {max_steps} steps x {N_SERIES} columns need {need / 2**30:.3g} GiB; the "
+                         f"limit is {MAX_SERIES_BYTES / 2**30:g} GiB: lower steps_per_contact (or raise dt)")
+
+
+def check_mdr_reach(scene: Scene, vn_max: float):
+    """InputError when the springs of the mdr law cannot cover the contact at normal speed vn_max."""
+    if scene.tangential != "mdr":
+        return
+    a = scene.max_contact_radius(vn_max)
+    if a > scene.mdr_max_radius:
+        raise InputError(f"vn = {vn_max:g} m/s: the contact radius ({a:.4g} m) would exceed the extent of the mdr "
+                         f"springs ({scene.mdr_max_radius:.4g} m, placed for v_ref = {scene.v_ref} m/s): build the "
+                         f"scene with v_ref >= {vn_max:g} m/s or a larger mdr_max_radius")
 
 
 def body_inertia(scene: Scene):
@@ -162,18 +252,30 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     the last step) or "standard" (the contact ends at the first step without overlap, as in LIGGGHTS and
     LAMMPS). series: also return the time histories.
     """
+    if not isinstance(scene, Scene):
+        raise InputError(f"scene must be a Scene, got {type(scene).__name__}")
     vn, vt, spin = check_incident(vn, vt, spin)
     spin2 = check_finite("spin2 (initial angular velocity of body 2, rad/s)", spin2)
+    if spin2 != 0.0 and not isinstance(scene.body2, Sphere):
+        raise InputError("spin2 applies to a second sphere only: a wall does not turn")
     if scheme not in SCHEMES:
         raise InputError(f"scheme {scheme!r} is unknown; choose one of: {', '.join(SCHEMES)}")
+    check_scales(scene, vn, vt, spin, spin2)
     dt, spc = time_step(scene, vn, steps_per_contact, dt)
+    check_mdr_reach(scene, vn)
     inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     max_steps = int(math.ceil(MAX_CONTACT_TIMES * spc)) + 10
+    if series:
+        check_series_budget(max_steps)
     out = np.zeros(N_OUT)
     ser = np.zeros((max_steps if series else 0, N_SERIES))
     h = scene.new_history()
-    integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, vn, vt, spin, spin2,
-                     inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", out, ser)
+    try:
+        integrate_impact(scene.normal_id, scene.tangential_id, scene.params, h, vn, vt, spin, spin2,
+                         inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", out, ser)
+    except ArithmeticError as e:      # e.g. a division by zero inside a law: never a bare traceback
+        raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
+                             f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
     check_mdr_grid(scene, h, vn)
     return build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser)
 
@@ -191,8 +293,15 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure)."""
     status = int(out[O_STATUS])
     if status == STATUS_MAX_STEPS:
+        hint = ""
+        if scene.normal == "thornton":
+            hint = (f"; a thornton contact with a limiting pressure p_y = {scene.p_y:g} Pa far below the Hertz "
+                    f"pressure of the impact deforms plastically for much longer than the Hertz contact: check "
+                    f"p_y, or give a larger dt")
+        elif scene.normal == "linear":
+            hint = "; the linear law's stiffness is matched at v_ref: check v_ref against the impact speed"
         raise NumericalError(f"the contact did not end within {int(out[O_STEPS])} steps "
-                             f"({MAX_CONTACT_TIMES:g} elastic contact times)")
+                             f"({MAX_CONTACT_TIMES:g} elastic Hertz contact times at vn = {vn:g} m/s){hint}")
     if status == STATUS_NONFINITE:
         raise NumericalError(f"non-finite state (NaN or overflow) after {int(out[O_STEPS])} steps: the "
                              f"{scene.normal}/{scene.tangential} laws blew up at dt = {dt:g} s")
@@ -204,15 +313,38 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     e_n = -vn_r / vn
     v_ti = vt + R1 * spin + R2 * spin2
     v_tr = vt_r + R1 * w_r + R2 * w2_r
-    f = PT / PN if PN > 0 else math.nan
+    state = {"final normal velocity": vn_r, "final tangential velocity": vt_r, "final spin": w_r,
+             "final spin of body 2": w2_r, "normal impulse": PN, "tangential impulse": PT,
+             "contact time": out[O_TC], "max overlap": out[O_DMAX], "max force": out[O_FMAX],
+             "normal work": out[O_WN], "tangential work": out[O_WT]}
+    bad = [k for k, v in state.items() if not math.isfinite(v)]
+    if bad:
+        raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
+                             f"laws at dt = {dt:g} s")
+    if not PN > 0.0 or not out[O_TC] > 0.0:
+        raise NumericalError(f"the contact produced no normal impulse (normal impulse {PN:g} N s, contact time "
+                             f"{out[O_TC]:g} s): its forces underflow double precision")
+    f = PT / PN
+    # undefined (NaN, None in JSON): f/mu and the dimensionless groups at mu = 0, e_t at vt = 0
     fm = f / mu if mu > 0 else math.nan
-    with np.errstate(divide="ignore", invalid="ignore"):
-        denom = (1.0 + e_n) * mu * vn
-        Theta = 2.0 * v_ti / denom if mu > 0 else math.inf
-        Psi_r = 2.0 * v_tr / denom if mu > 0 else math.inf
-        Omega_i = 2.0 * R1 * spin / (5.0 * denom) if mu > 0 else math.nan
-        Omega_r = 2.0 * R1 * w_r / (5.0 * denom) if mu > 0 else math.nan
-    e_t = vt_r / vt if vt != 0 else math.nan
+    denom = (1.0 + e_n) * mu * vn
+    if mu > 0 and denom > 0:
+        Theta = 2.0 * v_ti / denom
+        Psi_r = 2.0 * v_tr / denom
+        Omega_i = 2.0 * R1 * spin / (5.0 * denom)
+        Omega_r = 2.0 * R1 * w_r / (5.0 * denom)
+    else:
+        Theta = Psi_r = Omega_i = Omega_r = math.nan
+    # e_t = vt_r / vt is undefined at vt = 0 and overflows for |vt| below 1e-100 of vn: NaN there
+    tiny_vt = abs(vt) < 1e-100 * vn
+    e_t = vt_r / vt if not tiny_vt else math.nan
+    defined = {"e_n": e_n, "f": f, "f_over_mu": fm if mu > 0 else 0.0, "Theta": Theta if mu > 0 else 0.0,
+               "Psi_r": Psi_r if mu > 0 else 0.0, "Omega_r": Omega_r if mu > 0 else 0.0,
+               "e_t": e_t if not tiny_vt else 0.0}
+    bad = [k for k, v in defined.items() if not math.isfinite(v)]
+    if bad:
+        raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
+                             f"laws at dt = {dt:g} s")
     I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
     I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
     E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
@@ -225,9 +357,31 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     if created:
         msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
                     f"(running work reached {out[O_MINWT]:.3e} J)")
+    works = f"work absorbed by the normal force {WN:.4g} J, by the tangential force {WT:.4g} J"
+    gained_total = E1 - E0 > KE_ROUNDING_TOL * E0
+    # the normal motion alone: a passive normal law cannot return more than it received (e_n <= 1)
+    gained_normal = e_n * e_n - 1.0 > KE_ROUNDING_TOL
+    if gained_total:
+        msgs.append(f"kinetic energy gained: the final kinetic energy exceeds the initial one by "
+                    f"{(E1 - E0) / E0:.3g} of it ({works})")
+    if gained_normal:
+        msgs.append(f"kinetic energy gained in the normal motion: e_n = {e_n:.8g} > 1 ({works})")
+    gained = bool(gained_total or gained_normal)
     coul = out[O_COULOMB]
     if coul > 1e-9 * max(mu * out[O_FMAX], 1e-300):
         msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
+    if mu > 0 and abs(f) > mu * (1.0 + 1e-9):
+        why = (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
+               "smaller than the compressive force the Coulomb limit acts on") if scene.normal == "linear" else ""
+        msgs.append(f"impulse ratio |f| exceeds mu by {abs(f) / mu - 1.0:.3g} of mu{why}")
+    if abs(energy.error) > ENERGY_BALANCE_TOL * E0:
+        msgs.append(f"energy balance error {energy.error / E0:.3g} of the initial kinetic energy (more than "
+                    f"{ENERGY_BALANCE_TOL:g}): refine the time step")
+    a_over_R = math.sqrt(out[O_DMAX] / scene.pair.R_star)
+    if a_over_R > VALIDITY_A_OVER_R:
+        msgs.append(f"contact beyond the range of the contact laws: the contact radius reached "
+                    f"{a_over_R:.3g} R* (overlap {out[O_DMAX] / scene.pair.R_star:.3g} R*); Hertz-Mindlin "
+                    f"theory assumes a small contact, a <= {VALIDITY_A_OVER_R:g} R*")
     if spc < 10:
         msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
     for msg in msgs:
@@ -247,8 +401,9 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         rebound_angle_deg=math.degrees(math.atan2(vt_r, -vn_r)),
         patch_rebound_angle_deg=math.degrees(math.atan2(v_tr, -vn_r)),
         normal_impulse=PN, tangential_impulse=PT, contact_time=out[O_TC], max_overlap=out[O_DMAX],
-        max_force=out[O_FMAX], persistent_sliding=bool(out[O_SLID] > 0.5), steps=int(out[O_STEPS]), dt=dt,
+        max_force=out[O_FMAX], persistent_sliding=bool(is_sliding(out[O_SLID])),
+        sliding_fraction=float(out[O_SLID]), steps=int(out[O_STEPS]), dt=dt,
         energy=energy, energy_created=created, coulomb_violation=max(coul, 0.0), warnings=msgs,
         model=scene.describe(),
         settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "vn": vn, "vt": vt, "spin": spin},
-        omega2_r=w2_r, series=series_dict)
+        omega2_r=w2_r, series=series_dict, energy_gained=gained)

@@ -36,6 +36,25 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
     if case not in CASES:
         raise InputError(f"case = {case!r} is unknown; choose one of: {', '.join(CASES)}")
     check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
+    rigid_sphere = rigid_sphere or case == "RE"
+    if rigid_sphere:
+        given = [n for n, v in (("E", E), ("yield_pressure", yield_pressure), ("yield_stress", yield_stress))
+                 if v is not None]
+        if nu is not None and (case != "RE" or wall_nu is not None):
+            given.append("nu")
+        if given:
+            raise InputError(f"{', '.join(given)} cannot act on a rigid sphere (case {case}"
+                             f"{', rigid_sphere' if case != 'RE' else ''})")
+    if rigid_wall:
+        given = [n for n, v in (("wall_E", wall_E), ("wall_nu", wall_nu)) if v is not None]
+        if case == "RE" and nu is not None:
+            given.append("nu (the wall's Poisson ratio for case RE)")
+        if given:
+            raise InputError(f"{', '.join(given)} cannot act on a rigid wall")
+    if (yield_pressure is not None or yield_stress is not None) and (normal or (
+            "thornton" if case == "PE" else "hertz")) != "thornton":
+        raise InputError(f"yield_pressure and yield_stress act on the thornton normal law only, not on "
+                         f"{normal or 'hertz'!r}")
     sphere_E = STEEL.E if E is None else E
     sphere_nu = STEEL.nu if nu is None else nu
     wall_E = STEEL.E if wall_E is None else wall_E
@@ -46,7 +65,7 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
             wall_nu_used, sphere_nu = nu, STEEL.nu
     elif case == "PE":
         normal = normal or "thornton"
-        if yield_pressure is None and yield_stress is None and e_n is None:
+        if normal == "thornton" and yield_pressure is None and yield_stress is None and e_n is None:
             yield_stress = PE_YIELD_STRESS
     normal = normal or "hertz"
     if rigid_sphere:

@@ -5,7 +5,7 @@
 given values of Theta, ``sweep`` takes any list of (vn, vt, spin). ``scene_with`` / ``sweep_scenes``
 build parameter studies (one Scene per value of mu or of a Poisson ratio). ``critical_angle`` finds the
 smallest angle at which the contact slides at every step (bisection on repeated impacts): the direct
-simulation estimate of Theta_c (physics.md section 6).
+simulation estimate of Theta_c (Wu, Thornton & Li 2009, section 4).
 
 Each impact has its own history row and output row, so the cost is linear in the number of impacts and
 the results equal single ``impact`` calls exactly.
@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 import warnings
 from dataclasses import dataclass, field
 
@@ -21,12 +22,17 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import InputError, NumericalError
-from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident,
-                     impact, time_step)
+from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident, check_mdr_grid,
+                     check_mdr_reach, check_scales, impact, time_step)
 from .integrator import N_OUT, N_SERIES, integrate_impact
 from ..materials import Material, Sphere, Wall, check_finite
 from ..laws.model import Scene
 
+#: Work budget of one sweep: total steps per contact time summed over its impacts (about 1e8 steps per
+#: second and core with the default law).
+MAX_SWEEP_STEPS = 1e10
+#: Sweeps of at least this many impacts also show the progress of assembling their results.
+PROGRESS_RESULTS = 2000
 #: Impacts per progress-bar update are chosen so that the bar advances about this many times.
 PROGRESS_UPDATES = 20
 
@@ -50,7 +56,7 @@ class SweepResult:
     """Impacts of one sweep: ``points`` (one ImpactResult each) and the main quantities as arrays.
 
     theta_deg: impact angle of the centre velocity from the normal [deg]; Theta, Psi_r, Omega_r: the
-    dimensionless groups of physics.md section 0; f_over_mu: impulse ratio over mu; e_t (NaN at 0 deg),
+    dimensionless groups of Wu, Thornton & Li 2009, section 2; f_over_mu: impulse ratio over mu; e_t (NaN at 0 deg),
     e_n; persistent_sliding: the contact slid at every step.
     """
 
@@ -112,10 +118,16 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     n = vn.size
     for i in range(n):
         check_incident(vn[i], vt[i], spin[i])
+        check_scales(scene, vn[i], vt[i], spin[i])
     dts = np.empty(n)
     spcs = np.empty(n)
     for i in range(n):
         dts[i], spcs[i] = time_step(scene, vn[i], steps_per_contact, None)
+    work = float(np.sum(spcs))
+    if work > MAX_SWEEP_STEPS:
+        raise InputError(f"the sweep asks for {work:.3g} steps ({n} impacts x {work / n:.3g} steps per contact); "
+                         f"the limit is {MAX_SWEEP_STEPS:.3g}: use fewer impacts or fewer steps per contact")
+    check_mdr_reach(scene, float(vn.max()))
     max_steps = np.ceil(MAX_CONTACT_TIMES * spcs).astype(np.int64) + 10
     inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     out = np.zeros((n, N_OUT))
@@ -126,23 +138,38 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     bar = None
     if progress:
         from tqdm import tqdm
+        if not sweep_kernel.signatures:
+            # the first call loads the kernels from numba's cache or compiles them (tens of seconds)
+            print("compiling kernels (first run only) ...", file=sys.stderr, flush=True)
+            sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[:1].copy(), vn[:1], vt[:1],
+                         spin[:1], w2[:1], inv_m, R1, R2, inv_I1, inv_I2, dts[:1], max_steps[:1], locate,
+                         np.zeros((1, N_OUT)))
         bar = tqdm(total=n, unit="impact", desc=f"sweep {scene.tangential}", leave=False)
     try:
         for s in range(0, n, chunk):
             e = min(n, s + chunk)
-            sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[s:e], vn[s:e], vt[s:e],
-                         spin[s:e], w2[s:e], inv_m, R1, R2, inv_I1, inv_I2, dts[s:e], max_steps[s:e], locate,
-                         out[s:e])
+            try:
+                sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[s:e], vn[s:e], vt[s:e],
+                             spin[s:e], w2[s:e], inv_m, R1, R2, inv_I1, inv_I2, dts[s:e], max_steps[s:e], locate,
+                             out[s:e])
+            except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
+                raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
+                                     f"{e - 1} ({type(err).__name__}: {err})") from None
             if bar is not None:
                 bar.update(e - s)
     finally:
         if bar is not None:
             bar.close()
     points = []
+    rows = range(n)
+    if progress and n >= PROGRESS_RESULTS:
+        from tqdm import tqdm
+        rows = tqdm(rows, unit="impact", desc="results", leave=False, mininterval=0.5)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # recorded per impact in ImpactResult.warnings
-        for i in range(n):
+        for i in rows:
             try:
+                check_mdr_grid(scene, hist[i], vn[i])
                 points.append(build_result(scene, out[i], vn[i], vt[i], spin[i], 0.0, dts[i], spcs[i], scheme))
             except NumericalError as err:
                 raise NumericalError(f"impact {i} (vn = {vn[i]:g} m/s, vt = {vt[i]:g} m/s, spin = "
@@ -261,7 +288,7 @@ class CriticalAngle:
 def critical_angle(scene: Scene, vn: float = 5.0, *, steps_per_contact: float | None = None,
                    scheme: str = "located", tol_deg: float = 1e-6, lo_deg: float = 0.0,
                    hi_deg: float = 89.5) -> CriticalAngle:
-    """Direct simulation estimate of the critical angle (physics.md section 6): bisection in the impact
+    """Direct simulation estimate of the critical angle (Wu, Thornton & Li 2009, section 4): bisection in the impact
     angle on repeated impacts, between a non-sliding ``lo_deg`` and a persistently sliding ``hi_deg``.
     Raises NumericalError when the bracket does not hold (no sliding even at hi_deg)."""
     vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)

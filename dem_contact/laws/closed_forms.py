@@ -1,4 +1,4 @@
-"""Closed-form results used to set up and to check simulations (physics.md sections 2-4).
+"""Closed-form results used to set up and to check simulations (Johnson 1985, section 11.4; Thornton 1997; Tsuji, Tanaka & Ishida 1992).
 
 Plain Python functions of SI quantities; none of them integrates anything.
 """
@@ -6,7 +6,9 @@ import math
 
 from ..errors import InputError
 
-#: t_c = HERTZ_TC_FACTOR * delta_max / V  (physics.md section 2)
+#: Smallest V_y / V_i of a thornton calibration from e_n (e_n ~ 0.003 there).
+THORNTON_MIN_VELOCITY_RATIO = 1e-12
+#: t_c = HERTZ_TC_FACTOR * delta_max / V  (Johnson 1985, section 11.4)
 HERTZ_TC_FACTOR = 2.9433
 
 
@@ -26,7 +28,7 @@ def hertz_max_force(E_star, R_star, m_star, v):
 
 
 def thornton_yield_overlap(E_star, R_star, p_y):
-    """delta_y = R* (pi p_y / (2 E*))^2 [m] (physics.md section 3)."""
+    """delta_y = R* (pi p_y / (2 E*))^2 [m] (Thornton 1997, J. Appl. Mech. 64:383)."""
     return R_star * (math.pi * p_y / (2.0 * E_star)) ** 2
 
 
@@ -63,9 +65,13 @@ def thornton_yield_pressure_for_restitution(E_star, R_star, m_star, e_n, v):
     (inverts the closed form; 0 < e_n < 1)."""
     if not 0.0 < e_n < 1.0:
         raise InputError(f"e_n = {e_n:g} cannot be calibrated with the thornton law: valid range (0, 1)")
+    e_min = thornton_restitution_ratio(THORNTON_MIN_VELOCITY_RATIO)
+    if e_n < e_min:
+        raise InputError(f"e_n = {e_n:g} cannot be calibrated with the thornton law: valid range [{e_min:.3g}, 1)")
     from scipy.optimize import brentq
 
-    r = brentq(lambda r: thornton_restitution_ratio(r) - e_n, 1e-12, 1.0, xtol=1e-15, rtol=1e-15)
+    r = brentq(lambda r: thornton_restitution_ratio(r) - e_n, THORNTON_MIN_VELOCITY_RATIO, 1.0, xtol=1e-15,
+               rtol=1e-15)
     return thornton_yield_pressure_for_velocity(E_star, R_star, m_star, r * v)
 
 

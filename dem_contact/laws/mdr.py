@@ -1,4 +1,4 @@
-"""Exact reference for the tangential problem: the method of dimensionality reduction (physics.md 7).
+"""Exact reference for the tangential problem: the method of dimensionality reduction (Popov & Hess 2015, chapter 6).
 
 Popov & Hess map the axisymmetric Cattaneo-Mindlin problem (arbitrary histories of N and a
 unidirectional T, constant mu, uncoupled normal/tangential response) onto a row of independent springs.
@@ -167,13 +167,13 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
 
 @njit(cache=True)
 def mdr(p, h, N, a, a_old, dd):
-    """MDR tangential force T [N] in the direction of the increment ``dd`` [m] (physics.md 7), fixed grid.
+    """MDR tangential force T [N] in the direction of the increment ``dd`` [m] (Popov & Hess 2015, chapter 6), fixed grid.
 
     N >= 0: normal force after the step [N]; a, a_old: contact radius after and before the step [m].
     Reads and writes H_T and the cell displacements h[H_TANG_EXTRA : H_TANG_EXTRA + n]."""
     n = int(p[P_NSPRING])
     dx = p[P_DX]
-    if N <= 0.0 or a <= 0.0:
+    if N <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
         _release(h, H_TANG_EXTRA, max(_cells(a, dx, n), _cells(a_old, dx, n)))
         return 0.0
     if a > n * dx:
@@ -198,28 +198,73 @@ def _merge(h, k0, n, dx, r):
 
 
 @njit(cache=True)
-def _split(h, k0, n):
-    """Double the resolution of the lower half of the cells (both halves of a cell keep its mean)."""
+def _wbar(r, x0, x1):
+    """Mean of r^2 - x^2 over [x0, x1]."""
+    return r * r - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
+
+
+@njit(cache=True)
+def _split(h, k0, n, dx, r):
+    """Double the resolution of the lower half of the cells (width dx, contact radius r): the halves of a
+    cell take its mean times the ratio of their mean of w = r^2 - x^2 to the cell's (lengths inside the
+    contact). The length-weighted mean is kept, and a cell at the Coulomb limit (u proportional to w)
+    splits into two halves at their own limits, so splitting never relieves a sliding contact."""
+    hdx = 0.5 * dx
     for j in range(n // 2 - 1, -1, -1):
         u = h[k0 + j]
-        h[k0 + 2 * j] = u
-        h[k0 + 2 * j + 1] = u
+        x0 = j * dx
+        l0 = min(max(r - x0, 0.0), hdx)
+        l1 = min(max(r - x0 - hdx, 0.0), hdx)
+        u0 = 0.0
+        u1 = 0.0
+        if u != 0.0 and l0 > 0.0:
+            wc = _wbar(r, x0, x0 + l0 + l1)
+            if wc > 0.0:
+                u0 = u * _wbar(r, x0, x0 + l0) / wc
+                if l1 > 0.0:
+                    u1 = u * _wbar(r, x0 + hdx, x0 + hdx + l1) / wc
+            else:
+                u0 = u
+        h[k0 + 2 * j] = u0
+        h[k0 + 2 * j + 1] = u1
+
+
+@njit(cache=True)
+def _shrink_edge(h, k0, n, dx, a, a_old):
+    """Before a step in which the contact shrinks from a_old to a: the cell that the new edge cuts keeps
+    only its part inside a, so its mean is carried to that part with the profile w = a_old^2 - x^2 (the
+    released outer part is the one nearest the old edge, where |u| <= mu E* w / G_M is smallest). A cell at
+    the Coulomb limit stays at it, as every point of the continuous MDR does."""
+    i = int(a / dx)
+    if i >= n:
+        return
+    x0 = i * dx
+    l_new = a - x0
+    l_old = min(a_old - x0, dx)
+    if l_new > 0.0 and l_old > l_new:
+        w_old = _wbar(a_old, x0, x0 + l_old)
+        if w_old > 0.0:
+            h[k0 + i] *= _wbar(a_old, x0, a) / w_old
 
 
 @njit(cache=True)
 def mdr_adaptive(p, h, N, a, a_old, dd):
-    """MDR with few cells on a grid that follows the contact (no grid to set up; physics.md 7).
+    """MDR with few cells on a grid that follows the contact (no grid to set up; Popov & Hess 2015, chapter 6).
 
     Same cells as ``mdr`` (n = P_NSPRING, even), but the cell width dx, stored in h[H_TANG_EXTRA], is set
-    at first contact to the power of 2 [m] in (a / n, 2 a / n] and halved or doubled as the contact shrinks or grows, so the contact
-    always spans between n/4 and n cells (n/2 to n while it grows): when a > n dx, pairs of cells merge
-    into their length-weighted mean (exact for the integral of u); when both a and a_old < n dx / 4,
-    every cell splits in two halves that keep its mean. Cell displacements: h[H_TANG_EXTRA + 1 + i].
+    at first contact to R* times the power of 2 in (a / n, 2 a / n] (scale-free: problems with the same
+    dimensionless groups get the same grid in units of R*, and the grid does not depend on the time step)
+    and halved or doubled as the contact shrinks or grows, so the contact always spans between n/4 and n
+    cells (n/2 to n while it grows): when a > n dx, pairs of cells merge into their length-weighted mean
+    (exact for the integral of u, and cells at the Coulomb limit stay at it); when both a and
+    a_old < n dx / 4, every cell splits in two halves (``_split``: mean kept, cells at the Coulomb limit
+    stay at it); when the contact shrinks, the cell cut by the new edge keeps the mean of its remaining
+    part (``_shrink_edge``). Cell displacements: h[H_TANG_EXTRA + 1 + i].
     With n = 16, f/mu of an oblique impact is within about 1e-3 of the converged MDR value."""
     n = int(p[P_NSPRING])
     k0 = H_TANG_EXTRA + 1
     dx = h[H_TANG_EXTRA]
-    if N <= 0.0 or a <= 0.0:
+    if N <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
         if dx > 0.0:
             _release(h, k0, max(_cells(a, dx, n), _cells(a_old, dx, n)))
         h[H_TANG_EXTRA] = 0.0
@@ -228,13 +273,16 @@ def mdr_adaptive(p, h, N, a, a_old, dd):
     if dx <= 0.0 or a_old <= 0.0:
         _release(h, k0, n)
         a_old = 0.0
-        # a power of 2 [m] with n dx / 2 <= a < n dx: the grid does not depend on the time step
-        dx = 2.0 ** math.floor(math.log2(2.0 * a / n))
+        # R* times a power of 2 with n dx / 2 <= a < n dx: scale-free, independent of the time step
+        L = p[P_RSTAR] if p[P_RSTAR] > 0.0 else 1.0
+        dx = L * 2.0 ** math.floor(math.log2(2.0 * a / (n * L)))
     while a > n * dx:
         _merge(h, k0, n, dx, a_old)
         dx *= 2.0
     while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
-        _split(h, k0, n)
+        _split(h, k0, n, dx, a_old)
         dx *= 0.5
     h[H_TANG_EXTRA] = dx
+    if a < a_old:
+        _shrink_edge(h, k0, n, dx, a, a_old)
     return _advance(p, h, k0, n, dx, N, a, a_old, dd)

@@ -78,6 +78,9 @@ MODELS = {
                                 "in Granular Gases (Lecture Notes in Physics 564): thornton + md"),
 }
 
+#: Largest friction coefficient accepted (the failure map runs to 1e4).
+MAX_MU = 1e10
+
 #: Steps per Hertz contact time used to calibrate the damped-Hertz dashpot.
 CALIBRATION_STEPS = 4000
 #: Hertz contact time of the unit problem E* = R* = m* = V = 1.
@@ -119,6 +122,8 @@ def hertz_damping_for_restitution(e_n: float) -> float:
             raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
         return -vn
 
+    if restitution(0.0) <= e_n:
+        return 0.0      # the undamped law already gives e_n within the calibration's resolution
     hi = 1.0
     while restitution(hi) > e_n:
         hi *= 2.0
@@ -176,7 +181,7 @@ class Scene:
             raise InputError("body2 must be a Wall or a Sphere")
         self.sphere = sphere
         self.body2 = body2
-        self.mu = check_finite("mu (friction coefficient)", mu, lo=0.0, lo_open=False)
+        self.mu = check_finite("mu (friction coefficient)", mu, lo=0.0, hi=MAX_MU, lo_open=False)
         self.model = model
         self.steps_per_contact = None       # the model's time-step practice (None: the integrator default)
         if model is not None:
@@ -205,19 +210,34 @@ class Scene:
         p[P_MSTAR] = pr.m_star
         p[P_MU] = self.mu
         self.p_y = None
+        if self.e_n is not None and normal == "hertz":
+            raise InputError("e_n cannot act on the hertz law (elastic, e_n = 1): use hertz_damped or linear for a "
+                             "restitution, or thornton to calibrate its yield pressure from e_n")
         if normal == "thornton":
             if pr.p_y is not None:
+                if self.e_n is not None:
+                    raise InputError("the thornton law takes p_y from the material's yield, so e_n cannot act: give "
+                                     "either a yield of a material or e_n (with v_ref) to calibrate p_y, not both")
                 self.p_y = pr.p_y
                 self.p_y_source = "material"
             elif self.e_n is not None:
-                if self.e_n in (0.0, 1.0):
-                    raise InputError("e_n for thornton calibration must be in (0, 1)")
+                e_min = cf.thornton_restitution_ratio(cf.THORNTON_MIN_VELOCITY_RATIO)
+                if not e_min <= self.e_n < 1.0:
+                    raise InputError(f"e_n = {self.e_n:g} cannot be calibrated with the thornton law: valid range "
+                                     f"[{e_min:.3g}, 1)")
                 v = self._need_v_ref("the thornton calibration from e_n")
                 self.p_y = cf.thornton_yield_pressure_for_restitution(pr.E_star, pr.R_star, pr.m_star, self.e_n, v)
                 self.p_y_source = f"calibrated for e_n = {self.e_n:g} at {v:g} m/s"
             else:
                 raise InputError("the thornton law needs a yield: give yield_pressure or yield_stress of a "
                                  "material, or e_n (with v_ref) to calibrate p_y")
+            # F_y ~ p_y^3 R*^2 / E*^2 must stay an ordinary number
+            py_max = (1e100 * 6.0 * pr.E_star**2 / (math.pi**3 * pr.R_star**2)) ** (1.0 / 3.0)
+            py_min = (1e-100 * 6.0 * pr.E_star**2 / (math.pi**3 * pr.R_star**2)) ** (1.0 / 3.0)
+            if not py_min <= self.p_y <= py_max:
+                raise InputError(f"p_y = {self.p_y:g} Pa (limiting contact pressure of the thornton law) is outside "
+                                 f"[{py_min:.3g}, {py_max:.3g}] Pa for this pair, where its yield force is an "
+                                 f"ordinary number (a p_y that is never reached is the hertz law)")
             p[P_PY] = self.p_y
             p[P_DELTA_Y] = cf.thornton_yield_overlap(pr.E_star, pr.R_star, self.p_y)
             p[P_F_Y] = cf.thornton_yield_force(pr.E_star, pr.R_star, self.p_y)

@@ -17,7 +17,7 @@ from .slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR, 
 
 @njit(cache=True)
 def hertz(p, delta):
-    """Hertz (Johnson 1985, eq. 4.23; physics.md section 2): a = sqrt(R* delta), N = (4/3) E* a delta."""
+    """Hertz (Johnson 1985, eq. 4.23): a = sqrt(R* delta), N = (4/3) E* a delta."""
     if delta <= 0.0:
         return 0.0, 0.0
     a = math.sqrt(p[P_RSTAR] * delta)
@@ -26,7 +26,7 @@ def hertz(p, delta):
 
 @njit(cache=True)
 def thornton(p, h, delta):
-    """Thornton (1997) elastic-perfectly plastic normal law (physics.md section 3).
+    """Thornton (1997) elastic-perfectly plastic normal law (J. Appl. Mech. 64:383).
 
     Loading to a new maximum delta* (reads and writes H_DSTAR, H_FSTAR, H_RP, H_DP):
       Hertz while delta <= delta_y; then N = F_y + pi p_y R* (delta - delta_y), a = sqrt(R* delta).
@@ -125,7 +125,7 @@ def thornton_gap(h, delta):
 
 @njit(cache=True)
 def hertz_damped_unclamped(p, delta, vel):
-    """Hertz plus dashpot 2 gamma sqrt(m* k_n) d(delta)/dt with k_n = 2 E* a (physics.md section 4),
+    """Hertz plus dashpot 2 gamma sqrt(m* k_n) d(delta)/dt with k_n = 2 E* a (Tsuji, Tanaka & Ishida 1992),
     before the clamp at zero force. Returns (force, a)."""
     F, a = hertz(p, delta)
     kn = 2.0 * p[P_ESTAR] * a

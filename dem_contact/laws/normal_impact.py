@@ -34,7 +34,7 @@ def end_fraction(nid, p, h, delta, vn, N, inv_m, dt):
     for it in range(200):
         if s_hi - s_lo <= 1e-15:
             break
-        if it < 60:
+        if it < 60 and g_hi != g_lo:      # (both can reach 0: an exact root, halved end values)
             s = (s_lo * g_hi - s_hi * g_lo) / (g_hi - g_lo)
             if not (s > s_lo and s < s_hi):
                 s = 0.5 * (s_lo + s_hi)

@@ -34,7 +34,7 @@ def mean_radius(a0, a1):
 
 @njit(cache=True)
 def md(p, h, N, dN, a, a_old, dd, rescale):
-    """Thornton & Yin (1991) incremental Mindlin-Deresiewicz (physics.md 5.2).
+    """Thornton & Yin (1991) incremental Mindlin-Deresiewicz (Thornton & Yin 1991).
 
     dT = 8 G* a theta_k d(delta_t) + (-1)^k mu dN (1 - theta_k), with, for N after the step,
       k = 0 loading:   theta^3 = 1 - (T + mu dN) / (mu N)
@@ -135,7 +135,7 @@ def cap(T, muN):
 @njit(cache=True)
 def mindlin_total(p, h, N, a, dd, factor):
     """Total-displacement no-slip Hertz-Mindlin (LIGGGHTS `tangential history`, EDEM, LAMMPS `mindlin`;
-    physics.md 5.3): xi += dd, T = factor 8 G* a xi, capped at mu N with xi = T / (factor 8 G* a).
+    Mindlin 1949; Di Renzo & Di Maio 2004): xi += dd, T = factor 8 G* a xi, capped at mu N with xi = T / (factor 8 G* a).
     factor = 1; factor = 2/3 is Di Renzo & Di Maio (2005). Slots: H_XI, H_T."""
     muN = p[P_MU] * N
     if N <= 0.0 or a <= 0.0:
@@ -154,7 +154,7 @@ def mindlin_total(p, h, N, a, dd, factor):
 
 @njit(cache=True)
 def incremental(p, h, N, a, a_old, dd, rescale, kt):
-    """Incremental force laws (physics.md 5.3): T += kt dd, capped at mu N.
+    """Incremental force laws (Mindlin 1949; Di Renzo & Di Maio 2004): T += kt dd, capped at mu N.
     Yade / LAMMPS `mindlin/force` (kt = 8 G* a); with ``rescale`` LAMMPS `mindlin_rescale/force` first
     scales T by a / a_old when the contact shrinks; Cundall-Strack linear spring (constant kt). Slot: H_T."""
     if N <= 0.0 or a <= 0.0:

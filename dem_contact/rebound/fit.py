@@ -1,14 +1,23 @@
 """Fit of the Wu et al. model (eq. 4.5) to simulated (Theta, f/mu), and the critical Theta it implies.
 
 ``fit_wu`` never integrates: it takes data. Three estimates of Theta_c are reported side by side
-(physics.md section 6): the crossing of the fitted curve with 1 (and with 0.99, the level at which the
-paper's printed values sit), the direct simulation estimate (``sweep.critical_angle``, passed in), and
-eq. 4.1 from kappa.
+(Wu, Thornton & Li 2009, sections 4 and 6): the crossing of the fitted curve with 1 (and with 0.99, the
+level at which the paper's printed values sit), the direct simulation estimate (``sweep.critical_angle``,
+passed in), and eq. 4.1 from kappa.
+
+Two uncertainties of the crossing are reported apart. The statistical one treats the residuals as
+independent scatter and shrinks as 1/sqrt(points); but simulated points carry no noise, and their
+residuals are the systematic misfit of eq. 4.5 (a tanh crosses 1 at a finite slope, the simulated curve
+meets 1 tangentially), which does not shrink with more points. The model-form error is the scale of that misfit carried
+to the crossing: the largest residual divided by the slope of the fitted curve at its crossing (for the EE
+scene it is 0.14, and the crossing lies 0.12 below eq. 4.1, whatever the number of angles). A crossing beyond every point given (the fitted ones and the sliding ones left
+out) is an extrapolation and is flagged.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+import warnings as _warnings
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -25,9 +34,12 @@ UPPER = (3.0, 0.0, 5.0, 0.0)
 @dataclass
 class WuFit:
     """c = (c1, c2, c3, c4) of eq. 4.5 with standard uncertainties ``c_err`` (from the Jacobian and the
-    residual variance); Theta_c: crossing of the fitted curve with 1 (inf if none) with its standard
-    uncertainty; Theta_c_099: crossing with 0.99; rms: residual RMS; n_points: points used; Theta_max:
-    largest Theta fitted."""
+    residual variance, as if the residuals were independent); Theta_c: crossing of the fitted curve with 1
+    (inf if none); Theta_c_err: its statistical uncertainty (same assumption); Theta_c_model_err: the
+    model-form error of eq. 4.5 at the crossing (see the module docstring; usually the larger);
+    extrapolated: Theta_c lies beyond every point given (fitted or sliding); Theta_c_099: crossing with 0.99; rms:
+    residual RMS; n_points: points used; Theta_max: largest Theta fitted; warnings: what the caller should
+    tell the user."""
 
     c: tuple
     c_err: tuple
@@ -38,6 +50,9 @@ class WuFit:
     max_residual: float
     n_points: int
     Theta_max: float
+    Theta_c_model_err: float = math.inf
+    extrapolated: bool = False
+    warnings: list = field(default_factory=list)
 
     def __call__(self, Theta):
         """The fitted model f/mu (1 above Theta_c)."""
@@ -81,6 +96,7 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
         if ps.shape != T.shape:
             raise InputError("persistent_sliding must have the length of Theta")
         keep &= ~ps
+    T_all = float(np.max(T[np.isfinite(T)])) if np.any(np.isfinite(T)) else math.nan
     T, y = T[keep], y[keep]
     if T.size < 5:
         raise InputError(f"the fit needs at least 5 points below persistent sliding (got {T.size})")
@@ -119,9 +135,28 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
                       for k, h in enumerate(1e-6 * np.maximum(np.abs(c), 1e-3))])
         if np.all(np.isfinite(g)):
             tc_err = float(math.sqrt(max(g @ cov @ g, 0.0)))
+    T_max = float(T.max())
+    model_err = math.inf
+    msgs = []
+    if math.isfinite(tc):
+        c1, c2, c3, c4 = c
+        slope = c2 * c4 * (1.0 - math.tanh(c3 + c4 * tc) ** 2)
+        if slope > 0.0:
+            model_err = float(np.max(np.abs(r))) / slope
+    else:
+        msgs.append("the fitted curve of eq. 4.5 does not reach 1: no Theta_c from the fit")
+    # bracketed when some point (a sliding one, left out of the fit) lies at or beyond the crossing
+    extrapolated = bool(math.isfinite(tc) and tc > T_all)
+    if extrapolated:
+        model_err = math.inf        # the misfit inside the data says nothing about the curve beyond it
+        msgs.append(f"Theta_c = {tc:.4g} from the fit is an extrapolation beyond the largest fitted Theta "
+                    f"({T_max:.4g}) and every point given: simulate up to persistent sliding to bracket it")
+    for m in msgs:
+        _warnings.warn(m, RuntimeWarning, stacklevel=2)
     return WuFit(c=c, c_err=c_err, Theta_c=tc, Theta_c_err=tc_err, Theta_c_099=wu_crossing(c, 0.99),
                  rms=float(math.sqrt(np.mean(r * r))), max_residual=float(np.max(np.abs(r))),
-                 n_points=int(T.size), Theta_max=float(T.max()))
+                 n_points=int(T.size), Theta_max=T_max, Theta_c_model_err=model_err, extrapolated=extrapolated,
+                 warnings=msgs)
 
 
 def _shift(c, k, h):
@@ -139,7 +174,7 @@ def _jacobian(T, c):
 
 @dataclass
 class CriticalTheta:
-    """Three estimates of the critical Theta (physics.md section 6): ``fit`` (crossing of the fitted
+    """Three estimates of the critical Theta (Wu, Thornton & Li 2009): ``fit`` (crossing of the fitted
     curve with 1), ``fit_099`` (crossing with 0.99), ``simulation`` (smallest Theta at which the
     contact slides at every step, from ``sweep.critical_angle``), ``theory`` (eq. 4.1)."""
 

@@ -1,6 +1,6 @@
 """Rebound models of oblique impact in the dimensionless groups of Wu, Thornton & Li (2009).
 
-Pure numpy, usable on their own (physics.md section 6). Theta is the dimensionless incidence
+Pure numpy, usable on their own (Wu, Thornton & Li 2009, section 4). Theta is the dimensionless incidence
 2 tan(theta_i) / ((1 + e_n) mu); every model returns f/mu, Omega_r, e_t and Psi_r through the momentum
 identities (eqs 2.21-2.23) from its f/mu:
 
@@ -21,8 +21,8 @@ import numpy as np
 
 from ..errors import InputError
 
-#: Wu, Thornton & Li (2009) fits of eq. 4.5 (FEA, R = 10 mm, steel, mu = 0.3, no spin; physics.md
-#: section 6). Theta_c_paper is the paper's printed critical value (where its curve reaches about 0.99);
+#: Wu, Thornton & Li (2009) fits of eq. 4.5 (FEA, R = 10 mm, steel, mu = 0.3, no spin;
+#: section 4). Theta_c_paper is the paper's printed critical value (where its curve reaches about 0.99);
 #: Theta_c_eq41 is eq. 4.1 (None for the plastic cases). For comparison only.
 PUBLISHED_FITS = {
     "RE nu=0": dict(case="RE", nu=0.0, vn=(5.0,), c=(0.4627, -0.6053, 1.0000, -0.3832), Theta_c_eq41=6.0,
@@ -42,7 +42,7 @@ PUBLISHED_FITS = {
 
 def kappa_from_nu(nu):
     """kappa = k_t/k_n = 2 (1 - nu) / (2 - nu) for identical materials or a rigid body on an elastic one
-    (physics.md section 1)."""
+    (Johnson 1985, section 4.2; Wu, Thornton & Li 2009, section 2)."""
     nu = np.asarray(nu, dtype=float)
     return 2.0 * (1.0 - nu) / (2.0 - nu)
 

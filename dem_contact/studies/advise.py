@@ -2,8 +2,8 @@
 
 Given a scene, ranges of normal speed and impact angle, an initial spin and a tolerance on f/mu (the
 rebound kinematics follow exactly from it: Omega_r error = f/mu error, e_t error = 2 (f/mu error)/Theta,
-Psi_r error = 7 (f/mu error); physics.md eqs 2.21-2.23), ``advise`` integrates a sample of the ranges
-with converged MDR (physics.md 7) and measures, on the same sample, the error and the cost of each
+Psi_r error = 7 (f/mu error); Wu, Thornton & Li 2009, eqs 2.21-2.23), ``advise`` integrates a sample of the ranges
+with converged MDR (Popov & Hess 2015, chapter 6) and measures, on the same sample, the error and the cost of each
 candidate:
 
 1. rigid-body persistent sliding (f/mu = 1; exact where sliding persists through the whole impact);

@@ -1,4 +1,4 @@
-"""Speed-accuracy chart of the tangential laws against the exact reference (MDR, physics.md 7).
+"""Speed-accuracy chart of the tangential laws against the exact reference (MDR, Popov & Hess 2015, chapter 6).
 
 For each tangential law, normal law (hertz, thornton), integrator end (located / standard) and number of
 steps per contact, the impacts of a Theta grid in [0, Theta_max] (EE steel scene of Wu et al. 2009 by
@@ -23,7 +23,7 @@ from numba import njit
 
 from ..errors import InputError
 from ..impacts.impact import MAX_CONTACT_TIMES, body_inertia
-from ..impacts.integrator import N_OUT, N_SERIES, O_PN, O_PT, O_SLID, O_STATUS, O_VN, O_VT, O_W1, integrate_impact
+from ..impacts.integrator import N_OUT, N_SERIES, O_PN, O_PT, O_SLID, O_STATUS, O_VN, O_VT, O_W1, integrate_impact, is_sliding
 from ..materials import STEEL, Material, Sphere, Wall
 from ..laws.model import TANGENTIAL_LAWS, Scene
 
@@ -87,7 +87,7 @@ def run(scene: Scene, vn: float, vt: np.ndarray, spc: float, scheme: str, repeat
     with np.errstate(divide="ignore", invalid="ignore"):
         e_t = np.where(vt != 0, out[:, O_VT] / vt, np.nan)
     Omega_r = 2.0 * R1 * out[:, O_W1] / (5.0 * (1.0 + e_n) * mu * vn)
-    return GridRun(fm, e_t, Omega_r, e_n, best / vt.size, out[:, O_SLID] > 0.5)
+    return GridRun(fm, e_t, Omega_r, e_n, best / vt.size, is_sliding(out[:, O_SLID]))
 
 
 def _maxabs(x, y):

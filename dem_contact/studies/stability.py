@@ -6,7 +6,7 @@ extreme: steps per contact down to 2, mu from 0 to 1e4, nu = 0, 0.49, 0.5, grazi
 deg, normal speeds from 1e-4 to 100 m/s, plastic impacts up to V/V_y = 1e3. Each run is classified
 from what the library itself reports (``impact`` raises NumericalError on a blow-up and flags energy
 creation, Coulomb excess and coarse steps in ImpactResult.warnings), then compared with the converged
-MDR reference (physics.md 7) for the accuracy class:
+MDR reference (Popov & Hess 2015, chapter 6) for the accuracy class:
 
     ok          no failure, |f/mu - MDR| <= ACCURACY_TOL (and |e_n - MDR| <= ACCURACY_TOL)
     inaccurate  error above ACCURACY_TOL (reported by the library only as the coarse-steps warning)
@@ -83,7 +83,7 @@ def case_scene(case: Case, tangential: str) -> Scene:
     sphere_mat = mat
     normal = "hertz"
     if case.plastic_ratio > 0:
-        # p_y such that V_y = vn / ratio (physics.md 3, sphere on wall: V_y = 1.5605 sqrt(p_y^5 / (E*^4 rho)))
+        # p_y such that V_y = vn / ratio (Thornton 1997, sphere on wall: V_y = 1.5605 sqrt(p_y^5 / (E*^4 rho)))
         E_star = pair_properties(Sphere(0.01, mat), Wall(mat)).E_star
         vy = case.vn / case.plastic_ratio
         p_y = (vy / 1.5605) ** 0.4 * (E_star**4 * STEEL.rho) ** 0.2

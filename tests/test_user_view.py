@@ -1,0 +1,52 @@
+"""What a user sees: the first-run message instead of a stuck progress bar, and figures that do not draw
+unphysical model curves or cut the data."""
+import subprocess
+import sys
+
+import numpy as np
+
+from dem_contact import plots
+from dem_contact.impacts.presets import preset_scene
+from dem_contact.impacts.sweep import sweep_angles
+from dem_contact.rebound import models as rm
+
+
+def test_first_sweep_says_it_compiles():
+    code = ("from dem_contact.impacts.presets import preset_scene\n"
+            "from dem_contact.impacts.sweep import sweep_angles\n"
+            "sweep_angles(preset_scene('EE', 5.0), [10.0, 20.0], 5.0, progress=True)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert "compiling kernels (first run only)" in p.stderr
+
+
+def test_model_curves_blank_where_unphysical():
+    """A fit with f/mu(0) < 0 would draw e_t > 1 as Theta -> 0: those parts are not drawn."""
+    c = (-0.0034 - 0.6 * np.tanh(1.0), -0.6, 1.0, -0.4)      # f/mu(0) = -0.0034
+    m = plots._physical(rm.wu(np.linspace(0.0, 8.0, 400), c))
+    drawn = np.isfinite(m["e_t"])
+    assert not drawn[0] and drawn[-1]
+    assert np.all(m["e_t"][drawn] <= 1.0 + 1e-12)
+
+
+def test_fixed_speed_sweep_figure_keeps_every_point(tmp_path, monkeypatch):
+    """No Theta cut: the axis of a fixed-speed sweep reaches its largest Theta; the e_t axis follows the
+    data."""
+    res = sweep_angles(preset_scene("EE", 5.0), [5.0, 30.0, 60.0, 80.0], 5.0)
+    seen = {}
+    real_close = plots.plt.close
+
+    def keep(fig):
+        seen["axes"] = fig.axes
+        real_close(fig)
+
+    monkeypatch.setattr(plots.plt, "close", keep)
+    plots.sweep_figure(res, tmp_path / "s.png", Theta_c={"fit": 5.7, "simulation": 5.78, "eq. 4.1": 5.786})
+    f_ax, et_ax = seen["axes"][0], seen["axes"][4]
+    assert f_ax.get_xlim()[1] >= np.nanmax(res.Theta) - 1e-9
+    lo, hi = et_ax.get_ylim()
+    assert lo <= np.nanmin(res.e_t) and hi >= np.nanmax(res.e_t) and lo > -0.6
+    styles = {(tuple(l.get_color()) if not isinstance(l.get_color(), str) else l.get_color(), l.get_linestyle())
+              for l in f_ax.lines if "Theta_c" in str(l.get_label())}
+    assert len(styles) == 3                              # three distinct critical-angle lines
+    assert "$\\Theta$" in f_ax.get_xlabel()
