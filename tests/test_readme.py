@@ -7,8 +7,6 @@ import pytest
 
 README = pathlib.Path(__file__).resolve().parents[1] / "README.md"
 BLOCKS = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
-#: blocks known not to run yet, by a phrase they contain, with the reason
-KNOWN = {"contact_force_xyz": "the 3D snippet is being rewritten together with the 3D kernels' checked entry"}
 
 
 def test_readme_has_python_blocks():
@@ -18,9 +16,6 @@ def test_readme_has_python_blocks():
 @pytest.mark.parametrize("i", range(len(BLOCKS)))
 def test_readme_block_runs(i, tmp_path, monkeypatch):
     code = BLOCKS[i]
-    for phrase, reason in KNOWN.items():
-        if phrase in code:
-            pytest.skip(reason)
     monkeypatch.chdir(tmp_path)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
