@@ -398,7 +398,9 @@ def run_report():
         lines += ["## Impacts with out-of-plane spin", "",
                   "EE scene, V_n = 5 m/s, V_t = 1.5 m/s along x (Theta = 1 without spin), initial spin omega_x "
                   "about the incident velocity (in the wall plane), so the contact point also slides across "
-                  "the plane of incidence (v_cy = R omega_x) and the impact turns the slip direction. Tangential "
+                  "the plane of incidence (v_cy = R omega_x), at an angle to the incident velocity of the centre. On a flat wall "
+                  "the slip direction stays that incident angle through the impact (the tangential impulse ratio "
+                  "Py/Px equals v_cy/v_cx). Tangential "
                   "impulse on the sphere over mu P_n, f/mu along the incident contact-point velocity, rebound "
                   "spin (x along V_t, z the wall normal towards the sphere; the planar omega of Wu et al. is "
                   "-omega_y); 200 steps; columns 32 and 64 elements across.", "",
