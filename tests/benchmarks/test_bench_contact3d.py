@@ -27,8 +27,10 @@ ROUNDS = 30
 
 
 def _workload(tangential, normal="hertz", n=N_CONTACTS):
-    spheres = [Sphere(2e-3, STEEL), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0, yield_pressure=1e9))]
-    tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, normal=normal, tangential=tangential, e_n=0.8, v_ref=1.0)
+    steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho, yield_pressure=2.5e9)    # (thornton yields at p_y)
+    spheres = [Sphere(2e-3, steel), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0, yield_pressure=1e9))]
+    e_n = 0.8 if normal in ("hertz_damped", "linear") else None
+    tab = pair_table(spheres, [Wall(steel)], mu=0.4, normal=normal, tangential=tangential, e_n=e_n, v_ref=1.0)
     rng = np.random.default_rng(0)
     nrm = rng.normal(size=(n, 3))
     nrm /= np.linalg.norm(nrm, axis=1)[:, None]
