@@ -44,11 +44,12 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import InputError, NumericalError
+from ..laws import mdr as M
 from ..laws import vector as V
 from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
                             MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
-from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MSTAR, P_MU,
-                          P_NSPRING, P_PY, P_RSTAR)
+from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MDR_PROFILE,
+                          P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR)
 from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
                            tangential_base)
 
@@ -181,9 +182,11 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
 
     The cells hold 2D displacements in a frame (e1, e2 = n x e1) of the tangent plane (``V.mdr_frame``).
     The slip increment in the frame, (dd . e1, dd . e2), is added to every cell in contact, with the entry
-    and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle
-    |G_M u| <= mu E* w. mdr_adaptive: the grid of ``mdr.mdr_adaptive`` (cell width in the history), mdr:
-    the fixed grid of ``mdr.mdr`` (NaN when the contact outgrows it)."""
+    and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle |G_M u| <= mu q
+    with the cell mean of the line load q of ``mdr._advance`` (the Hertz pressure truncated at p_y during
+    Thornton's plastic loading, ``mdr.truncation``). mdr_adaptive: the grid of ``mdr.mdr_adaptive`` (cell
+    width in the history; its ``merged``, ``halves``, ``shrink_edge`` and ``initial_width``), mdr: the fixed
+    grid of ``mdr.mdr`` (NaN when the contact outgrows it)."""
     vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
     E = params[row, P_ESTAR]
     N, a, s0, s1, s2, s3 = _normal(nid, E, params[row, P_RSTAR], params[row, P_MSTAR],
@@ -204,7 +207,7 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
     k0 = b + V.R_CELLS
     adaptive = tid == MDR_ADAPTIVE
     dx = H[c, b + V.R_DX] if adaptive else params[row, P_DX]
-    if Np <= 0.0 or a <= 0.0:
+    if Np <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
         if dx > 0.0:
             for j in range(2 * max(V.cells(a, dx, n), V.cells(a_old, dx, n))):
                 H[c, k0 + j] = 0.0
@@ -215,42 +218,46 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
         return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
     ex, ey, ez, fx, fy, fz, d1, d2 = V.mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
                                                  ddx, ddy, ddz, cs, sn)
+    R = params[row, P_RSTAR]
     if adaptive:
+        # the grid of mdr.mdr_adaptive (its merge, split and shrink-edge rules on both components)
         if dx <= 0.0 or a_old <= 0.0:
             for j in range(2 * n):
                 H[c, k0 + j] = 0.0
             a_old = 0.0
-            dx = 2.0 ** math.floor(math.log2(2.0 * a / n))
+            dx = M.initial_width(a, n, R)
         while a > n * dx:
-            # merge pairs of cells into their length-weighted mean (mdr._merge), both components
             for j in range(n // 2):
                 x0 = 2 * j * dx
-                l0 = min(max(a_old - x0, 0.0), dx)
-                l1 = min(max(a_old - x0 - dx, 0.0), dx)
-                u1 = 0.0
-                u2 = 0.0
-                if l0 + l1 > 0.0:
-                    u1 = (H[c, k0 + 4 * j] * l0 + H[c, k0 + 4 * j + 2] * l1) / (l0 + l1)
-                    u2 = (H[c, k0 + 4 * j + 1] * l0 + H[c, k0 + 4 * j + 3] * l1) / (l0 + l1)
+                u1 = M.merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
+                u2 = M.merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
                 H[c, k0 + 2 * j] = u1
                 H[c, k0 + 2 * j + 1] = u2
             for j in range(2 * (n // 2), 2 * n):
                 H[c, k0 + j] = 0.0
             dx *= 2.0
         while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
-            # split every cell of the lower half in two that keep its mean (mdr._split)
+            hdx = 0.5 * dx
             for j in range(n // 2 - 1, -1, -1):
-                u1 = H[c, k0 + 2 * j]
-                u2 = H[c, k0 + 2 * j + 1]
-                H[c, k0 + 4 * j] = u1
-                H[c, k0 + 4 * j + 1] = u2
-                H[c, k0 + 4 * j + 2] = u1
-                H[c, k0 + 4 * j + 3] = u2
+                u10, u11 = M.halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
+                u20, u21 = M.halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
+                H[c, k0 + 4 * j] = u10
+                H[c, k0 + 4 * j + 1] = u20
+                H[c, k0 + 4 * j + 2] = u11
+                H[c, k0 + 4 * j + 3] = u21
             dx *= 0.5
         H[c, b + V.R_DX] = dx
+        if a < a_old:
+            i, f = M.shrink_edge(n, dx, a, a_old)
+            if i >= 0:
+                H[c, k0 + 2 * i] *= f
+                H[c, k0 + 2 * i + 1] *= f
     # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
     GM = 4.0 * params[row, P_GSTAR]
-    umax_per_w = params[row, P_MU] * E * (3.0 * Np / (4.0 * E * a * a * a)) / GM
+    kt = 1.0
+    if nid == THORNTON:
+        kt = M.truncation(params[row, P_MDR_PROFILE], params[row, P_PY], s1, Np, a, E, R)
+    umax_per_w = M.coulomb_per_w(params[row, P_MU], E, params[row, P_GSTAR], R, Np, a, kt)
     a2 = a * a
     da = a - a_old
     m = max(V.cells(a, dx, n), V.cells(a_old, dx, n))
@@ -258,9 +265,16 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
     dx2 = dx * dx / 3.0
     S1 = 0.0
     S2 = 0.0
+    Q0 = 0.0      # truncated profile: the integral of the line load up to the cell's lower edge
     for i in range(full):
         k = k0 + 2 * i
-        u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1)))
+        if kt < 1.0:
+            Q1 = M.truncated_integral((i + 1) * dx, a, kt)
+            umax = umax_per_w * (Q1 - Q0) / dx
+            Q0 = Q1
+        else:
+            umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1))
+        u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
         H[c, k] = u1
         H[c, k + 1] = u2
         S1 += u1
@@ -285,7 +299,13 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
             u1 = (u1 * l_old + d1 * f) / l_new
             u2 = (u2 * l_old + d2 * f) / l_new
         x1 = x0 + l_new
-        u1, u2 = V.radial(u1, u2, umax_per_w * (a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0))
+        if kt < 1.0:
+            Q1 = M.truncated_integral(x1, a, kt)
+            wbar = (Q1 - Q0) / l_new
+            Q0 = Q1
+        else:
+            wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
+        u1, u2 = V.radial(u1, u2, umax_per_w * wbar)
         H[c, k] = u1
         H[c, k + 1] = u2
         T1 += u1 * l_new

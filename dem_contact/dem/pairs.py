@@ -51,7 +51,7 @@ def pair_table(spheres, walls=(), *, mu=0.3, normal: str = "hertz", tangential: 
     normal, tangential (default: Scene's default), e_n, v_ref and ``scene_options`` (e.g. mdr_springs):
     as for ``Scene``, the same laws for every pair.
     Sphere-sphere rows use both radii and masses (1/R* = 1/R1 + 1/R2, 1/m* = 1/m1 + 1/m2); sphere-wall
-    rows the wall's own material with 1/R2 = 0, 1/m2 = 0 (physics.md section 1).
+    rows the wall's own material with 1/R2 = 0, 1/m2 = 0 (Johnson 1985, Contact Mechanics, section 4.2).
     """
     spheres = list(spheres)
     walls = list(walls)

@@ -15,7 +15,7 @@ Per step, with the contact radius a (after) and a_old (before) given by the norm
   w = (delta - delta_p) - x^2/R_p. During Thornton's plastic loading the pressure is the Hertz
   pressure of the current overlap truncated at the limiting pressure, p = min(p_H(r), p_y): Thornton
   (1997) builds his force law from exactly this distribution, and its line load integrates to his F
-  (``truncated_line_load``). The level is found from N (``_truncation``), so it also holds for a p_y
+  (``truncated_line_load``). The level is found from N (``truncation``), so it also holds for a p_y
   that varies during the contact (``traction_yield``). For the damped laws the Coulomb limit follows the
   total force N with a Hertz shape, c = 3 N / (4 E* a^3): a limit following the elastic part only would
   let a tangential force survive at N = 0, where the damped contact separates (delta > 0). The
@@ -60,25 +60,35 @@ def _release(h, k0, m):
     h[H_T] = 0.0
 
 
-@njit(cache=True)
-def _truncation(p, h, N, a):
+@njit(inline="always", cache=True)
+def truncation(profile, p_y, fstar, N, a, E, R):
     """Ratio k = p_t / p0 of the truncation level p_t to the Hertz peak pressure p0 = 2 E* a / (pi R*) of
-    the contact radius a, during Thornton's plastic loading (1 otherwise: no truncation).
+    the contact radius a, during Thornton's plastic loading (1 otherwise: no truncation). ``profile``:
+    P_MDR_PROFILE, ``fstar``: the largest force F* of the contact (written by the normal law in this step).
 
     The Hertz pressure truncated at p_t carries F = pi a^2 p_t (1 - k^2 / 3) (Thornton 1997); with
     F_H = (2/3) pi a^2 p0 this is k^3 - 3 k + 2 N / F_H = 0, whose root in [0, 1] is
     k = 2 cos(arccos(-N / F_H) / 3 - 2 pi / 3). Plastic loading: a thornton contact (p_y > 0) at its
-    largest force (N = F*, written by the normal law in this step) below the Hertz force of R*."""
-    if p[P_MDR_PROFILE] != 0.0 or p[P_PY] <= 0.0 or N < h[H_FSTAR]:
+    largest force (N = F*) below the Hertz force of R*."""
+    if profile != 0.0 or p_y <= 0.0 or N < fstar:
         return 1.0
-    ratio = 3.0 * N * p[P_RSTAR] / (4.0 * p[P_ESTAR] * a * a * a)    # N / F_H
+    ratio = 3.0 * N * R / (4.0 * E * a * a * a)    # N / F_H
     if ratio >= 1.0:
         return 1.0
     return 2.0 * math.cos(math.acos(-ratio) / 3.0 - 2.0 * math.pi / 3.0)
 
 
+@njit(inline="always", cache=True)
+def coulomb_per_w(mu, E, G, R, N, a, k):
+    """Coulomb limit of a cell per unit of w: |u| <= mu q / G_M with q = E* c w (G_M = 4 G*). Untruncated
+    (k >= 1): c = 3 N / (4 E* a^3), the Hertz shape scaled to N; truncated (k < 1): c = 1/R* and w is
+    the integral of ``truncated_integral`` per unit length."""
+    c = 3.0 * N / (4.0 * E * a * a * a) if k >= 1.0 else 1.0 / R
+    return mu * E * c / (4.0 * G)
+
+
 @njit(cache=True)
-def _truncated_integral(x, a, k):
+def truncated_integral(x, a, k):
     """int_0^x q(s) ds / (E*/R*) for the Hertz pressure of radius a truncated at k p0 (0 <= x <= a).
 
     q = (E*/R*)(a^2 - s^2) - dq, and for s < c = a sqrt(1 - k^2) the part cut off is
@@ -104,9 +114,8 @@ def _truncated_integral(x, a, k):
 def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     """Advance the cells h[k0 : k0 + n] of width dx [m] by one step (see the module docstring); return T."""
     GM = 4.0 * p[P_GSTAR]
-    kt = _truncation(p, h, N, a)
-    c = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a) if kt >= 1.0 else 1.0 / p[P_RSTAR]
-    umax_per_w = p[P_MU] * p[P_ESTAR] * c / GM   # Coulomb: |u| <= mu q / G_M, q = E* c w
+    kt = truncation(p[P_MDR_PROFILE], p[P_PY], h[H_FSTAR], N, a, p[P_ESTAR], p[P_RSTAR])
+    umax_per_w = coulomb_per_w(p[P_MU], p[P_ESTAR], p[P_GSTAR], p[P_RSTAR], N, a, kt)
     a2 = a * a
     da = a - a_old
     m = max(_cells(a, dx, n), _cells(a_old, dx, n))
@@ -118,7 +127,7 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
     for i in range(full):
         k = k0 + i
         if kt < 1.0:
-            Q1 = _truncated_integral((i + 1) * dx, a, kt)
+            Q1 = truncated_integral((i + 1) * dx, a, kt)
             umax = umax_per_w * (Q1 - Q0) / dx
             Q0 = Q1
         else:
@@ -148,7 +157,7 @@ def _advance(p, h, k0, n, dx, N, a, a_old, dd):
             u = h[k] + dd
         x1 = x0 + l_new
         if kt < 1.0:
-            Q1 = _truncated_integral(x1, a, kt)
+            Q1 = truncated_integral(x1, a, kt)
             wbar = (Q1 - Q0) / l_new
             Q0 = Q1
         else:
@@ -181,70 +190,90 @@ def mdr(p, h, N, a, a_old, dd):
     return _advance(p, h, H_TANG_EXTRA, n, dx, N, a, a_old, dd)
 
 
+@njit(inline="always", cache=True)
+def merged(u0, u1, r, x0, dx):
+    """Length-weighted mean of two neighbouring cells u0, u1 of width dx starting at x0 (lengths inside the
+    contact of radius r): the value of the merged cell."""
+    l0 = min(max(r - x0, 0.0), dx)
+    l1 = min(max(r - x0 - dx, 0.0), dx)
+    if l0 + l1 > 0.0:
+        return (u0 * l0 + u1 * l1) / (l0 + l1)
+    return 0.0
+
+
 @njit(cache=True)
 def _merge(h, k0, n, dx, r):
     """Halve the resolution: cell j takes the length-weighted mean of cells 2j, 2j+1 (lengths inside the
     contact of radius r); the upper half of the cells is cleared."""
     for j in range(n // 2):
-        x0 = 2 * j * dx
-        l0 = min(max(r - x0, 0.0), dx)
-        l1 = min(max(r - x0 - dx, 0.0), dx)
-        u = 0.0
-        if l0 + l1 > 0.0:
-            u = (h[k0 + 2 * j] * l0 + h[k0 + 2 * j + 1] * l1) / (l0 + l1)
-        h[k0 + j] = u
+        h[k0 + j] = merged(h[k0 + 2 * j], h[k0 + 2 * j + 1], r, 2 * j * dx, dx)
     for j in range(n // 2, n):
         h[k0 + j] = 0.0
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def _wbar(r, x0, x1):
     """Mean of r^2 - x^2 over [x0, x1]."""
     return r * r - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
 
 
+@njit(inline="always", cache=True)
+def halves(u, r, x0, hdx):
+    """The two halves (width hdx) of a cell u starting at x0 (contact radius r): u times the ratio of
+    their mean of w = r^2 - x^2 to the cell's (lengths inside the contact)."""
+    l0 = min(max(r - x0, 0.0), hdx)
+    l1 = min(max(r - x0 - hdx, 0.0), hdx)
+    u0 = 0.0
+    u1 = 0.0
+    if u != 0.0 and l0 > 0.0:
+        wc = _wbar(r, x0, x0 + l0 + l1)
+        if wc > 0.0:
+            u0 = u * _wbar(r, x0, x0 + l0) / wc
+            if l1 > 0.0:
+                u1 = u * _wbar(r, x0 + hdx, x0 + hdx + l1) / wc
+        else:
+            u0 = u
+    return u0, u1
+
+
 @njit(cache=True)
 def _split(h, k0, n, dx, r):
     """Double the resolution of the lower half of the cells (width dx, contact radius r): the halves of a
-    cell take its mean times the ratio of their mean of w = r^2 - x^2 to the cell's (lengths inside the
-    contact). The length-weighted mean is kept, and a cell at the Coulomb limit (u proportional to w)
-    splits into two halves at their own limits, so splitting never relieves a sliding contact."""
+    cell take its mean times the ratio of their mean of w = r^2 - x^2 to the cell's (``halves``). The
+    length-weighted mean is kept, and a cell at the Coulomb limit (u proportional to w) splits into two
+    halves at their own limits, so splitting never relieves a sliding contact."""
     hdx = 0.5 * dx
     for j in range(n // 2 - 1, -1, -1):
-        u = h[k0 + j]
-        x0 = j * dx
-        l0 = min(max(r - x0, 0.0), hdx)
-        l1 = min(max(r - x0 - hdx, 0.0), hdx)
-        u0 = 0.0
-        u1 = 0.0
-        if u != 0.0 and l0 > 0.0:
-            wc = _wbar(r, x0, x0 + l0 + l1)
-            if wc > 0.0:
-                u0 = u * _wbar(r, x0, x0 + l0) / wc
-                if l1 > 0.0:
-                    u1 = u * _wbar(r, x0 + hdx, x0 + hdx + l1) / wc
-            else:
-                u0 = u
+        u0, u1 = halves(h[k0 + j], r, j * dx, hdx)
         h[k0 + 2 * j] = u0
         h[k0 + 2 * j + 1] = u1
 
 
-@njit(cache=True)
-def _shrink_edge(h, k0, n, dx, a, a_old):
+@njit(inline="always", cache=True)
+def shrink_edge(n, dx, a, a_old):
     """Before a step in which the contact shrinks from a_old to a: the cell that the new edge cuts keeps
     only its part inside a, so its mean is carried to that part with the profile w = a_old^2 - x^2 (the
     released outer part is the one nearest the old edge, where |u| <= mu E* w / G_M is smallest). A cell at
-    the Coulomb limit stays at it, as every point of the continuous MDR does."""
+    the Coulomb limit stays at it, as every point of the continuous MDR does. Returns (i, f): cell i is
+    multiplied by f (i = -1: no cell changes)."""
     i = int(a / dx)
-    if i >= n:
-        return
-    x0 = i * dx
-    l_new = a - x0
-    l_old = min(a_old - x0, dx)
-    if l_new > 0.0 and l_old > l_new:
-        w_old = _wbar(a_old, x0, x0 + l_old)
-        if w_old > 0.0:
-            h[k0 + i] *= _wbar(a_old, x0, a) / w_old
+    if i < n:
+        x0 = i * dx
+        l_new = a - x0
+        l_old = min(a_old - x0, dx)
+        if l_new > 0.0 and l_old > l_new:
+            w_old = _wbar(a_old, x0, x0 + l_old)
+            if w_old > 0.0:
+                return i, _wbar(a_old, x0, a) / w_old
+    return -1, 1.0
+
+
+@njit(inline="always", cache=True)
+def initial_width(a, n, R):
+    """Cell width of mdr_adaptive at first contact: R* times the power of 2 with n dx / 2 <= a < n dx
+    (scale-free, independent of the time step)."""
+    L = R if R > 0.0 else 1.0
+    return L * 2.0 ** math.floor(math.log2(2.0 * a / (n * L)))
 
 
 @njit(cache=True)
@@ -259,7 +288,7 @@ def mdr_adaptive(p, h, N, a, a_old, dd):
     (exact for the integral of u, and cells at the Coulomb limit stay at it); when both a and
     a_old < n dx / 4, every cell splits in two halves (``_split``: mean kept, cells at the Coulomb limit
     stay at it); when the contact shrinks, the cell cut by the new edge keeps the mean of its remaining
-    part (``_shrink_edge``). Cell displacements: h[H_TANG_EXTRA + 1 + i].
+    part (``shrink_edge``). Cell displacements: h[H_TANG_EXTRA + 1 + i].
     With n = 16, f/mu of an oblique impact is within about 1e-3 of the converged MDR value."""
     n = int(p[P_NSPRING])
     k0 = H_TANG_EXTRA + 1
@@ -273,9 +302,7 @@ def mdr_adaptive(p, h, N, a, a_old, dd):
     if dx <= 0.0 or a_old <= 0.0:
         _release(h, k0, n)
         a_old = 0.0
-        # R* times a power of 2 with n dx / 2 <= a < n dx: scale-free, independent of the time step
-        L = p[P_RSTAR] if p[P_RSTAR] > 0.0 else 1.0
-        dx = L * 2.0 ** math.floor(math.log2(2.0 * a / (n * L)))
+        dx = initial_width(a, n, p[P_RSTAR])
     while a > n * dx:
         _merge(h, k0, n, dx, a_old)
         dx *= 2.0
@@ -284,5 +311,7 @@ def mdr_adaptive(p, h, N, a, a_old, dd):
         dx *= 0.5
     h[H_TANG_EXTRA] = dx
     if a < a_old:
-        _shrink_edge(h, k0, n, dx, a, a_old)
+        i, f = shrink_edge(n, dx, a, a_old)
+        if i >= 0:
+            h[k0 + i] *= f
     return _advance(p, h, k0, n, dx, N, a, a_old, dd)
