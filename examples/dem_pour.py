@@ -2,7 +2,7 @@
 
 Velocity Verlet for positions, velocities and spins; gravity; five walls (floor and four sides, each
 with its own material); a cell-list neighbour search; contact histories kept per particle and carried
-from step to step; every contact force from ``dem_contact.dem.contact3d.contact_force_xyz``.
+from step to step; every contact force from ``dem_contact.dem.contact3d.contact_force``.
 
 Writes into --out: legacy VTK files ``pour_XXXX.vtk`` (open the series in ParaView: points with
 radius, type, velocity, force), ``energy.csv`` (kinetic, potential, elastic and total energy over time),
@@ -18,7 +18,7 @@ import time
 import numpy as np
 from numba import njit
 
-from dem_contact.dem.contact3d import N_HIST3D, contact_force_xyz, reset_contact
+from dem_contact.dem.contact3d import contact_force, new_histories, reset_contact
 from dem_contact.laws.slots import P_ESTAR, P_RSTAR
 from dem_contact.materials import Material, Sphere, Wall
 from dem_contact.dem.pairs import pair_table
@@ -48,8 +48,10 @@ def _build_cells(pos, cell, nc, head, nxt):
 
 @njit(cache=True)
 def _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, cell, nc, head, nxt,
-            cj, cH, cH3, nj, nH, nH3, Hw, H3w, F, Tq):
-    """Contact and gravity forces and torques. Old contact lists (cj, cH, cH3) -> new (nj, nH, nH3).
+            cj, cH, nj, nH, Hw, F, Tq):
+    """Contact and gravity forces and torques. Old contact lists (cj, cH) -> new (nj, nH); the history of
+    slot m of particle i is row i * MAX_CONTACTS + m of cH / nH, that of particle i on wall w row
+    i * N_WALLS + w of Hw.
     Returns the elastic (Hertz) energy stored in the contacts."""
     n = pos.shape[0]
     F[:] = 0.0
@@ -77,12 +79,11 @@ def _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, 
                             if delta > 0.0 and m < MAX_CONTACTS:
                                 # carry the history of (i, j) over from the previous step
                                 nj[i, m] = j
-                                nH[i, m, :] = 0.0
-                                nH3[i, m, :] = 0.0
+                                c = i * MAX_CONTACTS + m
+                                nH[c, :] = 0.0
                                 for q in range(MAX_CONTACTS):
                                     if cj[i, q] == j:
-                                        nH[i, m, :] = cH[i, q, :]
-                                        nH3[i, m, :] = cH3[i, q, :]
+                                        nH[c, :] = cH[i * MAX_CONTACTS + q, :]
                                         break
                                 nx, ny, nz = dx / dist, dy / dist, dz / dist
                                 ri = rad[i] - 0.5 * delta          # centre -> contact point, along n
@@ -92,9 +93,12 @@ def _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, 
                                 vx = vel[i, 0] + wi[0] - vel[j, 0] - wj[0]
                                 vy = vel[i, 1] + wi[1] - vel[j, 1] - wj[1]
                                 vz = vel[i, 2] + wi[2] - vel[j, 2] - wj[2]
-                                p = params[srow[typ[i], typ[j]]]
-                                fx, fy, fz, tx, ty, tz = contact_force_xyz(nid, tid, p, nH[i, m], nH3[i, m],
-                                                                           nx, ny, nz, delta, vx, vy, vz, dt)
+                                # the contact frame turns with the mean spin about the normal
+                                wn = 0.5 * ((omg[i, 0] + omg[j, 0]) * nx + (omg[i, 1] + omg[j, 1]) * ny
+                                            + (omg[i, 2] + omg[j, 2]) * nz)
+                                row = srow[typ[i], typ[j]]
+                                fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, row, nH, c, nx, ny, nz,
+                                                                       delta, vx, vy, vz, wn, dt)
                                 F[i, 0] += fx
                                 F[i, 1] += fy
                                 F[i, 2] += fz
@@ -106,7 +110,8 @@ def _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, 
                                 for k in range(3):
                                     Tq[i, k] += a[k]
                                     Tq[j, k] += b[k]
-                                eel += 8.0 / 15.0 * p[P_ESTAR] * math.sqrt(p[P_RSTAR]) * delta ** 2.5
+                                eel += (8.0 / 15.0 * params[row, P_ESTAR] * math.sqrt(params[row, P_RSTAR])
+                                        * delta ** 2.5)
                                 m += 1
                         j = nxt[j]
         for w in range(N_WALLS):
@@ -118,7 +123,7 @@ def _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, 
             else:
                 delta = pos[i, ax] + rad[i] - L
             if delta <= 0.0:
-                reset_contact(Hw[i, w], H3w[i, w])
+                reset_contact(Hw, i * N_WALLS + w)
                 continue
             nx = ny = nz = 0.0
             if w == 4:
@@ -129,22 +134,23 @@ def _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, 
                 ny = -1.0 if w % 2 == 0 else 1.0
             ri = rad[i] - delta
             wi = _cross(omg[i, 0], omg[i, 1], omg[i, 2], ri * nx, ri * ny, ri * nz)
-            p = params[wrow[typ[i], w]]
-            fx, fy, fz, tx, ty, tz = contact_force_xyz(nid, tid, p, Hw[i, w], H3w[i, w], nx, ny, nz, delta,
-                                                       vel[i, 0] + wi[0], vel[i, 1] + wi[1], vel[i, 2] + wi[2], dt)
+            row = wrow[typ[i], w]
+            wn = 0.5 * (omg[i, 0] * nx + omg[i, 1] * ny + omg[i, 2] * nz)
+            fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, row, Hw, i * N_WALLS + w, nx, ny, nz, delta,
+                                                   vel[i, 0] + wi[0], vel[i, 1] + wi[1], vel[i, 2] + wi[2], wn, dt)
             F[i, 0] += fx
             F[i, 1] += fy
             F[i, 2] += fz
             a = _cross(ri * nx, ri * ny, ri * nz, tx, ty, tz)
             for k in range(3):
                 Tq[i, k] += a[k]
-            eel += 8.0 / 15.0 * p[P_ESTAR] * math.sqrt(p[P_RSTAR]) * delta ** 2.5
+            eel += 8.0 / 15.0 * params[row, P_ESTAR] * math.sqrt(params[row, P_RSTAR]) * delta ** 2.5
     return eel
 
 
 @njit(cache=True)
 def run_steps(nsteps, nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, inv_I, L, dt, cell, nc,
-              head, nxt, cj, cH, cH3, nj, nH, nH3, Hw, H3w, F, Tq):
+              head, nxt, cj, cH, nj, nH, Hw, F, Tq):
     """Advance ``nsteps`` velocity-Verlet steps. Returns the elastic energy at the last step."""
     eel = 0.0
     n = pos.shape[0]
@@ -156,10 +162,9 @@ def run_steps(nsteps, nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mas
                 pos[i, k] += vel[i, k] * dt
         _build_cells(pos, cell, nc, head, nxt)
         eel = _forces(nid, tid, params, srow, wrow, typ, pos, vel, omg, rad, mass, L, dt, cell, nc, head, nxt,
-                      cj, cH, cH3, nj, nH, nH3, Hw, H3w, F, Tq)
+                      cj, cH, nj, nH, Hw, F, Tq)
         cj[:] = nj
         cH[:] = nH
-        cH3[:] = nH3
         for i in range(n):
             for k in range(3):
                 vel[i, k] += 0.5 * dt * F[i, k] / mass[i]
@@ -259,12 +264,11 @@ def main(argv=None):
     nxt = np.full(a.n, -1, dtype=np.int64)
     hs = tab.history_size
     cj, nj = (np.full((a.n, MAX_CONTACTS), -1, dtype=np.int64) for _ in range(2))
-    cH, nH = (np.zeros((a.n, MAX_CONTACTS, hs)) for _ in range(2))
-    cH3, nH3 = (np.zeros((a.n, MAX_CONTACTS, N_HIST3D)) for _ in range(2))
-    Hw, H3w = np.zeros((a.n, N_WALLS, hs)), np.zeros((a.n, N_WALLS, N_HIST3D))
+    cH, nH = (new_histories(a.n * MAX_CONTACTS, hs) for _ in range(2))
+    Hw = new_histories(a.n * N_WALLS, hs)
     F, Tq = np.zeros((a.n, 3)), np.zeros((a.n, 3))
     state = (tab.normal_id, tab.tangential_id, tab.params, tab.sphere_row, tab.wall_row, typ, pos, vel, omg,
-             rad, mass, inv_I, L, dt, cell, nc, head, nxt, cj, cH, cH3, nj, nH, nH3, Hw, H3w, F, Tq)
+             rad, mass, inv_I, L, dt, cell, nc, head, nxt, cj, cH, nj, nH, Hw, F, Tq)
     nsteps = int(math.ceil(a.time / dt))
     chunk = max(1, nsteps // (5 * a.frames))
     energy = []

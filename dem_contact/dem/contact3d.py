@@ -1,173 +1,171 @@
 """Drop-in 3D contact force for DEM codes: any normal x tangential law of ``laws.contact``, in 3D.
 
+    contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+        -> (Fx, Fy, Fz, Ftx, Fty, Ftz)
+
 Conventions (SI units):
 
+- ``params``: float64[n_rows, N_PARAMS] parameter table (``pairs.PairTable.params``), ``row`` the pair's row;
+- ``H``: float64[n_contacts, history_size] the whole state of every contact, row ``c`` for this one
+  (``pairs.PairTable.history_size``; layout in ``laws.vector``);
 - ``n``: unit normal from body 1 to body 2; ``delta`` > 0: overlap [m];
 - ``v``: relative velocity of body 1 with respect to body 2 at the contact point [m/s],
   v = (V1 + w1 x r1) - (V2 + w2 x r2) with r_i the vector from the centre of body i to the contact point;
   the overlap rate is d(delta)/dt = v . n (seen by dashpots) and the slip increment is
-  dd = (v - (v . n) n) dt. In a velocity-Verlet loop pass the half-step velocities (the slip over the step);
-  ``integrator.integrate_impact`` additionally gives dashpots the normal velocity predicted at the end of
-  the step, v . n - (dt / 2) N / m* (the 3D test loop does the same);
+  dd = (v - (v . n) n) dt. In a velocity-Verlet loop pass the half-step velocities;
+- ``wn``: rotation rate of the contact frame about the normal [rad/s], wn = 0.5 (w1 + w2) . n, the mean
+  spin of the two bodies about the normal: the tangential history turns with it, so a pair turned
+  rigidly sees its force turn with it (objectivity). 0.0 keeps the history fixed in space apart from the
+  carry into the tangent plane (as LAMMPS's granular models do). Relative spin about the normal (torsion)
+  is not a tangential load and does not act on the force;
+- ``dt`` > 0 [s];
 - returned: the force on body 1 (normal + tangential) and its tangential part (for the torques
   r1 x F_t on body 1 and -r2 x F_t on body 2). The force on body 2 is the opposite.
 
-State of one contact: the planar history row ``h`` (``laws.slots``, its length is the law's history size)
-and a separate row ``h3`` of ``N_HIST3D`` floats holding the unit axis u of the planar law, so that the
-tangential force on body 1 is F_t = -h[H_T] u (physics.md 5.3 sign: T acts along the displacement,
-the force on body 1 is -T). Slots H_TANG_EXTRA and later of ``h`` stay the planar law's own.
+Each step the stored tangential history (a vector, an axis or a frame, see ``laws.vector``) is carried
+into the current tangent plane keeping its magnitude and turned about the normal by the angle
+2 atan(wn dt / 2) (the Cayley form of the rotation by wn dt: exactly orthogonal, wn dt (1 - (wn dt)^2 / 12)),
+then the law acts on the slip increment:
 
-3D extension of the planar (scalar) tangential laws, every step:
+- ``mindlin_total``, ``ddm``, ``mindlin_incremental``, ``mindlin_rescale``, ``linear``: vector springs
+  (the LAMMPS granular ``mindlin``, ``mindlin/force``, ``mindlin_rescale/force`` arithmetic), Coulomb by
+  scaling the force back to mu N;
+- ``md``, ``md_rescale``: the planar law along the force axis; slip across the axis turns the force;
+- ``mdr``, ``mdr_adaptive``: vector MDR, each cell a displacement in the tangent plane with its own
+  Coulomb circle (radial return).
 
-1. u is carried into the current tangent plane, u <- (u - (u.n) n) / |u - (u.n) n|, which keeps |T|
-   (physics.md 5.4). When h[H_T] = 0 (new or released contact) u is the slip direction dd / |dd|.
-2. The slip increment is split into d_par = dd . u and d_perp = dd - d_par u. d_par drives the planar law
-   (``laws.contact.contact_step``) along u: loading / unloading / reloading of Mindlin-Deresiewicz, the
-   reversal points T*, T**, the mu dN terms and Coulomb slip are those of the planar law for the
-   displacement component along the force axis. A reversal means d_par changing sign.
-3. d_perp turns the force about the normal, keeping the planar law's |T|: the force takes the direction
-   of w = T u + k_0 d_perp, with the elastic stiffness k_0 = 8 G* a (P_KT for the linear tangential law),
-   and the axis follows it, u <- sign(T) w / |w|. The law's own state (T, T*, T**, regime, xi, MDR cells)
-   is not touched, so |T| <= mu N holds as in the planar law; the magnitude change that d_perp would
-   add is of second order in the step and is left out.
-
-When the motion stays in one plane, d_perp is exactly zero and the kernel performs exactly the planar
-law's operations (the planar reduction is tested against ``integrator.integrate_impact``).
+Motion in one plane repeats the planar laws (``laws.contact``) to rounding error. The kernels do not check
+their arguments: call ``check_contacts`` once per set of arrays, or ``contact_forces(..., debug=True)``.
 """
 import math
+import os
 
 import numpy as np
 from numba import njit, prange
 
-from ..laws.contact import LINEAR_TANGENTIAL, contact_step
-from ..laws.slots import H_T, P_GSTAR, P_KT
+from ..errors import InputError, NumericalError
+from ..laws import vector as V
+from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
+                            MDR, MDR_ADAPTIVE, MINDLIN_INCREMENTAL, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
+from ..laws.slots import N_PARAMS, P_DX, P_GSTAR, P_KT, P_NSPRING
+from ..laws.vector import JIT, V_A, V_N, W_WORK, W_X, history_size, tangential_base
 
-# slots of the per-contact 3D row h3
-H3_UX = 0      # axis of the planar tangential law, unit vector in the tangent plane (0 when unset)
-H3_UY = 1
-H3_UZ = 2
-N_HIST3D = 3
+__all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
+           "contact_forces_batch", "contact_forces_serial", "contact_forces", "check_contacts",
+           "new_histories", "history_size"]
 
 
-@njit(cache=True)
-def elastic_tangential_stiffness(tid, p, a):
-    """Stiffness that turns the tangential force for slip across its axis [N/m]: the Mindlin stiffness
-    8 G* a (physics.md section 1), or the constant k_t of the linear (Cundall-Strack) law."""
+@njit(**JIT)
+def _normal(nid, params, row, H, c, delta, vel):
+    if nid == HERTZ:
+        return V.hertz(params, row, delta)
+    if nid == THORNTON:
+        return V.thornton(params, row, H, c, delta)
+    if nid == HERTZ_DAMPED:
+        return V.hertz_damped(params, row, delta, vel)
+    if nid == LINEAR_NORMAL:
+        return V.linear_normal(params, row, delta, vel)
+    raise InputError("unknown normal law id (valid: 0 hertz, 1 thornton, 2 hertz_damped, 3 linear)")
+
+
+@njit(**JIT)
+def _tangential(tid, params, row, H, c, b, N, dN, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn):
+    if tid == MD or tid == MD_RESCALE:
+        return V.md_axis(params, row, H, c, b, N, dN, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                         tid == MD_RESCALE)
+    if tid == MDR_ADAPTIVE or tid == MDR:
+        return V.mdr_vector(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                            tid == MDR_ADAPTIVE)
+    if tid == MINDLIN_TOTAL:
+        return V.spring_total(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn, 1.0)
+    if tid == DDM:
+        return V.spring_total(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                              2.0 / 3.0)
+    if tid == MINDLIN_INCREMENTAL or tid == MINDLIN_RESCALE:
+        return V.spring_incremental(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                                    8.0 * params[row, P_GSTAR] * a, tid == MINDLIN_RESCALE)
     if tid == LINEAR_TANGENTIAL:
-        return p[P_KT]
-    return 8.0 * p[P_GSTAR] * a
+        return V.spring_incremental(params, row, H, c, b, N, a, a, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                                    params[row, P_KT], False)
+    raise InputError("unknown tangential law id (valid: 0 to 8, see laws.contact)")
 
 
-@njit(cache=True)
-def contact_force_xyz(nid, tid, p, h, h3, nx, ny, nz, delta, vx, vy, vz, dt):
-    """One contact step in 3D, scalar arguments (see the module docstring for conventions and the
-    3D extension of the planar laws).
-
-    nid, tid: law ids (``laws.contact``); p: parameter row; h: history row, h3: float64[N_HIST3D], both
-    updated in place; (nx, ny, nz): unit normal from body 1 to body 2; delta: overlap [m];
-    (vx, vy, vz): relative velocity of body 1 w.r.t. body 2 at the contact point [m/s]; dt [s].
-    Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
-    """
+@njit(**JIT)
+def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """One contact step in 3D (see the module docstring). Updates H[c, :] in place.
+    Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N]."""
     vel = vx * nx + vy * ny + vz * nz
     ddx = (vx - vel * nx) * dt
     ddy = (vy - vel * ny) * dt
     ddz = (vz - vel * nz) * dt
-    ux = h3[H3_UX]
-    uy = h3[H3_UY]
-    uz = h3[H3_UZ]
-    axis = False
-    if h[H_T] != 0.0:
-        # carry the axis into the current tangent plane, keeping |T| (physics.md 5.4)
-        un = ux * nx + uy * ny + uz * nz
-        ux -= un * nx
-        uy -= un * ny
-        uz -= un * nz
-        norm = math.sqrt(ux * ux + uy * uy + uz * uz)
-        if norm > 0.0:
-            ux /= norm
-            uy /= norm
-            uz /= norm
-            axis = True
-    if not axis:
-        dmag = math.sqrt(ddx * ddx + ddy * ddy + ddz * ddz)
-        if dmag > 0.0:
-            ux = ddx / dmag
-            uy = ddy / dmag
-            uz = ddz / dmag
-        else:
-            ux = 0.0
-            uy = 0.0
-            uz = 0.0
-    d_par = ddx * ux + ddy * uy + ddz * uz
-    px = ddx - d_par * ux
-    py = ddy - d_par * uy
-    pz = ddz - d_par * uz
-    N, a, T = contact_step(nid, tid, p, h, delta, vel, d_par)
-    tx = T * ux
-    ty = T * uy
-    tz = T * uz
-    if T != 0.0 and (px != 0.0 or py != 0.0 or pz != 0.0):
-        # slip across the axis turns the force about the normal; its magnitude is the planar law's |T|
-        k0 = elastic_tangential_stiffness(tid, p, a)
-        wx = tx + k0 * px
-        wy = ty + k0 * py
-        wz = tz + k0 * pz
-        inv = 1.0 / math.sqrt(wx * wx + wy * wy + wz * wz)
-        if T < 0.0:
-            inv = -inv
-        ux = wx * inv          # T u = |T| w / |w|
-        uy = wy * inv
-        uz = wz * inv
-        tx = T * ux
-        ty = T * uy
-        tz = T * uz
-    h3[H3_UX] = ux
-    h3[H3_UY] = uy
-    h3[H3_UZ] = uz
+    cs = 1.0
+    sn = 0.0
+    if wn != 0.0:
+        q = 0.5 * wn * dt
+        inv = 1.0 / (1.0 + q * q)
+        cs = (1.0 - q * q) * inv
+        sn = 2.0 * q * inv
+    N, a = _normal(nid, params, row, H, c, delta, vel)
+    Np = N if N > 0.0 else 0.0
+    tx, ty, tz = _tangential(tid, params, row, H, c, tangential_base(nid), Np, Np - H[c, V_N], a,
+                             H[c, V_A], nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    H[c, V_N] = Np
+    H[c, V_A] = a
     return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
 
 
-@njit(cache=True)
-def contact_force(nid, tid, p, h, h3, n, delta, v, dt, out):
-    """``contact_force_xyz`` with vectors: n, v float64[3]; out float64[6] receives the force on body 1
-    (out[0:3]) and its tangential part (out[3:6]). h, h3 are updated in place."""
-    fx, fy, fz, tx, ty, tz = contact_force_xyz(nid, tid, p, h, h3, n[0], n[1], n[2], delta, v[0], v[1], v[2], dt)
-    out[0] = fx
-    out[1] = fy
-    out[2] = fz
-    out[3] = tx
-    out[4] = ty
-    out[5] = tz
+@njit(**JIT)
+def peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """``contact_force`` on a copy of the contact's history: H is left unchanged."""
+    tmp = H[c:c + 1].copy()
+    return contact_force(nid, tid, params, row, tmp, 0, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
-@njit(cache=True)
-def peek_force(nid, tid, p, h, h3, n, delta, v, dt, out):
-    """``contact_force`` evaluated on copies of the history: h and h3 are left unchanged."""
-    contact_force(nid, tid, p, h.copy(), h3.copy(), n, delta, v, dt, out)
+@njit(**JIT)
+def reset_contact(H, c):
+    """Zero the history of contact c (call on separation, before the row is reused)."""
+    for j in range(H.shape[1]):
+        H[c, j] = 0.0
 
 
-@njit(cache=True)
-def reset_contact(h, h3):
-    """Zero the history of a contact (call on separation, before the slots are reused)."""
-    h[:] = 0.0
-    h3[:] = 0.0
+@njit(**JIT)
+def swap_bodies(nid, tid, params, row, H, c):
+    """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
+    tangential force change sign. Swapping twice is the identity."""
+    b = tangential_base(nid)
+    for j in range(W_X, W_X + 3):
+        H[c, b + j] = -H[c, b + j]
+    if tid == MDR or tid == MDR_ADAPTIVE:
+        # e1 -> -e1 and n -> -n keep e2 = n x e1: the second components change sign
+        H[c, b + V.R_T2] = -H[c, b + V.R_T2]
+        for i in range(int(params[row, P_NSPRING])):
+            H[c, b + V.R_CELLS + 2 * i + 1] = -H[c, b + V.R_CELLS + 2 * i + 1]
 
 
-@njit(cache=True)
-def swap_bodies(h, h3):
-    """Exchange bodies 1 and 2 of a contact: the normal, the relative velocity, the displacement and the
-    tangential force all change sign, which is the sign of the axis u (the scalar state along u is
-    unchanged). Swapping twice is the identity."""
-    h3[H3_UX] = -h3[H3_UX]
-    h3[H3_UY] = -h3[H3_UY]
-    h3[H3_UZ] = -h3[H3_UZ]
+@njit(**JIT)
+def rotate_history(nid, H, c, Q):
+    """Turn the tangential history of contact c rigidly by the rotation matrix Q (float64[3, 3], proper
+    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n."""
+    b = tangential_base(nid)
+    x = H[c, b + W_X]
+    y = H[c, b + W_X + 1]
+    z = H[c, b + W_X + 2]
+    for i in range(3):
+        H[c, b + W_X + i] = Q[i, 0] * x + Q[i, 1] * y + Q[i, 2] * z
 
 
-@njit(cache=True)
-def _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces):
-    fx, fy, fz, tx, ty, tz = contact_force_xyz(
-        nid, tid, params[pair[c]], H[c], H3[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-        velocities[c, 0], velocities[c, 1], velocities[c, 2], dt)
+@njit(**JIT)
+def tangential_work(nid, H, c):
+    """Work absorbed by the tangential force of contact c since its history was zeroed [J]: the sum over
+    steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created."""
+    return H[c, tangential_base(nid) + W_WORK]
+
+
+@njit(inline="always", **JIT)
+def _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    fx, fy, fz, tx, ty, tz = contact_force(
+        nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+        velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
     forces[c, 0] = fx
     forces[c, 1] = fy
     forces[c, 2] = fz
@@ -176,26 +174,27 @@ def _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, fo
     tforces[c, 2] = tz
 
 
-@njit(parallel=True, cache=True)
-def contact_forces_batch(nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces):
-    """Advance many contacts by one step in parallel (prange over contacts).
+@njit(parallel=True, **JIT)
+def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
+                         tforces):
+    """Advance every contact by one step, in parallel (prange over contacts); no argument checks.
 
-    params: float64[n_rows, N_PARAMS] pair table (``pairs.pair_table``); pair: int64[n] row of each contact;
-    H: float64[n, n_hist], H3: float64[n, N_HIST3D] histories (updated); normals, velocities:
-    float64[n, 3]; overlaps: float64[n]; dt [s]; forces, tforces: float64[n, 3] receive the force on
-    body 1 and its tangential part."""
+    params: float64[n_rows, N_PARAMS]; pair_rows: int64[n] row of each contact; H: float64[n, history_size]
+    (updated); normals, velocities: float64[n, 3]; overlaps, wn: float64[n]; dt [s]; forces, tforces:
+    float64[n, 3] receive the force on body 1 and its tangential part."""
     for c in prange(overlaps.shape[0]):
-        _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces)
+        _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
 
 
-@njit(cache=True)
-def contact_forces_serial(nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces):
+@njit(**JIT)
+def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
+                          tforces):
     """``contact_forces_batch`` on one thread."""
     for c in range(overlaps.shape[0]):
-        _one(c, nid, tid, params, pair, H, H3, normals, overlaps, velocities, dt, forces, tforces)
+        _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
 
 
-def new_histories(n_contacts: int, history_size: int):
-    """Zeroed histories of ``n_contacts`` contacts: (H float64[n, history_size], H3 float64[n, N_HIST3D]).
-    ``history_size`` is ``Scene.history_size`` or ``PairTable.history_size``."""
-    return np.zeros((n_contacts, history_size)), np.zeros((n_contacts, N_HIST3D))
+def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
+    """Zeroed histories of ``n_contacts`` contacts, float64[n_contacts, history_size];
+    ``history_size`` is ``PairTable.history_size``."""
+    return np.zeros((n_contacts, history_size))

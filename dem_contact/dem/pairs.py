@@ -15,6 +15,8 @@ import numpy as np
 from ..errors import InputError
 from ..materials import Sphere, Wall
 from ..laws.model import Scene
+from ..laws.slots import P_NSPRING
+from ..laws.vector import history_size
 
 
 @dataclass
@@ -23,7 +25,8 @@ class PairTable:
 
     params: float64[n_rows, N_PARAMS]; normal_id, tangential_id: law ids; sphere_row: int64[n_types,
     n_types] row of each sphere-sphere pair (symmetric); wall_row: int64[n_types, n_walls] row of each
-    sphere-wall pair; history_size: length of a history row; scenes: the Scene of each row."""
+    sphere-wall pair; history_size: length of a 3D history row (``contact3d``, layout in ``laws.vector``)
+    for the laws and the largest MDR cell count of the table; scenes: the Scene of each row."""
 
     params: np.ndarray
     normal_id: int
@@ -87,6 +90,7 @@ def pair_table(spheres, walls=(), *, mu=0.3, normal: str = "hertz", tangential: 
             wall_row[i, w] = len(rows)
             rows.append(sc.params)
             scenes.append(sc)
-    return PairTable(params=np.ascontiguousarray(np.array(rows)), normal_id=scenes[0].normal_id,
-                     tangential_id=scenes[0].tangential_id, sphere_row=sphere_row, wall_row=wall_row,
-                     history_size=max(s.history_size for s in scenes), scenes=scenes)
+    params = np.ascontiguousarray(np.array(rows))
+    nid, tid = scenes[0].normal_id, scenes[0].tangential_id
+    return PairTable(params=params, normal_id=nid, tangential_id=tid, sphere_row=sphere_row, wall_row=wall_row,
+                     history_size=history_size(nid, tid, int(params[:, P_NSPRING].max())), scenes=scenes)
