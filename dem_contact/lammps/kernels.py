@@ -5,7 +5,7 @@ the kernels take numpy views of LAMMPS's per-atom arrays.
 History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
 ``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
 rebuilds and atom sorting), viewed as ``H`` of shape (nmax, slots, width): H[i] are the rows of atom i,
-a 2D array handed to the contact kernel with the row index. A row is [law history (history_size) | 3D axis (N3) | key], where
+a 2D array handed to the contact kernel with the row index. A row is [law history (history_size) | key], where
 key is the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row.
 
 Newton's third law between ranks, without reverse communication: each rank computes the contacts of its
@@ -27,12 +27,9 @@ import math
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import N_HIST3D, contact_force_xyz
+from ..dem.contact3d import contact_force
 from ..laws.contact import HERTZ_DAMPED, LINEAR_NORMAL
-from ..laws.slots import H_N
-
-#: Extra columns of a history row used by the 3D kernel (its axis).
-N3 = N_HIST3D
+from ..laws.vector import V_N
 
 # columns of the per-atom statistics array (d2 property, written for local atoms every step)
 ST_PAIRS = 0     # sphere-sphere contacts of the atom
@@ -54,17 +51,15 @@ N_SUMMARY = 4
 
 
 def row_width(history_size: int) -> int:
-    """Length of one history row: the law's history, the 3D axis, the key."""
-    return history_size + N3 + 1
+    """Length of one history row: the law's history, the key."""
+    return history_size + 1
 
 
 @njit(cache=True)
 def law(nid, tid, params, row, H, c, hs, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     """The one call of the contact kernel: force on body 1 and its tangential part for the contact whose
-    history is row c of H (``dem.contact3d``, conventions there). wn is the spin of the contact frame
-    about the normal, unused by this kernel (its tangential history is not turned with the spin)."""
-    return contact_force_xyz(nid, tid, params[row], H[c, :hs], H[c, hs:hs + N3], nx, ny, nz, delta,
-                             vx, vy, vz, dt)
+    history is row c of H (its first hs columns; ``dem.contact3d.contact_force``, conventions there)."""
+    return contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 @njit(cache=True)
@@ -209,7 +204,7 @@ def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wal
     per-atom statistics (local rows written); saved: float64[nmax, N_SAVED] receives the force and
     torque of each local atom with step + 1. Returns float64[N_SUMMARY].
     """
-    kcol = hs + N3
+    kcol = hs
     summary = np.zeros(N_SUMMARY)
     pairs, deltas, hits, wdel = find_contacts(nlocal, nall, x, radius, tag, walls, rmax)
     npair = pairs.shape[0]
@@ -306,7 +301,7 @@ def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wal
         row = sphere_row[typ[a] - 1, typ[b] - 1]
         if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
             # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
-            n_old = H[i, ri, H_N] if advance else scratch[0, H_N]
+            n_old = H[i, ri, V_N] if advance else scratch[0, V_N]
             kick = 0.5 * dt * n_old * (1.0 / rmass[a] + 1.0 / rmass[b])
             vx -= kick * nx
             vy -= kick * ny
@@ -373,7 +368,7 @@ def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wal
         vz = v[i, 2] + (wx * ny - wy * nx)
         row = wall_row[typ[i] - 1, wall_mat[w]]
         if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
-            n_old = H[i, ri, H_N] if advance else scratch[0, H_N]
+            n_old = H[i, ri, V_N] if advance else scratch[0, V_N]
             kick = 0.5 * dt * n_old / rmass[i]
             vx -= kick * nx
             vy -= kick * ny
