@@ -1,7 +1,7 @@
 """Helper of test_lammps.py, run as ``[mpirun -np 2] python tests/lammps_cross.py``: a sphere pair pressed
 together (fixed overlap) and sliding slowly across the boundary between two MPI subdomains (x = 0),
-with prescribed motion (fix move). Prints JSON on rank 0: the tangential force on atom 1 and the
-normal force every --every steps, and the contact's elastic tangential stiffness."""
+with prescribed motion (fix move). Prints JSON on rank 0: rows of the step, the forces (fx1, fx2, fy1, ...) and the
+positions of both atoms every --every steps; 8 G*, R*, the diameter and the slip per step."""
 import argparse
 import json
 import math
@@ -35,15 +35,15 @@ for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map ar
           f"fix m2 a2 move linear {V!r} {s!r} 0", "pair_style none"):
     lmp.command(c)
 bridge = LammpsContacts(lmp, table, [], slots=2, v_max=1.0, frame_spin=False)
-for c in ("variable fx1 equal fx[1]", "variable fy1 equal fy[1]", "variable fz1 equal fz[1]",
-          "variable x1 equal x[1]", "variable x2 equal x[2]"):
-    lmp.command(c)
+names = [f"{q}{i}" for q in ("fx", "fy", "fz", "x", "y", "z") for i in (1, 2)]
+for n in names:
+    lmp.command(f"variable {n} equal {n[:-1]}[{n[-1]}]")
 rows = []
 for k in range(0, a.steps, a.every):
     bridge.run(a.every)
-    rows.append([k + a.every] + [lmp.extract_variable(n) for n in ("fx1", "fy1", "fz1", "x1", "x2")])
-a_c = math.sqrt(table.params[0, P_RSTAR] * delta0)
-out = {"rows": rows, "k_t": 8.0 * table.params[0, P_GSTAR] * a_c, "slip_per_step": s * dt,
+    rows.append([k + a.every] + [lmp.extract_variable(n) for n in names])
+out = {"columns": ["step"] + names, "rows": rows, "g8": 8.0 * table.params[0, P_GSTAR],
+       "r_star": table.params[0, P_RSTAR], "diameter": 2 * R, "slip_per_step": s * dt,
        "ranks": lmp.extract_setting("world_size")}
 if lmp.extract_setting("world_rank") == 0:
     print(json.dumps(out))

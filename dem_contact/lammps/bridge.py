@@ -15,9 +15,9 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
   skin/2 (``neighbor skin bin``, ``neigh_modify delay 0 every 1 check yes``, issued here): a smaller
   ghost cutoff is refused;
-- ``slots`` history rows per atom (one per contact the atom has at once, walls included); a step at
-  which an atom needs more stops the run, and ``run`` raises an InputError that says how many are
-  needed;
+- ``slots`` history rows per atom (one per contact the atom has at once, walls included); an atom that
+  needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
+  InputError that says how many are needed;
 - the time step must resolve the stiffest contact: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
   shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``.
 
@@ -176,7 +176,9 @@ class LammpsContacts:
     [m/s] (time-step check); skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
     ghost cutoff [m] (default and minimum 2 r_max + skin); frame_spin: pass the spin of the contact
     frame about the normal to the laws (False: zero, as LAMMPS's granular models do, for comparisons
-    with them); prefix: of the LAMMPS ids this object creates.
+    with them); check_every: steps between the global checks of the history slots (each is a
+    collective reduction; an atom out of slots loses the contacts that do not fit until the run stops at
+    the next check); prefix: of the LAMMPS ids this object creates.
 
     Use ``run(n)`` (not ``lmp.command("run n")``) so that the checks are made; ``stats()`` gives global
     contact counts and the largest overlap.
@@ -184,7 +186,7 @@ class LammpsContacts:
 
     def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
                  skin: float | None = None, ghost_cutoff: float | None = None, frame_spin: bool = True,
-                 prefix: str = "dc"):
+                 check_every: int = 100, prefix: str = "dc"):
         if not isinstance(table, PairTable):
             raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
         self.lmp = lmp
@@ -194,6 +196,10 @@ class LammpsContacts:
         if not (isinstance(slots, (int, np.integer)) and slots >= 1):
             raise InputError(f"slots (history rows per atom) must be an integer >= 1, got {slots!r}")
         self.slots = int(slots)
+        if not (isinstance(check_every, (int, np.integer)) and check_every >= 1):
+            raise InputError(f"check_every (steps between history-slot checks) must be an integer >= 1, "
+                             f"got {check_every!r}")
+        self.check_every = int(check_every)
         if not (isinstance(v_max, (int, float)) and math.isfinite(v_max) and v_max > 0):
             raise InputError(f"v_max (largest normal impact speed, m/s) must be finite and > 0, got {v_max!r}")
         self.v_max = float(v_max)
@@ -239,7 +245,7 @@ class LammpsContacts:
         _stat_computes(lmp, p, p, self.col_stat)
         for cmd in (
             f"variable {p}_need equal c_{p}_max[{K.ST_NEED + 1}]",
-            f"fix {p}_halt all halt 1 v_{p}_need > {self.slots} error soft message no",
+            f"fix {p}_halt all halt {self.check_every} v_{p}_need > {self.slots} error soft message no",
             f"fix {p}_ext all external pf/callback 1 1",
         ):
             lmp.command(cmd)
@@ -309,6 +315,8 @@ class LammpsContacts:
         more history rows than ``slots``."""
         if not self._checked:
             self.check()
+        nlocal = self.lmp.extract_setting("nlocal")
+        self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
         self.lmp.command(f"run {int(nsteps)}")
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
         if need > self.slots:

@@ -34,7 +34,7 @@ from ..laws.vector import V_N
 # columns of the per-atom statistics array (d2 property, written for local atoms every step)
 ST_PAIRS = 0     # sphere-sphere contacts of the atom
 ST_WALLS = 1     # wall contacts of the atom
-ST_NEED = 2      # history rows the atom needs (its contacts)
+ST_NEED = 2      # history rows the atom needed (its contacts), largest since the column was zeroed
 ST_OVERLAP = 3   # largest overlap of its contacts [m]
 N_STAT = 4
 
@@ -209,9 +209,11 @@ def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wal
     pairs, deltas, hits, wdel = find_contacts(nlocal, nall, x, radius, tag, walls, rmax)
     npair = pairs.shape[0]
     nhit = hits.shape[0]
+    count = np.zeros(nlocal)
     for i in range(nlocal):
         for d in range(N_STAT):
-            stat[i, d] = 0.0
+            if d != ST_NEED:
+                stat[i, d] = 0.0
         for d in range(3):
             fext[i, d] = 0.0
         for d in range(N_SAVED):
@@ -226,27 +228,29 @@ def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wal
         i = pairs[c, 0]
         j = pairs[c, 1]
         stat[i, ST_PAIRS] += 1.0
-        stat[i, ST_NEED] += 1.0
+        count[i] += 1.0
         rowi[c] = _find_row(H, i, float(tag[j]), kcol)
         if rowi[c] >= 0:
             used[i, rowi[c]] = True
         if j < nlocal:
             stat[j, ST_PAIRS] += 1.0
-            stat[j, ST_NEED] += 1.0
+            count[j] += 1.0
             rowj[c] = _find_row(H, j, float(tag[i]), kcol)
             if rowj[c] >= 0:
                 used[j, rowj[c]] = True
     for c in range(nhit):
         i = hits[c, 0]
         stat[i, ST_WALLS] += 1.0
-        stat[i, ST_NEED] += 1.0
+        count[i] += 1.0
         roww[c] = _find_row(H, i, -(hits[c, 1] + 1.0), kcol)
         if roww[c] >= 0:
             used[i, roww[c]] = True
     need = 0.0
     for i in range(nlocal):
-        if stat[i, ST_NEED] > need:
-            need = stat[i, ST_NEED]
+        if count[i] > need:
+            need = count[i]
+        if count[i] > stat[i, ST_NEED]:
+            stat[i, ST_NEED] = count[i]
     summary[R_NEED] = need
     if advance:
         # contacts that ended free their rows (reset) before new contacts take rows
