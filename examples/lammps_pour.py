@@ -36,17 +36,18 @@ RADII = (1.0e-3, 1.25e-3)
 GRAVITY = 9.81
 
 
-def scene(n, seed=1):
-    """Lattice positions, velocities and types of n spheres, and the box (L, height)."""
+def scene(n, seed=1, spacing=1.15, speed=0.3):
+    """Lattice positions (spacing: in largest diameters), random velocities (rms speed per axis [m/s]) and
+    types of n spheres, and the box (L, height)."""
     rng = np.random.default_rng(seed)
-    s = 2.3 * max(RADII)
+    s = 2.0 * spacing * max(RADII)
     k = max(2, int(math.ceil((n / 2.0) ** (1.0 / 3.0))))          # columns per side; a column twice as tall
     layers = int(math.ceil(n / k**2))
     L = k * s
     i = np.arange(n)
     x = np.stack([(i % k + 0.5) * s, ((i // k) % k + 0.5) * s, (i // k**2 + 0.5) * s], axis=1)
-    x[:, :2] += rng.uniform(-0.1, 0.1, (n, 2)) * s
-    v = rng.normal(0.0, 0.3, (n, 3))
+    x[:, :2] += rng.uniform(-0.1, 0.1, (n, 2)) * max(s - 2.0 * max(RADII), 0.0)
+    v = rng.normal(0.0, speed, (n, 3))
     types = rng.integers(1, 3, n)
     return x, v, types, L, (layers + 2) * s * 2.0
 
@@ -77,6 +78,10 @@ def main(argv=None):
     p.add_argument("--slots", type=int, default=12, help="history rows per atom (12)")
     p.add_argument("--every", type=int, default=100, help="count contacts every this many steps (100)")
     p.add_argument("--seed", type=int, default=1, help="random seed of the initial state")
+    p.add_argument("--spacing", type=float, default=1.15,
+                   help="lattice spacing of the initial state, in largest diameters (>= 0.9; below 1 the largest "
+                        "spheres start pressed together; default 1.15)")
+    p.add_argument("--speed", type=float, default=0.3, help="rms initial speed per axis [m/s] (0.3)")
     p.add_argument("--small", action="store_true", help="a quick run: --n 150 --steps 300")
     p.add_argument("--dump", help="folder for LAMMPS dump custom files (every --every steps)")
     p.add_argument("--json", action="store_true", help="print one JSON object (rank 0)")
@@ -93,13 +98,13 @@ def main(argv=None):
 def run(a):
     from dem_contact.lammps import Census, LammpsContacts, PlaneWall, lammps_module, new_lammps
 
-    if a.n < 1 or a.steps < 0 or a.every < 1:
-        raise InputError("--n must be >= 1, --steps >= 0, --every >= 1")
+    if a.n < 1 or a.steps < 0 or a.every < 1 or not a.spacing >= 0.9 or not a.speed >= 0.0:
+        raise InputError("--n must be >= 1, --steps >= 0, --every >= 1, --spacing >= 0.9, --speed >= 0")
     laws = {} if a.tangential is None else {"tangential": a.tangential}
     spheres = [Sphere(RADII[0], GLASS), Sphere(RADII[1], POLYMER)]
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
     dt = min(sc.contact_time(a.v_max) for sc in table.scenes) / a.steps_per_contact
-    x, v, types, L, height = scene(a.n, a.seed)
+    x, v, types, L, height = scene(a.n, a.seed, a.spacing, a.speed)
     lmp = new_lammps()
     me = lmp.extract_setting("world_rank")
     nranks = lmp.extract_setting("world_size")
@@ -175,7 +180,8 @@ def run(a):
            "contact_updates_per_s": updates / wall_s if wall_s > 0 else None,
            "contact_updates_per_s_per_rank": updates / wall_s / nranks if wall_s > 0 else None,
            "ranks": nranks, "dt": dt, "engine": "lammps native" if a.native else "dem_contact",
-           "laws": {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential}}
+           "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
+                    {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
     lmp.close()
     if me == 0:
         if a.json:

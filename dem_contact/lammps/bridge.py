@@ -252,6 +252,9 @@ class LammpsContacts:
         lmp.set_fix_external_callback(f"{p}_ext", self._callback, self)
         self._last_step = None
         self._checked = False
+        self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
+        self._x_ref = self._tag_ref = None
+        self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
@@ -354,10 +357,15 @@ class LammpsContacts:
         if setup and K.reapply_saved(nlocal, fext, torque, saved, ntimestep):
             self.callback_s += time.perf_counter() - t0
             return
+        if self._cand is None or K.moved(nlocal, nall, xa, ids, self._x_ref, self._tag_ref, 0.5 * self.skin):
+            self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            self._x_ref = xa[:nall].copy()
+            self._tag_ref = ids[:nall].copy()
+            self.list_builds += 1
         summary = K.step_contacts(
-            nlocal, nall, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, H, self.hs,
+            nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, H, self.hs,
             self.table.normal_id, self.table.tangential_id, self.table.params, self.table.sphere_row,
-            self.table.wall_row, self.lmp.extract_global("dt"), self.rmax, not setup, self.frame_spin,
+            self.table.wall_row, self.lmp.extract_global("dt"), not setup, self.frame_spin,
             fext, torque, stat, saved, ntimestep)
         if not setup:
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])

@@ -106,56 +106,124 @@ def _cells(x, n, cell):
 
 
 @njit(cache=True)
-def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
-    """Contacts of the local atoms: sphere pairs (i local; j local with j > i, or ghost) and wall
-    contacts (i, w). walls: float64[n_walls, 6], a point and the unit normal pointing into the domain.
-    Returns (pairs int64[m, 2], deltas float64[m], wall_hits int64[k, 2], wall_deltas float64[k])."""
-    lo, dims, cell, start, order, which = _cells(x, nall, 2.0 * rmax)
+def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
+    """Verlet lists of the local atoms: sphere pairs (i local; j local with j > i, or ghost) closer than
+    r_i + r_j + skin, and wall pairs (i, w) closer than r_i + skin. walls: float64[n_walls, 6], a point
+    and the unit normal pointing into the domain. Valid while no atom has moved more than skin / 2 and
+    the local and ghost atoms keep their indices. Returns (pairs int64[m, 2], wall_pairs int64[k, 2])."""
+    lo, dims, cell, start, order, which = _cells(x, nall, 2.0 * rmax + skin)
+    d0 = dims[0]
+    d1 = dims[1]
+    d2 = dims[2]
     cap = 8 * nlocal + 16
     pairs = np.empty((cap, 2), dtype=np.int64)
-    deltas = np.empty(cap)
     m = 0
     for i in range(nlocal):
         k = which[i]
-        cz = k % dims[2]
-        cy = (k // dims[2]) % dims[1]
-        cx = k // (dims[1] * dims[2])
-        for ax in range(max(cx - 1, 0), min(cx + 2, dims[0])):
-            for ay in range(max(cy - 1, 0), min(cy + 2, dims[1])):
-                for az in range(max(cz - 1, 0), min(cz + 2, dims[2])):
-                    kk = (ax * dims[1] + ay) * dims[2] + az
-                    for q in range(start[kk], start[kk + 1]):
-                        j = order[q]
-                        if j == i or (j < nlocal and j < i) or tag[j] == tag[i]:
-                            continue
-                        dx = x[j, 0] - x[i, 0]
-                        dy = x[j, 1] - x[i, 1]
-                        dz = x[j, 2] - x[i, 2]
-                        rs = radius[i] + radius[j]
-                        r2 = dx * dx + dy * dy + dz * dz
-                        if r2 < rs * rs:
-                            if m == pairs.shape[0]:
-                                pairs = _grow2(pairs)
-                                deltas = _grow1(deltas)
-                            pairs[m, 0] = i
-                            pairs[m, 1] = j
-                            deltas[m] = rs - math.sqrt(r2)
-                            m += 1
+        cz = k % d2
+        cy = (k // d2) % d1
+        cx = k // (d1 * d2)
+        xi = x[i, 0]
+        yi = x[i, 1]
+        zi = x[i, 2]
+        ri = radius[i] + skin
+        for ax in range(max(cx - 1, 0), min(cx + 2, d0)):
+            for ay in range(max(cy - 1, 0), min(cy + 2, d1)):
+                # the three cells along z are consecutive in the cell order
+                k0 = (ax * d1 + ay) * d2
+                for q in range(start[k0 + max(cz - 1, 0)], start[k0 + min(cz + 2, d2)]):
+                    j = order[q]
+                    if j == i or (j < nlocal and j < i) or tag[j] == tag[i]:
+                        continue
+                    dx = x[j, 0] - xi
+                    dy = x[j, 1] - yi
+                    dz = x[j, 2] - zi
+                    rs = ri + radius[j]
+                    if dx * dx + dy * dy + dz * dz < rs * rs:
+                        if m == pairs.shape[0]:
+                            pairs = _grow2(pairs)
+                        pairs[m, 0] = i
+                        pairs[m, 1] = j
+                        m += 1
     nw = walls.shape[0]
     hits = np.empty((max(nlocal * nw, 1), 2), dtype=np.int64)
-    wdel = np.empty(max(nlocal * nw, 1))
     kw = 0
     for i in range(nlocal):
         for w in range(nw):
             gap = ((x[i, 0] - walls[w, 0]) * walls[w, 3] + (x[i, 1] - walls[w, 1]) * walls[w, 4]
                    + (x[i, 2] - walls[w, 2]) * walls[w, 5])
-            d = radius[i] - gap
-            if d > 0.0:
+            if gap < radius[i] + skin:
                 hits[kw, 0] = i
                 hits[kw, 1] = w
-                wdel[kw] = d
                 kw += 1
-    return pairs[:m], deltas[:m], hits[:kw], wdel[:kw]
+    return pairs[:m], hits[:kw]
+
+
+@njit(cache=True)
+def overlapping(x, radius, walls, cand, cand_walls):
+    """The candidates in contact now: (pairs, deltas, wall_hits, wall_deltas), deltas > 0 the overlaps."""
+    m = 0
+    keep = np.empty(cand.shape[0], dtype=np.int64)
+    deltas = np.empty(cand.shape[0])
+    for c in range(cand.shape[0]):
+        i = cand[c, 0]
+        j = cand[c, 1]
+        dx = x[j, 0] - x[i, 0]
+        dy = x[j, 1] - x[i, 1]
+        dz = x[j, 2] - x[i, 2]
+        rs = radius[i] + radius[j]
+        r2 = dx * dx + dy * dy + dz * dz
+        if r2 < rs * rs:
+            keep[m] = c
+            deltas[m] = rs - math.sqrt(r2)
+            m += 1
+    pairs = np.empty((m, 2), dtype=np.int64)
+    for k in range(m):
+        pairs[k, 0] = cand[keep[k], 0]
+        pairs[k, 1] = cand[keep[k], 1]
+    kw = 0
+    wkeep = np.empty(cand_walls.shape[0], dtype=np.int64)
+    wdel = np.empty(cand_walls.shape[0])
+    for c in range(cand_walls.shape[0]):
+        i = cand_walls[c, 0]
+        w = cand_walls[c, 1]
+        gap = ((x[i, 0] - walls[w, 0]) * walls[w, 3] + (x[i, 1] - walls[w, 1]) * walls[w, 4]
+               + (x[i, 2] - walls[w, 2]) * walls[w, 5])
+        d = radius[i] - gap
+        if d > 0.0:
+            wkeep[kw] = c
+            wdel[kw] = d
+            kw += 1
+    hits = np.empty((kw, 2), dtype=np.int64)
+    for k in range(kw):
+        hits[k, 0] = cand_walls[wkeep[k], 0]
+        hits[k, 1] = cand_walls[wkeep[k], 1]
+    return pairs, deltas[:m], hits, wdel[:kw]
+
+
+@njit(cache=True)
+def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
+    """The contacts of the local atoms now (candidates with no skin, then their overlaps)."""
+    cand, cand_walls = candidates(nlocal, nall, x, radius, tag, walls, rmax, 0.0)
+    return overlapping(x, radius, walls, cand, cand_walls)
+
+
+@njit(cache=True)
+def moved(nlocal, nall, x, tag, x_ref, tag_ref, half_skin):
+    """True when the Verlet lists built at x_ref, tag_ref must be rebuilt: other atoms or indices (LAMMPS
+    exchanged, sorted or rebuilt its ghosts), or an atom moved more than skin / 2."""
+    if x_ref.shape[0] != nall or tag_ref.shape[0] != nall:
+        return True
+    lim = half_skin * half_skin
+    for i in range(nall):
+        if tag[i] != tag_ref[i]:
+            return True
+        dx = x[i, 0] - x_ref[i, 0]
+        dy = x[i, 1] - x_ref[i, 1]
+        dz = x[i, 2] - x_ref[i, 2]
+        if dx * dx + dy * dy + dz * dz > lim:
+            return True
+    return False
 
 
 @njit(cache=True)
@@ -189,15 +257,15 @@ def _free_row(H, i, kcol):
 
 
 @njit(cache=True)
-def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, H, hs,
-                  nid, tid, params, sphere_row, wall_row, dt, rmax, advance, frame_spin, fext, torque, stat,
+def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, H, hs,
+                  nid, tid, params, sphere_row, wall_row, dt, advance, frame_spin, fext, torque, stat,
                   saved, step):
     """One step of contact forces for the local atoms of one rank.
 
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
     atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
-    wall_row; H: float64[nmax, slots, row_width(hs)] histories; params, sphere_row, wall_row: the pair
-    table; dt [s]; rmax: the largest radius [m]; advance: False evaluates on copies of the histories
+    wall_row; cand, cand_walls: the Verlet lists (``candidates``); H: float64[nmax, slots, row_width(hs)] histories; params, sphere_row, wall_row: the pair
+    table; dt [s]; advance: False evaluates on copies of the histories
     (LAMMPS's set-up call: nothing is advanced); frame_spin: pass the spin of the contact frame about
     the normal to the kernel (False: wn = 0, LAMMPS's granular models). fext: float64[nlocal, 3] receives the contact forces;
     torque: float64[nall, 3], contact torques are added to the local rows; stat: float64[nmax, N_STAT]
@@ -206,7 +274,7 @@ def step_contacts(nlocal, nall, x, v, omega, radius, rmass, tag, typ, walls, wal
     """
     kcol = hs
     summary = np.zeros(N_SUMMARY)
-    pairs, deltas, hits, wdel = find_contacts(nlocal, nall, x, radius, tag, walls, rmax)
+    pairs, deltas, hits, wdel = overlapping(x, radius, walls, cand, cand_walls)
     npair = pairs.shape[0]
     nhit = hits.shape[0]
     count = np.zeros(nlocal)
