@@ -10,13 +10,14 @@ import pytest
 from numba import njit
 
 from dem_contact.laws import closed_forms as cf
-from dem_contact.dem.contact3d import (contact_force, contact_forces_batch, contact_forces_serial,
-                                       history_size, new_histories, peek_force, reset_contact, swap_bodies)
-from dem_contact.errors import InputError
+from dem_contact.dem.contact3d import (contact_force, contact_forces, contact_forces_batch,
+                                       contact_forces_serial, history_size, new_histories, peek_force,
+                                       reset_contact, rotate_history, swap_bodies, tangential_work)
+from dem_contact.errors import InputError, NumericalError
 from dem_contact.impacts.impact import body_inertia
 from dem_contact.impacts.integrator import (N_OUT, N_SERIES, O_STATUS, O_VN, O_VT, O_W1, TOUCH_OVERLAP,
                                    integrate_impact)
-from dem_contact.laws.contact import normal_force, normal_gap
+from dem_contact.laws.contact import contact_step, normal_force, normal_gap
 from dem_contact.laws.slots import P_ESTAR, P_MU, P_NSPRING, P_RSTAR
 from dem_contact.laws.vector import V_N
 from dem_contact.materials import STEEL, Material, Sphere, Wall
@@ -394,3 +395,288 @@ def test_user_loop_caches_and_calls_the_kernel(tmp_path):
     fz2, hits2, miss2 = r2.stdout.split()
     assert fz1 == fz2 and float(fz1) > 0.0          # the wall (at -z) pushes the sphere towards +z
     assert int(miss1) == 1 and int(hits2) == 1 and int(miss2) == 0
+
+
+def _checked_setup(tangential="md", n=3):
+    tab = pair_table([Sphere(1e-3, STEEL)], [Wall(STEEL)], mu=0.3, tangential=tangential, v_ref=1.0)
+    rng = np.random.default_rng(5)
+    nrm = rng.normal(size=(n, 3))
+    nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+    args = dict(nid=tab.normal_id, tid=tab.tangential_id, params=tab.params, pair_rows=np.zeros(n, dtype=np.int64),
+                H=new_histories(n, tab.history_size), normals=nrm, overlaps=np.full(n, 1e-6),
+                velocities=rng.normal(scale=0.01, size=(n, 3)), wn=np.zeros(n), dt=1e-7,
+                forces=np.zeros((n, 3)), tforces=np.zeros((n, 3)))
+    return tab, args
+
+
+def _bad(args, **changes):
+    a = dict(args)
+    a.update(changes)
+    return a
+
+
+@pytest.mark.parametrize("debug", [False, True])
+def test_checked_entry_refuses_what_would_corrupt_memory_or_results(debug):
+    """The reproducers of memory corruption and silent garbage are InputErrors naming the array and the
+    first bad contact; good arrays pass and give the unchecked kernel's result."""
+    tab, args = _checked_setup()
+    H0 = args["H"].copy()
+    contact_forces(**args, debug=debug)
+    f = args["forces"].copy()
+    Href = H0.copy()
+    contact_forces_serial(*[args[k] for k in ("nid", "tid", "params", "pair_rows")], Href,
+                          *[args[k] for k in ("normals", "overlaps", "velocities", "wn", "dt")],
+                          np.zeros((3, 3)), np.zeros((3, 3)))
+    assert np.array_equal(Href, args["H"]) and np.abs(f).max() > 0.0
+    nan_v = args["velocities"].copy()
+    nan_v[2, 1] = np.nan
+    long_n = args["normals"].copy()
+    long_n[1] *= 2.0
+    bad_rows = np.array([0, 5, 0])
+    cases = [
+        (dict(H=new_histories(1, tab.history_size)), r"^H must have shape"),          # one row, 3 contacts
+        (dict(H=new_histories(3, 3)), r"^H has rows of length 3"),
+        (dict(pair_rows=bad_rows), r"^pair_rows\[1\] = 5 is not a row"),
+        (dict(tid=42), r"^tid .* = 42 is not a law id"),
+        (dict(nid=7), r"^nid .* = 7 is not a law id"),
+        (dict(tid=7), r"^pair_rows\[0\] = 0: .*no MDR cell count"),                 # mdr on an md table
+        (dict(normals=long_n), r"^normals\[1\] has length 2"),
+        (dict(dt=-1e-7), r"^dt = -1e-07"),
+        (dict(dt=0.0), r"^dt = 0.0"),
+        (dict(velocities=nan_v), r"^velocities\[2\] is not finite"),
+        (dict(overlaps=np.array([1e-6, np.inf, 1e-6])), r"^overlaps\[1\] is not finite"),
+        (dict(wn=np.array([0.0, 0.0, np.nan])), r"^wn\[2\] is not finite"),
+        (dict(pair_rows=np.zeros(3, dtype=np.int32)), r"^pair_rows must have dtype int64"),
+        (dict(normals=np.asfortranarray(args["normals"])), r"^normals must be C-contiguous"),
+        (dict(forces=np.zeros((3, 2))), r"^forces must have shape"),
+        (dict(velocities=args["velocities"].astype(np.float32)), r"^velocities must have dtype float64"),
+    ]
+    for change, message in cases:
+        H = H0.copy()
+        with pytest.raises(InputError, match=message):
+            contact_forces(**_bad(args, H=H, **change) if "H" not in change else _bad(args, **change), debug=debug)
+        if "H" not in change:
+            assert np.array_equal(H, H0)          # nothing was advanced
+
+
+def test_unknown_law_ids_are_errors_in_the_jitted_kernel():
+    tab, a = _checked_setup()
+    for nid, tid in ((42, tab.tangential_id), (tab.normal_id, 42), (7, 0), (0, -1)):
+        with pytest.raises(InputError, match="unknown"):
+            contact_force(nid, tid, tab.params, 0, a["H"], 0, 0.0, 0.0, 1.0, 1e-6, 0.01, 0.0, 0.0, 0.0, 1e-7)
+
+
+def test_debug_mode_reports_the_first_bad_contact():
+    """The debug loop (bounds-checked) names the contact whose force is not finite: a fixed mdr grid
+    outgrown by the contact."""
+    tab, args = _checked_setup("mdr")
+    args["overlaps"][1] = 1e-3                      # far beyond the grid placed for v_ref = 1 m/s
+    with pytest.raises(NumericalError, match="^contact 1: the force is not finite"):
+        contact_forces(**args, debug=True)
+
+
+def _law_scene(tangential, normal="hertz"):
+    mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
+    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, e_n=0.8,
+                 v_ref=1.5)
+
+
+def _random_path(steps, seed, amp_t=1.0, amp_n=0.0):
+    """A smooth random closed path: overlap (in units of delta0) and tangential displacement (in units of
+    the slip displacement) as Fourier sums that return to their start."""
+    rng = np.random.default_rng(seed)
+    s = np.linspace(0.0, 1.0, steps + 1)
+    ux = np.zeros_like(s)
+    uy = np.zeros_like(s)
+    dn = np.zeros_like(s)
+    for k in range(1, 4):
+        a, b, c, d, e = rng.normal(size=5) / k
+        ux += a * np.sin(2 * np.pi * k * s) + b * (1 - np.cos(2 * np.pi * k * s))
+        uy += c * np.sin(2 * np.pi * k * s) + d * (1 - np.cos(2 * np.pi * k * s))
+        dn += e * np.sin(2 * np.pi * k * s)
+    return amp_t * ux, amp_t * uy, 1.0 + amp_n * dn / max(np.abs(dn).max(), 1e-300)
+
+
+@pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
+def test_in_plane_motion_repeats_the_planar_law(tangential):
+    """Tangential motion along one axis of an arbitrary tangent plane, with the overlap varying: the 3D
+    kernel's force equals the planar law's T (laws.contact.contact_step) to 1e-12 of mu N, every law."""
+    for normal in ("hertz", "thornton"):
+        sc = _law_scene(tangential, normal)
+        P = sc.params[None, :]
+        H = scene_history(sc)
+        h = sc.new_history()
+        m_wall, e1, _ = _frame(True)
+        n = -m_wall
+        delta0 = 2e-6
+        muN0 = sc.mu * 4.0 / 3.0 * sc.pair.E_star * math.sqrt(sc.pair.R_star) * delta0 ** 1.5
+        slip = 3.0 * sc.mu * delta0 / 2.0          # order of the slip displacement 3 mu N / (16 G* a)
+        ux, _, dn = _random_path(400, 11, amp_t=slip, amp_n=0.5)
+        dt = 1e-7
+        err = 0.0
+        for k in range(1, ux.size):
+            dd = ux[k] - ux[k - 1]
+            delta = delta0 * dn[k]
+            vel = delta0 * (dn[k] - dn[k - 1]) / dt
+            N, a, T = contact_step(sc.normal_id, sc.tangential_id, sc.params, h, delta, vel, dd)
+            v = vel * n + dd / dt * e1
+            out = contact_force(sc.normal_id, sc.tangential_id, P, 0, H, 0, *n, delta, *v, 0.0, dt)
+            err = max(err, np.linalg.norm(np.array(out[3:]) + T * e1) / muN0)
+        assert err < 1e-12, (normal, err)
+
+
+def _rotation(rng, angle=None):
+    axis = rng.normal(size=3)
+    axis /= np.linalg.norm(axis)
+    ang = rng.uniform(0, 2 * np.pi) if angle is None else angle
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + math.sin(ang) * K + (1 - math.cos(ang)) * K @ K
+
+
+@pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
+def test_objectivity_under_rigid_rotations(tangential):
+    """Rotating the whole problem (history, normal, velocity) by a rotation Q, applied once at the start,
+    once in the middle, or a little at every step, gives the rotated force within 1e-10 of |F|: the
+    kernel is a covariant function of its vectors, every law."""
+    sc = _law_scene(tangential)
+    nid, tid, P = sc.normal_id, sc.tangential_id, sc.params[None, :]
+    rng = np.random.default_rng(2)
+    steps = 300
+    delta0 = 2e-6
+    slip = 3.0 * sc.mu * delta0 / 2.0
+    ux, uy, dn = _random_path(steps, 3, amp_t=slip, amp_n=0.3)
+    dt = 1e-7
+    # a slowly turning normal and a spinning contact frame
+    R_n = _rotation(rng, 0.3 / steps)
+    n0 = rng.normal(size=3)
+    n0 /= np.linalg.norm(n0)
+    t1 = np.cross(n0, rng.normal(size=3))
+    t1 /= np.linalg.norm(t1)
+    t2 = np.cross(n0, t1)
+    wn = rng.normal(scale=0.5 / (steps * dt), size=steps + 1)
+    for mode in ("once", "middle", "every step"):
+        HA, HB = scene_history(sc), scene_history(sc)
+        Q = np.eye(3) if mode != "once" else _rotation(rng)
+        n, a1, a2 = n0.copy(), t1.copy(), t2.copy()
+        err, scale = 0.0, 0.0
+        for k in range(1, steps + 1):
+            if mode == "middle" and k == steps // 2:
+                Qnew = _rotation(rng)
+            elif mode == "every step":
+                Qnew = _rotation(rng, 0.05) @ Q
+            else:
+                Qnew = Q
+            rotate_history(nid, HB, 0, np.ascontiguousarray(Qnew @ Q.T))
+            Q = Qnew
+            n, a1, a2 = R_n @ n, R_n @ a1, R_n @ a2
+            vel = delta0 * (dn[k] - dn[k - 1]) / dt
+            v = vel * n + ((ux[k] - ux[k - 1]) * a1 + (uy[k] - uy[k - 1]) * a2) / dt
+            FA = np.array(contact_force(nid, tid, P, 0, HA, 0, *n, delta0 * dn[k], *v, wn[k], dt))
+            FB = np.array(contact_force(nid, tid, P, 0, HB, 0, *(Q @ n), delta0 * dn[k], *(Q @ v), wn[k], dt))
+            err = max(err, np.abs(FB[:3] - Q @ FA[:3]).max(), np.abs(FB[3:] - Q @ FA[3:]).max())
+            scale = max(scale, np.abs(FA[3:]).max())
+        assert scale > 0.0
+        assert err <= 1e-10 * scale, (mode, err / scale)
+
+
+@pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
+def test_spin_about_the_normal(tangential):
+    """A loaded pair turning rigidly about its normal (no slip, wn = Omega) sees its tangential force
+    turn by 2 atan(Omega dt / 2) per step with its magnitude kept (to rounding); a twist (w1 = -w2,
+    wn = 0) leaves it unchanged; a spin with no tangential load creates none."""
+    sc = _law_scene(tangential)
+    nid, tid, P = sc.normal_id, sc.tangential_id, sc.params[None, :]
+    n = np.array([0.0, 0.6, 0.8])
+    e1 = np.array([1.0, 0.0, 0.0])
+    dt, delta = 1e-7, 2e-6
+    H = scene_history(sc)
+    for k in range(5):
+        F0 = contact_force(nid, tid, P, 0, H, 0, *n, delta, *(2e-3 * e1), 0.0, dt)
+    T0 = np.array(F0[3:])
+    assert np.linalg.norm(T0) > 0.0
+    Hk = H.copy()
+    for k in range(50):                              # twist: no change
+        F = contact_force(nid, tid, P, 0, Hk, 0, *n, delta, 0.0, 0.0, 0.0, 0.0, dt)
+    assert np.abs(np.array(F[3:]) - T0).max() <= 1e-13 * np.linalg.norm(T0)
+    Omega = 2e5
+    steps = 100
+    for k in range(steps):
+        F = contact_force(nid, tid, P, 0, H, 0, *n, delta, 0.0, 0.0, 0.0, Omega, dt)
+    ang = steps * 2.0 * math.atan(0.5 * Omega * dt)
+    K = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
+    R = np.eye(3) + math.sin(ang) * K + (1 - math.cos(ang)) * K @ K
+    assert np.abs(np.array(F[3:]) - R @ T0).max() <= 1e-11 * np.linalg.norm(T0)
+    H = scene_history(sc)
+    for k in range(20):
+        F = contact_force(nid, tid, P, 0, H, 0, *n, delta, 0.0, 0.0, 0.0, Omega, dt)
+        assert F[3:] == (0.0, 0.0, 0.0) or np.abs(F[3:]).max() == 0.0
+
+
+@pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
+def test_rigid_rotation_of_the_pair_about_any_axis(tangential):
+    """A loaded pair rotating rigidly about an oblique axis (the normal turns, no relative motion,
+    wn = Omega . n): the force follows the rotation, with an error that vanishes with the step (the carry
+    into the new tangent plane is first order per unit turn)."""
+    sc = _law_scene(tangential)
+    nid, tid, P = sc.normal_id, sc.tangential_id, sc.params[None, :]
+    n0 = np.array([0.0, 0.0, 1.0])
+    axis = np.array([0.6, 0.0, 0.8])
+    total = 0.5 * math.pi                            # quarter turn
+    errs = []
+    for steps in (100, 1000):
+        H = scene_history(sc)
+        dt = 1e-7
+        for k in range(5):
+            F0 = contact_force(nid, tid, P, 0, H, 0, *n0, 2e-6, 2e-3, 1e-3, 0.0, 0.0, dt)
+        T0 = np.array(F0[3:])
+        Omega = total / (steps * dt)
+        K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+        for k in range(1, steps + 1):
+            ang = k * total / steps
+            R = np.eye(3) + math.sin(ang) * K + (1 - math.cos(ang)) * K @ K
+            n = R @ n0
+            F = contact_force(nid, tid, P, 0, H, 0, *n, 2e-6, 0.0, 0.0, 0.0, Omega * np.dot(axis, n), dt)
+        errs.append(np.linalg.norm(np.array(F[3:]) - R @ T0) / np.linalg.norm(T0))
+    assert errs[1] < 2e-3 and errs[1] < 0.2 * errs[0] + 1e-12, errs
+
+
+@njit(cache=True)
+def closed_loop_work(nid, tid, P, H, n, e1, e2, ux, uy, dn, delta0, dt):
+    """Drive one contact along a closed path; returns (work absorbed by the tangential force from the
+    kernel's work slot, the same by the trapezoid rule from the returned forces)."""
+    W = 0.0
+    tx0 = 0.0
+    ty0 = 0.0
+    tz0 = 0.0
+    for k in range(1, ux.size):
+        ddx = (ux[k] - ux[k - 1]) * e1[0] + (uy[k] - uy[k - 1]) * e2[0]
+        ddy = (ux[k] - ux[k - 1]) * e1[1] + (uy[k] - uy[k - 1]) * e2[1]
+        ddz = (ux[k] - ux[k - 1]) * e1[2] + (uy[k] - uy[k - 1]) * e2[2]
+        vel = delta0 * (dn[k] - dn[k - 1]) / dt
+        f = contact_force(nid, tid, P, 0, H, 0, n[0], n[1], n[2], delta0 * dn[k], ddx / dt + vel * n[0],
+                          ddy / dt + vel * n[1], ddz / dt + vel * n[2], 0.0, dt)
+        # F_t is the force on body 1; the contact absorbs -F_t . dd
+        W -= 0.5 * ((tx0 + f[3]) * ddx + (ty0 + f[4]) * ddy + (tz0 + f[5]) * ddz)
+        tx0 = f[3]
+        ty0 = f[4]
+        tz0 = f[5]
+    return tangential_work(nid, H, 0), W
+
+
+@pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
+def test_no_energy_created_on_closed_loops_at_constant_load(tangential):
+    """Random closed 3D tangential loops at constant overlap: the work absorbed by the tangential force
+    is >= 0 for every law (it is dissipated or stored), and the kernel's work slot equals the trapezoid
+    rule on the returned forces."""
+    sc = _law_scene(tangential)
+    P = sc.params[None, :]
+    delta0 = 2e-6
+    muN = sc.mu * 4.0 / 3.0 * sc.pair.E_star * math.sqrt(sc.pair.R_star) * delta0 ** 1.5
+    slip = 3.0 * sc.mu * delta0 / 2.0
+    n, e1, e2 = _frame(True)
+    for seed in range(30):
+        ux, uy, dn = _random_path(300, 100 + seed, amp_t=slip * (0.2 + seed / 15))
+        H = scene_history(sc)
+        w_slot, w = closed_loop_work(sc.normal_id, sc.tangential_id, P, H, -n, e1, e2, ux, uy, dn, delta0, 1e-7)
+        assert w >= -1e-12 * muN * slip, (seed, w)
+        assert abs(w_slot - w) <= 1e-9 * max(abs(w), muN * slip * 1e-3), (seed, w_slot, w)

@@ -198,3 +198,160 @@ def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
     """Zeroed histories of ``n_contacts`` contacts, float64[n_contacts, history_size];
     ``history_size`` is ``PairTable.history_size``."""
     return np.zeros((n_contacts, history_size))
+
+
+# ------------------------------------------------------------------------------------------- checked entry
+
+_NORMAL_NAMES = "0 hertz, 1 thornton, 2 hertz_damped, 3 linear"
+_TANGENTIAL_NAMES = ("0 md, 1 md_rescale, 2 mindlin_total, 3 mindlin_incremental, 4 mindlin_rescale, 5 linear, "
+                     "6 ddm, 7 mdr, 8 mdr_adaptive")
+UNIT_TOL = 1e-6
+
+
+def _law_id(name, value, valid, names):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or int(value) not in valid:
+        raise InputError(f"{name} = {value!r} is not a law id (valid: {names})")
+    return int(value)
+
+
+def _array(name, a, ndim, dtype, shape=None, writeable=False):
+    if not isinstance(a, np.ndarray):
+        raise InputError(f"{name} must be a numpy array of {np.dtype(dtype).name}, got {type(a).__name__}")
+    if a.dtype != dtype:
+        raise InputError(f"{name} must have dtype {np.dtype(dtype).name}, got {a.dtype}")
+    if a.ndim != ndim:
+        raise InputError(f"{name} must be {ndim}-dimensional, got shape {a.shape}")
+    if shape is not None:
+        for k, (got, want) in enumerate(zip(a.shape, shape)):
+            if want is not None and got != want:
+                raise InputError(f"{name} must have shape {tuple('n' if w is None else w for w in shape)} "
+                                 f"with n = {shape[0] if shape[0] is not None else 'the number of contacts'}, "
+                                 f"got {a.shape}")
+    if not a.flags.c_contiguous:
+        raise InputError(f"{name} must be C-contiguous (np.ascontiguousarray)")
+    if writeable and not a.flags.writeable:
+        raise InputError(f"{name} must be writeable")
+
+
+def _first_bad(name, bad, what):
+    """Raise for the first True of the boolean per-contact array ``bad``."""
+    if np.any(bad):
+        c = int(np.argmax(bad))
+        raise InputError(f"{name}[{c}] {what(c)}")
+
+
+def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
+                   tforces=None):
+    """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
+    ``contact_force`` call that uses the same arrays): law ids, dtypes, shapes, C-contiguity, row indices
+    in range, history rows long enough for the laws, unit normals (within 1e-6), dt > 0 and finite inputs.
+    Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
+    again when they are reallocated); the jitted kernels themselves do not check."""
+    nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
+    tid = _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+    _array("params", params, 2, np.float64, (None, N_PARAMS))
+    if params.shape[0] == 0:
+        raise InputError("params must have at least one row (pairs.pair_table)")
+    _first_bad("params", ~np.all(np.isfinite(params), axis=1), lambda r: "is not finite")
+    _array("overlaps", overlaps, 1, np.float64)
+    n = overlaps.shape[0]
+    _array("pair_rows", pair_rows, 1, np.int64, (n,))
+    _array("H", H, 2, np.float64, (n, None))
+    _array("normals", normals, 2, np.float64, (n, 3))
+    _array("velocities", velocities, 2, np.float64, (n, 3))
+    _array("wn", wn, 1, np.float64, (n,))
+    for name, a in (("forces", forces), ("tforces", tforces)):
+        if a is not None:
+            _array(name, a, 2, np.float64, (n, 3), writeable=True)
+    if not (isinstance(dt, (float, int, np.floating, np.integer)) and not isinstance(dt, (bool, np.bool_))
+            and math.isfinite(dt) and dt > 0.0):
+        raise InputError(f"dt = {dt!r} must be a finite time step > 0 [s]")
+    rows = params.shape[0]
+    _first_bad("pair_rows", (pair_rows < 0) | (pair_rows >= rows),
+               lambda c: f"= {pair_rows[c]} is not a row of params (valid: 0 to {rows - 1})")
+    if n == 0:
+        return
+    used = params[pair_rows]
+    if tid in (MDR, MDR_ADAPTIVE):
+        cells = used[:, P_NSPRING]
+        _first_bad("pair_rows", (cells < 2) | (cells != np.floor(cells)) | (cells > 10**6),
+                   lambda c: f"= {pair_rows[c]}: its params row has no MDR cell count (params[:, P_NSPRING]), "
+                             f"which the {'mdr' if tid == MDR else 'mdr_adaptive'} law needs")
+        if tid == MDR_ADAPTIVE:
+            _first_bad("pair_rows", cells % 2 != 0, lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
+        else:
+            _first_bad("pair_rows", ~(used[:, P_DX] > 0.0),
+                       lambda c: f"= {pair_rows[c]}: its params row has no MDR cell width (params[:, P_DX] > 0)")
+        need = history_size(nid, tid, int(cells.max()))
+    else:
+        need = history_size(nid, tid)
+    if H.shape[1] < need:
+        raise InputError(f"H has rows of length {H.shape[1]}; these laws and params need {need} "
+                         f"(PairTable.history_size, contact3d.history_size)")
+    _first_bad("H", ~np.all(np.isfinite(H), axis=1), lambda c: "(the history of the contact) is not finite")
+    _first_bad("normals", ~np.all(np.isfinite(normals), axis=1), lambda c: "is not finite")
+    length = np.sqrt(np.einsum("ij,ij->i", normals, normals))
+    _first_bad("normals", np.abs(length - 1.0) > UNIT_TOL,
+               lambda c: f"has length {length[c]:.9g} (a unit vector is needed, within {UNIT_TOL:g})")
+    _first_bad("overlaps", ~np.isfinite(overlaps), lambda c: "is not finite")
+    _first_bad("velocities", ~np.all(np.isfinite(velocities), axis=1), lambda c: "is not finite")
+    _first_bad("wn", ~np.isfinite(wn), lambda c: "is not finite")
+
+
+@njit(boundscheck=True, **JIT)
+def _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, need):
+    """``contact_forces_serial`` with bounds checks and per-contact checks of what the kernel relies on;
+    returns (-1, 0) or (first bad contact, reason: 1 row, 2 history row length, 3 normal, 4 non-finite
+    input, 5 non-finite force)."""
+    for c in range(overlaps.shape[0]):
+        row = pair_rows[c]
+        if row < 0 or row >= params.shape[0]:
+            return c, 1
+        if H.shape[1] < need:
+            return c, 2
+        nx = normals[c, 0]
+        ny = normals[c, 1]
+        nz = normals[c, 2]
+        if not abs(math.sqrt(nx * nx + ny * ny + nz * nz) - 1.0) <= UNIT_TOL:
+            return c, 3
+        s = overlaps[c] + velocities[c, 0] + velocities[c, 1] + velocities[c, 2] + wn[c]
+        if not math.isfinite(s):
+            return c, 4
+        _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+        if not math.isfinite(forces[c, 0] + forces[c, 1] + forces[c, 2]):
+            return c, 5
+    return -1, 0
+
+
+_DEBUG_REASONS = {1: "pair_rows[{c}] is not a row of params", 2: "H rows are too short for the laws",
+                  3: "normals[{c}] is not a unit vector", 4: "an input of contact {c} is not finite"}
+
+
+def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, *,
+                   parallel=True, debug=None):
+    """Checked batch step: ``check_contacts``, then ``contact_forces_batch`` (``parallel``) or
+    ``contact_forces_serial``. ``debug`` (default: the environment variable DEM_CONTACT_DEBUG set to
+    1): run a serial loop compiled with numba's bounds checks that also checks every contact's inputs and
+    force, and raises ``InputError`` / ``NumericalError`` naming the first bad contact."""
+    check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    if debug is None:
+        debug = os.environ.get("DEM_CONTACT_DEBUG", "") not in ("", "0")
+    if debug:
+        need = H.shape[1]
+        if tid in (MDR, MDR_ADAPTIVE) and len(pair_rows):
+            need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
+        elif tid not in (MDR, MDR_ADAPTIVE):
+            need = history_size(nid, tid)
+        c, reason = _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
+                                  forces, tforces, need)
+        if reason == 5:
+            raise NumericalError(f"contact {c}: the force is not finite (overlap {overlaps[c]:.6g} m"
+                                 f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
+        if reason:
+            raise InputError(_DEBUG_REASONS[reason].format(c=c))
+    elif parallel:
+        contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt), forces,
+                             tforces)
+    else:
+        contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
+                              forces, tforces)
