@@ -230,9 +230,8 @@ class LammpsContacts:
             raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         self.hs = table.history_size
-        self.width = K.row_width(self.hs)
-        self.ncols = self.slots * self.width + K.N_STAT + K.N_SAVED
-        self.col_stat = self.slots * self.width
+        self.col_stat = K.atom_columns(self.slots, self.hs)
+        self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
         self.col_saved = self.col_stat + K.N_STAT
         p = prefix
         for cmd in (
@@ -347,7 +346,8 @@ class LammpsContacts:
         t0 = time.perf_counter()
         nall, xa, v, omega, radius, rmass, ids, typ, torque = self._arrays()
         data = self._data()
-        H = data[:, :self.col_stat].reshape(data.shape[0], self.slots, self.width)   # a view
+        keys = data[:, :self.slots]
+        H = data[:, self.slots:self.col_stat].reshape(data.shape[0], self.slots, self.hs)   # a view
         stat = data[:, self.col_stat:self.col_stat + K.N_STAT]
         saved = data[:, self.col_saved:self.col_saved + K.N_SAVED]
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
@@ -363,7 +363,7 @@ class LammpsContacts:
             self._tag_ref = ids[:nall].copy()
             self.list_builds += 1
         summary = K.step_contacts(
-            nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, H, self.hs,
+            nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, keys, H,
             self.table.normal_id, self.table.tangential_id, self.table.params, self.table.sphere_row,
             self.table.wall_row, self.lmp.extract_global("dt"), not setup, self.frame_spin,
             fext, torque, stat, saved, ntimestep)

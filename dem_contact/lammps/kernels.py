@@ -4,9 +4,9 @@ the kernels take numpy views of LAMMPS's per-atom arrays.
 
 History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
 ``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
-rebuilds and atom sorting), viewed as ``H`` of shape (nmax, slots, width): H[i] are the rows of atom i,
-a 2D array handed to the contact kernel with the row index. A row is [law history (history_size) | key], where
-key is the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row.
+rebuilds and atom sorting): the keys of its rows first, ``keys`` (nmax, slots), then the rows, ``H``
+(nmax, slots, history_size): H[i] are the rows of atom i, a 2D array handed to the contact kernel with
+the row index. A key is the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row.
 
 Newton's third law between ranks, without reverse communication: each rank computes the contacts of its
 own (local) atoms, including those with ghost atoms, and writes forces and torques on local atoms only.
@@ -50,15 +50,15 @@ R_NEED = 3       # largest number of history rows an atom needed
 N_SUMMARY = 4
 
 
-def row_width(history_size: int) -> int:
-    """Length of one history row: the law's history, the key."""
-    return history_size + 1
+def atom_columns(slots: int, history_size: int) -> int:
+    """Columns of the per-atom array before the statistics: the keys and the rows."""
+    return slots * (1 + history_size)
 
 
 @njit(cache=True)
-def law(nid, tid, params, row, H, c, hs, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+def law(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     """The one call of the contact kernel: force on body 1 and its tangential part for the contact whose
-    history is row c of H (its first hs columns; ``dem.contact3d.contact_force``, conventions there)."""
+    history is row c of H (``dem.contact3d.contact_force``, conventions there)."""
     return contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
@@ -241,30 +241,31 @@ def _grow1(a):
 
 
 @njit(cache=True)
-def _find_row(H, i, key, kcol):
-    for s in range(H.shape[1]):
-        if H[i, s, kcol] == key:
+def _find_row(keys, i, key):
+    for s in range(keys.shape[1]):
+        if keys[i, s] == key:
             return s
     return -1
 
 
 @njit(cache=True)
-def _free_row(H, i, kcol):
-    for s in range(H.shape[1]):
-        if H[i, s, kcol] == 0.0:
+def _free_row(keys, i):
+    for s in range(keys.shape[1]):
+        if keys[i, s] == 0.0:
             return s
     return -1
 
 
 @njit(cache=True)
-def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, H, hs,
+def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, keys, H,
                   nid, tid, params, sphere_row, wall_row, dt, advance, frame_spin, fext, torque, stat,
                   saved, step):
     """One step of contact forces for the local atoms of one rank.
 
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
     atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
-    wall_row; cand, cand_walls: the Verlet lists (``candidates``); H: float64[nmax, slots, row_width(hs)] histories; params, sphere_row, wall_row: the pair
+    wall_row; cand, cand_walls: the Verlet lists (``candidates``); keys: float64[nmax, slots], H:
+    float64[nmax, slots, hs] histories; params, sphere_row, wall_row: the pair
     table; dt [s]; advance: False evaluates on copies of the histories
     (LAMMPS's set-up call: nothing is advanced); frame_spin: pass the spin of the contact frame about
     the normal to the kernel (False: wn = 0, LAMMPS's granular models). fext: float64[nlocal, 3] receives the contact forces;
@@ -272,7 +273,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
     per-atom statistics (local rows written); saved: float64[nmax, N_SAVED] receives the force and
     torque of each local atom with step + 1. Returns float64[N_SUMMARY].
     """
-    kcol = hs
+    hs = H.shape[2]
     summary = np.zeros(N_SUMMARY)
     pairs, deltas, hits, wdel = overlapping(x, radius, walls, cand, cand_walls)
     npair = pairs.shape[0]
@@ -297,20 +298,20 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         j = pairs[c, 1]
         stat[i, ST_PAIRS] += 1.0
         count[i] += 1.0
-        rowi[c] = _find_row(H, i, float(tag[j]), kcol)
+        rowi[c] = _find_row(keys, i, float(tag[j]))
         if rowi[c] >= 0:
             used[i, rowi[c]] = True
         if j < nlocal:
             stat[j, ST_PAIRS] += 1.0
             count[j] += 1.0
-            rowj[c] = _find_row(H, j, float(tag[i]), kcol)
+            rowj[c] = _find_row(keys, j, float(tag[i]))
             if rowj[c] >= 0:
                 used[j, rowj[c]] = True
     for c in range(nhit):
         i = hits[c, 0]
         stat[i, ST_WALLS] += 1.0
         count[i] += 1.0
-        roww[c] = _find_row(H, i, -(hits[c, 1] + 1.0), kcol)
+        roww[c] = _find_row(keys, i, -(hits[c, 1] + 1.0))
         if roww[c] >= 0:
             used[i, roww[c]] = True
     need = 0.0
@@ -324,9 +325,10 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         # contacts that ended free their rows (reset) before new contacts take rows
         for i in range(nlocal):
             for s in range(slots):
-                if not used[i, s] and H[i, s, kcol] != 0.0:
+                if not used[i, s] and keys[i, s] != 0.0:
+                    keys[i, s] = 0.0
                     H[i, s, :] = 0.0
-    scratch = np.zeros((1, H.shape[2]))
+    scratch = np.zeros((1, hs))
     for c in range(npair):
         i = pairs[c, 0]
         j = pairs[c, 1]
@@ -335,11 +337,11 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         rj = rowj[c]
         if advance:
             if ri < 0:
-                ri = _free_row(H, i, kcol)
+                ri = _free_row(keys, i)
                 if ri < 0:
                     continue                       # out of rows: reported through ST_NEED
             if local_j and rj < 0:
-                rj = _free_row(H, j, kcol)
+                rj = _free_row(keys, j)
                 if rj < 0:
                     continue
         else:
@@ -383,14 +385,14 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
             wn = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
                         + (omega[a, 2] + omega[b, 2]) * nz)
         if advance:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H[i], ri, hs, nx, ny, nz, delta,
+            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H[i], ri, nx, ny, nz, delta,
                                          vx, vy, vz, wn, dt)
-            H[i, ri, kcol] = tag[j]
+            keys[i, ri] = tag[j]
             if local_j:
                 H[j, rj, :] = H[i, ri, :]
-                H[j, rj, kcol] = tag[i]
+                keys[j, rj] = tag[i]
         else:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, hs, nx, ny, nz, delta,
+            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, nx, ny, nz, delta,
                                          vx, vy, vz, wn, dt)
         # torque on body k: (R_k - delta/2) n x Ft on both bodies (r_a = +arm n, force on b = -Ft)
         cx = ny * tz - nz * ty
@@ -418,7 +420,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         ri = roww[c]
         if advance:
             if ri < 0:
-                ri = _free_row(H, i, kcol)
+                ri = _free_row(keys, i)
                 if ri < 0:
                     continue
         else:
@@ -449,11 +451,11 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         if frame_spin:
             wn = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
         if advance:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H[i], ri, hs, nx, ny, nz, delta,
+            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H[i], ri, nx, ny, nz, delta,
                                          vx, vy, vz, wn, dt)
-            H[i, ri, kcol] = -(w + 1.0)
+            keys[i, ri] = -(w + 1.0)
         else:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, hs, nx, ny, nz, delta,
+            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, nx, ny, nz, delta,
                                          vx, vy, vz, wn, dt)
         fext[i, 0] += fx
         fext[i, 1] += fy
