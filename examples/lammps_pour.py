@@ -49,7 +49,7 @@ def scene(n, seed=1, spacing=1.15, speed=0.3):
     x[:, :2] += rng.uniform(-0.1, 0.1, (n, 2)) * max(s - 2.0 * max(RADII), 0.0)
     v = rng.normal(0.0, speed, (n, 3))
     types = rng.integers(1, 3, n)
-    return x, v, types, L, (layers + 2) * s * 2.0
+    return x, v, types, L, (layers + 2) * s * 2.0, layers * s
 
 
 def equivalent_wall_material(E_star, G_star):
@@ -82,6 +82,10 @@ def main(argv=None):
                    help="lattice spacing of the initial state, in largest diameters (>= 0.9; below 1 the largest "
                         "spheres start pressed together; default 1.15)")
     p.add_argument("--speed", type=float, default=0.3, help="rms initial speed per axis [m/s] (0.3)")
+    p.add_argument("--same-size", action="store_true",
+                   help="both materials with the larger radius (with --spacing below 1 and --lid: a pressed "
+                        "packing with about 3 contacts per sphere from the first step)")
+    p.add_argument("--lid", action="store_true", help="a sixth wall on top of the initial lattice")
     p.add_argument("--small", action="store_true", help="a quick run: --n 150 --steps 300")
     p.add_argument("--dump", help="folder for LAMMPS dump custom files (every --every steps)")
     p.add_argument("--json", action="store_true", help="print one JSON object (rank 0)")
@@ -101,10 +105,11 @@ def run(a):
     if a.n < 1 or a.steps < 0 or a.every < 1 or not a.spacing >= 0.9 or not a.speed >= 0.0:
         raise InputError("--n must be >= 1, --steps >= 0, --every >= 1, --spacing >= 0.9, --speed >= 0")
     laws = {} if a.tangential is None else {"tangential": a.tangential}
-    spheres = [Sphere(RADII[0], GLASS), Sphere(RADII[1], POLYMER)]
+    radii = (RADII[1], RADII[1]) if a.same_size else RADII
+    spheres = [Sphere(radii[0], GLASS), Sphere(radii[1], POLYMER)]
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
     dt = min(sc.contact_time(a.v_max) for sc in table.scenes) / a.steps_per_contact
-    x, v, types, L, height = scene(a.n, a.seed, a.spacing, a.speed)
+    x, v, types, L, height, top = scene(a.n, a.seed, a.spacing, a.speed)
     lmp = new_lammps()
     me = lmp.extract_setting("world_rank")
     nranks = lmp.extract_setting("world_size")
@@ -124,6 +129,8 @@ def run(a):
     skin = 0.3 * rmax
     walls = [PlaneWall.axis(ax, pos, side) for ax in ("x", "y") for pos, side in ((0.0, "lo"), (L, "hi"))]
     walls.append(PlaneWall.axis("z", 0.0, "lo"))
+    if a.lid:
+        walls.append(PlaneWall.axis("z", top, "hi"))
     if a.native:
         if a.normal != "hertz" or a.tangential not in (None, "mindlin_total"):
             raise InputError("--native runs LAMMPS's hertz/material + mindlin: use --normal hertz "
@@ -144,7 +151,8 @@ def run(a):
                      f"damping viscoelastic")
             lmp.command(f"fix wx{k} t{k} wall/gran {model} xplane 0.0 {L!r}")
             lmp.command(f"fix wy{k} t{k} wall/gran {model} yplane 0.0 {L!r}")
-            lmp.command(f"fix wz{k} t{k} wall/gran {model} zplane 0.0 NULL")
+            zhi = repr(top) if a.lid else "NULL"
+            lmp.command(f"fix wz{k} t{k} wall/gran {model} zplane 0.0 {zhi}")
         bridge = None
     else:
         lmp.command("pair_style none")

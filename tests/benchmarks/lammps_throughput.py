@@ -3,9 +3,10 @@ hertz + default tangential law and hertz + mindlin_total through the bridge, aga
 pair granular hertz/material + mindlin with fix wall/gran, on the same scene, on 1 and 2 ranks, in one run
 of this script (a script, not a pytest benchmark: each case is its own MPI job).
 
-The scene starts as a lattice with the largest spheres pressed together (--spacing, in largest
-diameters) so that the contact count is high from the first step; contacts are counted every
---every steps. wall_s is the time inside LAMMPS's ``run`` (contact search, laws, forces, integration,
+The scene is a pressed packing: spheres of both materials with one radius (--same-size) on a cubic
+lattice closed by six walls (--lid), spacing 0.995 diameters, at rest: about 3 contacts per sphere
+(sphere pairs and walls) from the first step, as in a packed bed; contacts are counted every --every
+steps. wall_s is the time inside LAMMPS's ``run`` (contact search, laws, forces, integration,
 communication); contact updates = contacts counted x steps between counts.
 
 Usage: python tests/benchmarks/lammps_throughput.py [--n 20000] [--steps 500] [--ranks 1 2] [--json]
@@ -40,12 +41,12 @@ def main():
     p.add_argument("--n", type=int, default=20000)
     p.add_argument("--steps", type=int, default=500)
     p.add_argument("--every", type=int, default=100)
-    p.add_argument("--spacing", type=float, default=0.995)
+    p.add_argument("--spacing", type=float, default=0.995, help="lattice spacing [diameters] (0.995)")
     p.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     p.add_argument("--json", action="store_true")
     a = p.parse_args()
     scene = ["--n", str(a.n), "--steps", str(a.steps), "--every", str(a.every), "--spacing", str(a.spacing),
-             "--speed", "0.1"]
+             "--speed", "0", "--same-size", "--lid"]
     for args in CASES.values():                      # compile and cache the kernels first
         pour(["--n", "200", "--steps", "20", "--every", "10", *args], 1)
     rows = []
