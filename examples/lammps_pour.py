@@ -52,8 +52,9 @@ def scene(n, seed=1, spacing=1.15, speed=0.3):
     return x, v, types, L, (layers + 2) * s * 2.0, layers * s
 
 
-def equivalent_wall_material(E_star, G_star):
-    """(E, nu) that LAMMPS's fix wall/gran (one material for both bodies) turns into E* and G*:
+def equivalent_material(E_star, G_star):
+    """(E, nu) that LAMMPS's granular models, given one material for both bodies (fix wall/gran, an
+    explicit pair_coeff i j), turn into E* and G*:
     E* = E / (2 (1 - nu^2)), G* = E / (4 (2 - nu)(1 + nu))."""
     r = E_star / G_star
     nu = (r - 4.0) / (r - 2.0)
@@ -143,9 +144,16 @@ def run(a):
             m = s.material
             lmp.command(f"pair_coeff {k} {k} hertz/material {m.E!r} 0.0 {m.nu!r} tangential mindlin NULL "
                         f"0.0 {a.mu!r} damping viscoelastic")
+        # LAMMPS mixes the 1-2 pair's normal stiffness from both materials, but its mindlin stiffness from
+        # the mixed modulus with the geometric mean of the Poisson ratios; the Hertz-Mindlin G* of the
+        # two materials is set with the equivalent single material, as for the walls
+        row = table.params[table.sphere_row[0, 1]]
+        E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
+        lmp.command(f"pair_coeff 1 2 hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 "
+                    f"{float(row[P_MU])!r} damping viscoelastic")
         for k in (1, 2):
             row = table.params[table.wall_row[k - 1, 0]]
-            E, nu = equivalent_wall_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
+            E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
             lmp.command(f"group t{k} type {k}")
             model = (f"granular hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 {float(row[P_MU])!r} "
                      f"damping viscoelastic")
