@@ -196,6 +196,7 @@ def run(a):
            "contact_updates_per_s": updates / wall_s if wall_s > 0 else None,
            "contact_updates_per_s_per_rank": updates / wall_s / nranks if wall_s > 0 else None,
            "ranks": nranks, "dt": dt, "engine": "lammps native" if a.native else "dem_contact",
+           "list_builds_rank0": None if bridge is None else bridge.list_builds,
            "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
                     {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
     lmp.close()
