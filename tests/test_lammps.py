@@ -239,6 +239,14 @@ def test_refuses_a_ghost_cutoff_below_the_largest_diameter():
     LammpsContacts(_box(), _table(), v_max=1.0, skin=1e-4, ghost_cutoff=2.1e-3)
 
 
+def test_refuses_ghosts_without_velocities():
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    lmp.command("comm_modify vel no")
+    with pytest.raises(InputError, match="vel yes"):
+        bridge.run(1)
+
+
 def test_refuses_a_time_step_that_cannot_resolve_the_stiffest_contact():
     bridge = LammpsContacts(_box(dt=1e-4), _table(), v_max=1.0)
     with pytest.raises(InputError, match="timestep"):

@@ -317,6 +317,8 @@ class LammpsContacts:
         more history rows than ``slots``."""
         if not self._checked:
             self.check()
+        if self.lmp.extract_setting("ghost_velocity") != 1:
+            raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
         nlocal = self.lmp.extract_setting("nlocal")
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
         self.lmp.command(f"run {int(nsteps)}")
@@ -347,7 +349,8 @@ class LammpsContacts:
         nall, xa, v, omega, radius, rmass, ids, typ, torque = self._arrays()
         data = self._data()
         keys = data[:, :self.slots]
-        H = data[:, self.slots:self.col_stat].reshape(data.shape[0], self.slots, self.hs)   # a view
+        H = data[:, self.slots:self.col_stat].view()
+        H.shape = (data.shape[0], self.slots, self.hs)      # a view of LAMMPS's memory (never a copy)
         stat = data[:, self.col_stat:self.col_stat + K.N_STAT]
         saved = data[:, self.col_saved:self.col_saved + K.N_SAVED]
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
