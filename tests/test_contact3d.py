@@ -149,11 +149,12 @@ def test_batch_equals_per_contact(tangential):
     assert np.abs(np.einsum("ij,ij->i", tb, nrm)).max() <= 1e-12 * np.abs(tb).max()
 
 
+@pytest.mark.parametrize("normal", ["hertz", "thornton"])
 @pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
-def test_history_helpers(tangential):
+def test_history_helpers(tangential, normal):
     """peek does not advance; swapping bodies twice is the identity and once gives the opposite force of
     the swapped geometry; reset zeroes the row."""
-    sc = Scene(Sphere(1e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0)
+    sc = _law_scene(tangential, normal)
     nid, tid, P = sc.normal_id, sc.tangential_id, sc.params[None, :]
     H = scene_history(sc)
     n = np.array([0.0, 0.6, -0.8])
@@ -166,10 +167,10 @@ def test_history_helpers(tangential):
     out = contact_force(nid, tid, P, 0, H, 0, *n, 1.3e-6, *v, 50.0, 1e-7)
     assert out == peek and np.linalg.norm(out[3:]) > 0.0
     H = H0.copy()
-    swap_bodies(nid, tid, P, 0, H, 0)
+    swap_bodies(tid, H, 0, nid)
     assert not np.array_equal(H, H0)
     Hs = H.copy()
-    swap_bodies(nid, tid, P, 0, H, 0)
+    swap_bodies(tid, H, 0, nid)
     assert np.array_equal(H, H0)
     # swapped geometry: n, v and wn = 0.5 (w1 + w2) . n change sign
     out2 = contact_force(nid, tid, P, 0, Hs, 0, *(-n), 1.3e-6, *(-v), -50.0, 1e-7)

@@ -46,58 +46,29 @@ from numba import njit, prange
 from ..errors import InputError, NumericalError
 from ..laws import vector as V
 from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
-                            MDR, MDR_ADAPTIVE, MINDLIN_INCREMENTAL, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
-from ..laws.slots import N_PARAMS, P_DX, P_GSTAR, P_KT, P_NSPRING
-from ..laws.vector import JIT, V_A, V_N, W_WORK, W_X, history_size, tangential_base
+                            MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
+from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MSTAR, P_MU,
+                          P_NSPRING, P_PY, P_RSTAR)
+from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
+                           tangential_base)
 
 __all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
            "contact_forces_batch", "contact_forces_serial", "contact_forces", "check_contacts",
            "new_histories", "history_size"]
 
 
-@njit(**JIT)
-def _normal(nid, params, row, H, c, delta, vel):
-    if nid == HERTZ:
-        return V.hertz(params, row, delta)
-    if nid == THORNTON:
-        return V.thornton(params, row, H, c, delta)
-    if nid == HERTZ_DAMPED:
-        return V.hertz_damped(params, row, delta, vel)
-    if nid == LINEAR_NORMAL:
-        return V.linear_normal(params, row, delta, vel)
-    raise InputError("unknown normal law id (valid: 0 hertz, 1 thornton, 2 hertz_damped, 3 linear)")
+# The kernels are flattened for speed. One step function per family of tangential laws (``_step_md``,
+# ``_step_spring``, ``_step_mdr``) alone reads and writes the arrays (H[c, j], params[row, j]) and calls
+# only inlined functions of scalars. The batch loops are compiled per family with the step inlined (numba
+# then keeps the reference counting of the arrays out of the loop), and only the family that is used is
+# compiled. ``contact_force`` calls one non-inlined leaf per family (``_leaf_*``), to keep the cold compile
+# of a user's loop short.
 
-
-@njit(**JIT)
-def _tangential(tid, params, row, H, c, b, N, dN, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn):
-    if tid == MD or tid == MD_RESCALE:
-        return V.md_axis(params, row, H, c, b, N, dN, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
-                         tid == MD_RESCALE)
-    if tid == MDR_ADAPTIVE or tid == MDR:
-        return V.mdr_vector(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
-                            tid == MDR_ADAPTIVE)
-    if tid == MINDLIN_TOTAL:
-        return V.spring_total(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn, 1.0)
-    if tid == DDM:
-        return V.spring_total(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
-                              2.0 / 3.0)
-    if tid == MINDLIN_INCREMENTAL or tid == MINDLIN_RESCALE:
-        return V.spring_incremental(params, row, H, c, b, N, a, a_old, nx, ny, nz, ddx, ddy, ddz, cs, sn,
-                                    8.0 * params[row, P_GSTAR] * a, tid == MINDLIN_RESCALE)
-    if tid == LINEAR_TANGENTIAL:
-        return V.spring_incremental(params, row, H, c, b, N, a, a, nx, ny, nz, ddx, ddy, ddz, cs, sn,
-                                    params[row, P_KT], False)
-    raise InputError("unknown tangential law id (valid: 0 to 8, see laws.contact)")
-
-
-@njit(**JIT)
-def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """One contact step in 3D (see the module docstring). Updates H[c, :] in place.
-    Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N]."""
+@njit(inline="always", **JIT)
+def _kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
+    """Overlap rate v . n, slip increment dd = (v - (v . n) n) dt, and (cos, sin) of the turn of the contact
+    frame about the normal, 2 atan(wn dt / 2) (Cayley form of the rotation by wn dt)."""
     vel = vx * nx + vy * ny + vz * nz
-    ddx = (vx - vel * nx) * dt
-    ddy = (vy - vel * ny) * dt
-    ddz = (vz - vel * nz) * dt
     cs = 1.0
     sn = 0.0
     if wn != 0.0:
@@ -105,13 +76,276 @@ def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn
         inv = 1.0 / (1.0 + q * q)
         cs = (1.0 - q * q) * inv
         sn = 2.0 * q * inv
-    N, a = _normal(nid, params, row, H, c, delta, vel)
+    return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
+
+
+@njit(inline="always", **JIT)
+def _normal(nid, E, R, m, gamma, kn, delta_y, F_y, p_y, s0, s1, s2, s3, delta, vel):
+    """The normal law of ``nid``: (N, a) and the four Thornton state values."""
+    if nid == HERTZ:
+        N, a = V.hertz(E, R, delta)
+    elif nid == THORNTON:
+        return V.thornton(E, R, delta_y, F_y, p_y, s0, s1, s2, s3, delta)
+    elif nid == HERTZ_DAMPED:
+        N, a = V.hertz_damped(E, R, m, gamma, delta, vel)
+    else:
+        N, a = V.linear_normal(kn, gamma, m, R, delta, vel)
+    return N, a, s0, s1, s2, s3
+
+
+@njit(inline="always", **JIT)
+def _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    N, a, s0, s1, s2, s3 = _normal(nid, params[row, P_ESTAR], params[row, P_RSTAR], params[row, P_MSTAR],
+                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
+                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
+                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    b = tangential_base(nid)
     Np = N if N > 0.0 else 0.0
-    tx, ty, tz = _tangential(tid, params, row, H, c, tangential_base(nid), Np, Np - H[c, V_N], a,
-                             H[c, V_A], nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    G = params[row, P_GSTAR]
+    ux, uy, uz, t_old, d_par, px, py, pz = V.md_axis_start(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z],
+                                                           H[c, b + V.M_T], nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    T, ts, tss, k, s = V.md_scalar(params[row, P_MU], G, Np, Np - H[c, V_N], a, H[c, V_A], d_par,
+                                   tid == MD_RESCALE, t_old, H[c, b + V.M_TS], H[c, b + V.M_TSS],
+                                   int(H[c, b + V.M_REGIME]), H[c, b + V.M_SIGN])
+    ux, uy, uz = V.md_axis_turn(T, 8.0 * G * a, ux, uy, uz, px, py, pz)
+    if nid == THORNTON:
+        H[c, V_DSTAR] = s0
+        H[c, V_FSTAR] = s1
+        H[c, V_RP] = s2
+        H[c, V_DP] = s3
     H[c, V_N] = Np
     H[c, V_A] = a
+    H[c, b + W_WORK] += 0.5 * (t_old * d_par + T * (ux * ddx + uy * ddy + uz * ddz))
+    H[c, b + W_X] = ux
+    H[c, b + W_Y] = uy
+    H[c, b + W_Z] = uz
+    H[c, b + V.M_T] = T
+    H[c, b + V.M_TS] = ts
+    H[c, b + V.M_TSS] = tss
+    H[c, b + V.M_REGIME] = k
+    H[c, b + V.M_SIGN] = s
+    tx = T * ux
+    ty = T * uy
+    tz = T * uz
     return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
+
+
+@njit(inline="always", **JIT)
+def _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    N, a, s0, s1, s2, s3 = _normal(nid, params[row, P_ESTAR], params[row, P_RSTAR], params[row, P_MSTAR],
+                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
+                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
+                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    b = tangential_base(nid)
+    Np = N if N > 0.0 else 0.0
+    a_old = H[c, V_A]
+    x = H[c, b + W_X]
+    y = H[c, b + W_Y]
+    z = H[c, b + W_Z]
+    mu = params[row, P_MU]
+    if tid == MINDLIN_TOTAL or tid == DDM:
+        g8 = 8.0 * params[row, P_GSTAR]
+        if tid == DDM:
+            g8 *= 2.0 / 3.0
+        tx, ty, tz, x, y, z, dw = V.spring_total(g8, mu, Np, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    else:
+        if tid == LINEAR_TANGENTIAL:
+            kt = params[row, P_KT]
+            a_old = a
+        else:
+            kt = 8.0 * params[row, P_GSTAR] * a
+        tx, ty, tz, dw = V.spring_incremental(kt, mu, Np, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn,
+                                              tid == MINDLIN_RESCALE)
+        x = tx
+        y = ty
+        z = tz
+    if nid == THORNTON:
+        H[c, V_DSTAR] = s0
+        H[c, V_FSTAR] = s1
+        H[c, V_RP] = s2
+        H[c, V_DP] = s3
+    H[c, V_N] = Np
+    H[c, V_A] = a
+    H[c, b + W_WORK] += dw
+    H[c, b + W_X] = x
+    H[c, b + W_Y] = y
+    H[c, b + W_Z] = z
+    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
+
+
+@njit(inline="always", **JIT)
+def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """Vector MDR (``mdr`` and ``mdr_adaptive``; Popov & Hess 2015 with a displacement vector per cell).
+
+    The cells hold 2D displacements in a frame (e1, e2 = n x e1) of the tangent plane (``V.mdr_frame``).
+    The slip increment in the frame, (dd . e1, dd . e2), is added to every cell in contact, with the entry
+    and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle
+    |G_M u| <= mu E* w. mdr_adaptive: the grid of ``mdr.mdr_adaptive`` (cell width in the history), mdr:
+    the fixed grid of ``mdr.mdr`` (NaN when the contact outgrows it)."""
+    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    E = params[row, P_ESTAR]
+    N, a, s0, s1, s2, s3 = _normal(nid, E, params[row, P_RSTAR], params[row, P_MSTAR],
+                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
+                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
+                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    if nid == THORNTON:
+        H[c, V_DSTAR] = s0
+        H[c, V_FSTAR] = s1
+        H[c, V_RP] = s2
+        H[c, V_DP] = s3
+    b = tangential_base(nid)
+    Np = N if N > 0.0 else 0.0
+    a_old = H[c, V_A]
+    H[c, V_N] = Np
+    H[c, V_A] = a
+    n = int(params[row, P_NSPRING])
+    k0 = b + V.R_CELLS
+    adaptive = tid == MDR_ADAPTIVE
+    dx = H[c, b + V.R_DX] if adaptive else params[row, P_DX]
+    if Np <= 0.0 or a <= 0.0:
+        if dx > 0.0:
+            for j in range(2 * max(V.cells(a, dx, n), V.cells(a_old, dx, n))):
+                H[c, k0 + j] = 0.0
+        for j in range(W_X, V.R_CELLS):
+            H[c, b + j] = 0.0
+        return -N * nx, -N * ny, -N * nz, 0.0, 0.0, 0.0
+    if not adaptive and a > n * dx:
+        return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
+    ex, ey, ez, fx, fy, fz, d1, d2 = V.mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
+                                                 ddx, ddy, ddz, cs, sn)
+    if adaptive:
+        if dx <= 0.0 or a_old <= 0.0:
+            for j in range(2 * n):
+                H[c, k0 + j] = 0.0
+            a_old = 0.0
+            dx = 2.0 ** math.floor(math.log2(2.0 * a / n))
+        while a > n * dx:
+            # merge pairs of cells into their length-weighted mean (mdr._merge), both components
+            for j in range(n // 2):
+                x0 = 2 * j * dx
+                l0 = min(max(a_old - x0, 0.0), dx)
+                l1 = min(max(a_old - x0 - dx, 0.0), dx)
+                u1 = 0.0
+                u2 = 0.0
+                if l0 + l1 > 0.0:
+                    u1 = (H[c, k0 + 4 * j] * l0 + H[c, k0 + 4 * j + 2] * l1) / (l0 + l1)
+                    u2 = (H[c, k0 + 4 * j + 1] * l0 + H[c, k0 + 4 * j + 3] * l1) / (l0 + l1)
+                H[c, k0 + 2 * j] = u1
+                H[c, k0 + 2 * j + 1] = u2
+            for j in range(2 * (n // 2), 2 * n):
+                H[c, k0 + j] = 0.0
+            dx *= 2.0
+        while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
+            # split every cell of the lower half in two that keep its mean (mdr._split)
+            for j in range(n // 2 - 1, -1, -1):
+                u1 = H[c, k0 + 2 * j]
+                u2 = H[c, k0 + 2 * j + 1]
+                H[c, k0 + 4 * j] = u1
+                H[c, k0 + 4 * j + 1] = u2
+                H[c, k0 + 4 * j + 2] = u1
+                H[c, k0 + 4 * j + 3] = u2
+            dx *= 0.5
+        H[c, b + V.R_DX] = dx
+    # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
+    GM = 4.0 * params[row, P_GSTAR]
+    umax_per_w = params[row, P_MU] * E * (3.0 * Np / (4.0 * E * a * a * a)) / GM
+    a2 = a * a
+    da = a - a_old
+    m = max(V.cells(a, dx, n), V.cells(a_old, dx, n))
+    full = min(int(min(a, a_old) / dx), m)
+    dx2 = dx * dx / 3.0
+    S1 = 0.0
+    S2 = 0.0
+    for i in range(full):
+        k = k0 + 2 * i
+        u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1)))
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        S1 += u1
+        S2 += u2
+    T1 = S1 * dx
+    T2 = S2 * dx
+    for i in range(full, m):
+        k = k0 + 2 * i
+        x0 = i * dx
+        l_new = min(max(a - x0, 0.0), dx)
+        if l_new <= 0.0:
+            H[c, k] = 0.0
+            H[c, k + 1] = 0.0
+            continue
+        l_old = min(max(a_old - x0, 0.0), dx)
+        u1 = H[c, k] + d1
+        u2 = H[c, k + 1] + d2
+        if l_new > l_old:
+            # the part entering during the step takes the increment after its entry (mdr._advance)
+            xm = x0 + 0.5 * (l_old + l_new)
+            f = (a - xm) / da * (l_new - l_old)
+            u1 = (u1 * l_old + d1 * f) / l_new
+            u2 = (u2 * l_old + d2 * f) / l_new
+        x1 = x0 + l_new
+        u1, u2 = V.radial(u1, u2, umax_per_w * (a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0))
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        T1 += u1 * l_new
+        T2 += u2 * l_new
+    T1 *= 2.0 * GM
+    T2 *= 2.0 * GM
+    H[c, b + W_WORK] += 0.5 * ((H[c, b + V.R_T1] + T1) * d1 + (H[c, b + V.R_T2] + T2) * d2)
+    H[c, b + W_X] = ex
+    H[c, b + W_Y] = ey
+    H[c, b + W_Z] = ez
+    H[c, b + V.R_T1] = T1
+    H[c, b + V.R_T2] = T2
+    tx = T1 * ex + T2 * fx
+    ty = T1 * ey + T2 * fy
+    tz = T1 * ez + T2 * fz
+    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
+
+
+@njit(**JIT)
+def _leaf_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+@njit(**JIT)
+def _leaf_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+@njit(**JIT)
+def _leaf_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+@njit(inline="always", **JIT)
+def _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """The step of the law family of ``tid`` (ids assumed valid: NaN for an unknown one)."""
+    if tid == MDR_ADAPTIVE or tid == MDR:
+        return _leaf_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    if tid == MD or tid == MD_RESCALE:
+        return _leaf_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    if tid >= MINDLIN_TOTAL and tid <= DDM:
+        return _leaf_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
+
+
+@njit(inline="always", **JIT)
+def _check_ids(nid, tid):
+    if nid < HERTZ or nid > LINEAR_NORMAL:
+        raise InputError("unknown normal law id (valid: 0 hertz, 1 thornton, 2 hertz_damped, 3 linear)")
+    if tid < MD or tid > MDR_ADAPTIVE:
+        raise InputError("unknown tangential law id (valid: 0 to 8, see laws.contact)")
+
+
+@njit(inline="always", **JIT)
+def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """One contact step in 3D (see the module docstring). Updates H[c, :] in place.
+    Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
+    Unknown law ids raise InputError; nothing else is checked (``check_contacts``)."""
+    _check_ids(nid, tid)
+    return _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 @njit(**JIT)
@@ -129,17 +363,18 @@ def reset_contact(H, c):
 
 
 @njit(**JIT)
-def swap_bodies(nid, tid, params, row, H, c):
+def swap_bodies(tid, H, c, nid=HERTZ):
     """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
-    tangential force change sign. Swapping twice is the identity."""
+    tangential force change sign. Swapping twice is the identity. ``nid``: the normal law (its id matters
+    for ``thornton`` only, whose history row is longer)."""
     b = tangential_base(nid)
     for j in range(W_X, W_X + 3):
         H[c, b + j] = -H[c, b + j]
     if tid == MDR or tid == MDR_ADAPTIVE:
         # e1 -> -e1 and n -> -n keep e2 = n x e1: the second components change sign
         H[c, b + V.R_T2] = -H[c, b + V.R_T2]
-        for i in range(int(params[row, P_NSPRING])):
-            H[c, b + V.R_CELLS + 2 * i + 1] = -H[c, b + V.R_CELLS + 2 * i + 1]
+        for k in range(b + V.R_CELLS + 1, H.shape[1], 2):
+            H[c, k] = -H[c, k]
 
 
 @njit(**JIT)
@@ -161,37 +396,87 @@ def tangential_work(nid, H, c):
     return H[c, tangential_base(nid) + W_WORK]
 
 
-@njit(inline="always", **JIT)
-def _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    fx, fy, fz, tx, ty, tz = contact_force(
-        nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-        velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-    forces[c, 0] = fx
-    forces[c, 1] = fy
-    forces[c, 2] = fz
-    tforces[c, 0] = tx
-    tforces[c, 1] = ty
-    tforces[c, 2] = tz
+def _family(tid):
+    """Law family of a (checked) tangential law id: 0 md, 1 vector springs, 2 mdr."""
+    if tid in (MD, MD_RESCALE):
+        return 0
+    if tid in (MDR, MDR_ADAPTIVE):
+        return 2
+    return 1
+
+
+@njit(**JIT)
+def _serial_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(**JIT)
+def _serial_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(**JIT)
+def _serial_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
 @njit(parallel=True, **JIT)
-def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
-                         tforces):
-    """Advance every contact by one step, in parallel (prange over contacts); no argument checks.
+def _batch_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+_SERIAL = (_serial_md, _serial_spring, _serial_mdr)
+_BATCH = (_batch_md, _batch_spring, _batch_mdr)
+
+
+def _valid_ids(nid, tid):
+    nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
+    return nid, _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+
+
+def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    """Advance every contact by one step, in parallel (numba prange over contacts), with the loop compiled
+    for the law family of ``tid`` only. The law ids are checked, nothing else (``check_contacts``).
 
     params: float64[n_rows, N_PARAMS]; pair_rows: int64[n] row of each contact; H: float64[n, history_size]
     (updated); normals, velocities: float64[n, 3]; overlaps, wn: float64[n]; dt [s]; forces, tforces:
     float64[n, 3] receive the force on body 1 and its tangential part."""
-    for c in prange(overlaps.shape[0]):
-        _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    nid, tid = _valid_ids(nid, tid)
+    _BATCH[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
 
 
-@njit(**JIT)
-def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
-                          tforces):
+def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
     """``contact_forces_batch`` on one thread."""
-    for c in range(overlaps.shape[0]):
-        _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    nid, tid = _valid_ids(nid, tid)
+    _SERIAL[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
 
 
 def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
@@ -278,7 +563,8 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
                    lambda c: f"= {pair_rows[c]}: its params row has no MDR cell count (params[:, P_NSPRING]), "
                              f"which the {'mdr' if tid == MDR else 'mdr_adaptive'} law needs")
         if tid == MDR_ADAPTIVE:
-            _first_bad("pair_rows", cells % 2 != 0, lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
+            _first_bad("pair_rows", cells % 2 != 0,
+                       lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
         else:
             _first_bad("pair_rows", ~(used[:, P_DX] > 0.0),
                        lambda c: f"= {pair_rows[c]}: its params row has no MDR cell width (params[:, P_DX] > 0)")
@@ -317,7 +603,9 @@ def _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
         s = overlaps[c] + velocities[c, 0] + velocities[c, 1] + velocities[c, 2] + wn[c]
         if not math.isfinite(s):
             return c, 4
-        _one(c, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = contact_force(
+            nid, tid, params, row, H, c, nx, ny, nz, overlaps[c], velocities[c, 0], velocities[c, 1],
+            velocities[c, 2], wn[c], dt)
         if not math.isfinite(forces[c, 0] + forces[c, 1] + forces[c, 2]):
             return c, 5
     return -1, 0

@@ -2,10 +2,17 @@
 
 Every law runs through ``contact3d.contact_forces_serial`` (the batch loop on one thread) over
 N_CONTACTS contacts of random orientation, overlap and relative velocity; each round advances every
-contact by one step.
+contact by one step (random mean spins about the normal, so the history is turned every step). Group
+``contact3d``: the numba kernels against C references of the same arithmetic (Hertz + md, Hertz +
+mdr_adaptive; generated into a temp dir, gcc -O3 -march=native, loaded with ctypes; skipped without gcc).
 
-Run: ``pytest tests/benchmarks/test_bench_contact3d.py --benchmark-only``; updates/s = N_CONTACTS / mean.
+Run: ``pytest tests/benchmarks/test_bench_contact3d.py --benchmark-only --benchmark-group-by=group``;
+updates/s = N_CONTACTS / min (the machine is shared: compare minima of the same run).
 """
+import ctypes
+import shutil
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -16,6 +23,7 @@ from dem_contact.dem.pairs import pair_table
 
 N_CONTACTS = 100_000
 DT = 2e-7
+ROUNDS = 30
 
 
 def _workload(tangential, normal="hertz", n=N_CONTACTS):
@@ -36,9 +44,8 @@ def _run_numba(benchmark, tangential, normal="hertz"):
     tab, pair, H, nrm, delta, vel, wn, f, t = _workload(tangential, normal)
     args = (tab.normal_id, tab.tangential_id, tab.params, pair, H, nrm, delta, vel, wn, DT, f, t)
     contact_forces_serial(*args)              # compile / load and warm up
-    benchmark.pedantic(contact_forces_serial, args=args, rounds=20, iterations=1, warmup_rounds=2)
-    benchmark.extra_info["updates_per_s"] = N_CONTACTS / benchmark.stats.stats.mean
-    return N_CONTACTS / benchmark.stats.stats.mean
+    benchmark.pedantic(contact_forces_serial, args=args, rounds=ROUNDS, iterations=1, warmup_rounds=2)
+    benchmark.extra_info["updates_per_s"] = N_CONTACTS / benchmark.stats.stats.min
 
 
 @pytest.mark.benchmark(group="contact3d-tangential")
@@ -51,3 +58,303 @@ def test_bench_batch_tangential(benchmark, tangential):
 @pytest.mark.parametrize("normal", list(NORMAL_LAWS))
 def test_bench_batch_normal(benchmark, normal):
     _run_numba(benchmark, "md", normal)
+
+
+# The C references: Hertz + md and Hertz + mdr_adaptive (the default law), the arithmetic of
+# laws.vector and contact3d.contact_force transcribed line by line (hertz base b = 2).
+C_SOURCE = r"""
+#include <math.h>
+enum {P_ESTAR = 0, P_GSTAR = 1, P_RSTAR = 2, P_MU = 4, P_NSPRING = 11};
+enum {V_N = 0, V_A = 1, B = 2};
+enum {W_WORK = 0, W_X = 1, W_Y = 2, W_Z = 3, M_T = 4, M_TS = 5, M_TSS = 6, M_REGIME = 7, M_SIGN = 8, N_MD = 9,
+      R_T1 = 4, R_T2 = 5, R_DX = 6, R_CELLS = 7};
+
+static inline void carry_unit(double *x, double *y, double *z, double nx, double ny, double nz,
+                              double cs, double sn) {
+    double un = *x * nx + *y * ny + *z * nz;
+    double X = *x - un * nx, Y = *y - un * ny, Z = *z - un * nz;
+    double p2 = X * X + Y * Y + Z * Z;
+    if (p2 <= 0.0) { *x = *y = *z = 0.0; return; }
+    double s = 1.0 / sqrt(p2);
+    X *= s; Y *= s; Z *= s;
+    if (sn != 0.0) {
+        double tx = X * cs + (ny * Z - nz * Y) * sn, ty = Y * cs + (nz * X - nx * Z) * sn,
+               tz = Z * cs + (nx * Y - ny * X) * sn;
+        X = tx; Y = ty; Z = tz;
+    }
+    *x = X; *y = Y; *z = Z;
+}
+
+static double md_scalar(const double *p, double *h, double N, double dN, double a, double a_old, double dd) {
+    double mu = p[P_MU], muN = mu * N;
+    if (muN <= 0.0 || a <= 0.0) {
+        for (int j = M_T; j < N_MD; j++) h[B + j] = 0.0;
+        return 0.0;
+    }
+    double s = h[B + M_SIGN];
+    if (s == 0.0) s = dd >= 0.0 ? 1.0 : -1.0;
+    double t = s * h[B + M_T], ts = h[B + M_TS], tss = h[B + M_TSS];
+    int k = (int)h[B + M_REGIME];
+    double d = s * dd, mdN = mu * dN;
+    if (k == 0) {
+        if (d < 0.0) {
+            if (t <= 0.0) { s = -s; t = -t; d = -d; } else { k = 1; ts = t; }
+        }
+    } else if (k == 1) {
+        if (d > 0.0) { k = 2; tss = t; }
+    } else if (d < 0.0) { k = 1; ts = t; }
+    double kt = 8.0 * p[P_GSTAR] * (2.0 / 3.0 * (a_old * a_old + a_old * a + a * a) / (a_old + a)), th;
+    if (mdN > 0.0 && fabs(kt * d) < mdN) {
+        t += kt * d;
+    } else if (k == 0) {
+        th = cbrt(fmin(fmax(1.0 - (t + mdN) / muN, 0.0), 1.0));
+        t += kt * th * d + mdN * (1.0 - th);
+    } else if (k == 1) {
+        th = cbrt(fmin(fmax(1.0 - (ts - t + 2.0 * mdN) / (2.0 * muN), 0.0), 1.0));
+        t += kt * th * d - mdN * (1.0 - th);
+    } else {
+        th = cbrt(fmin(fmax(1.0 - (t - tss + 2.0 * mdN) / (2.0 * muN), 0.0), 1.0));
+        t += kt * th * d + mdN * (1.0 - th);
+    }
+    ts += mdN;
+    tss -= mdN;
+    if (k == 1 && t < -ts) { s = -s; t = -t; k = 0; }
+    else if (k == 2 && t >= ts) k = 0;
+    if (fabs(t) >= muN) { if (t < 0.0) s = -s; t = muN; k = 0; }
+    h[B + M_T] = s * t; h[B + M_TS] = ts; h[B + M_TSS] = tss; h[B + M_REGIME] = k; h[B + M_SIGN] = s;
+    return s * t;
+}
+
+static void md_axis(const double *p, double *h, double N, double dN, double a, double a_old, double nx,
+                    double ny, double nz, double ddx, double ddy, double ddz, double cs, double sn,
+                    double *Tx, double *Ty, double *Tz) {
+    double t_old = h[B + M_T], ux = 0.0, uy = 0.0, uz = 0.0;
+    if (t_old != 0.0) {
+        ux = h[B + W_X]; uy = h[B + W_Y]; uz = h[B + W_Z];
+        carry_unit(&ux, &uy, &uz, nx, ny, nz, cs, sn);
+    }
+    if (ux == 0.0 && uy == 0.0 && uz == 0.0) {
+        t_old = 0.0;
+        double dm = sqrt(ddx * ddx + ddy * ddy + ddz * ddz);
+        if (dm > 0.0) { ux = ddx / dm; uy = ddy / dm; uz = ddz / dm; }
+    }
+    double dpar = ddx * ux + ddy * uy + ddz * uz;
+    double px = ddx - dpar * ux, py = ddy - dpar * uy, pz = ddz - dpar * uz;
+    double T = md_scalar(p, h, N, dN, a, a_old, dpar);
+    if (T != 0.0 && (px != 0.0 || py != 0.0 || pz != 0.0)) {
+        double k0 = 8.0 * p[P_GSTAR] * a;
+        double wx = T * ux + k0 * px, wy = T * uy + k0 * py, wz = T * uz + k0 * pz;
+        double inv = 1.0 / sqrt(wx * wx + wy * wy + wz * wz);
+        if (T < 0.0) inv = -inv;
+        ux = wx * inv; uy = wy * inv; uz = wz * inv;
+    }
+    h[B + W_X] = ux; h[B + W_Y] = uy; h[B + W_Z] = uz;
+    h[B + W_WORK] += 0.5 * (t_old * dpar + T * (ux * ddx + uy * ddy + uz * ddz));
+    *Tx = T * ux; *Ty = T * uy; *Tz = T * uz;
+}
+
+static inline int ncells(double r, double dx, int n) {
+    if (r <= 0.0) return 0;
+    int m = (int)(r / dx) + 1;
+    return m < n ? m : n;
+}
+
+static inline void radial(double *u1, double *u2, double umax) {
+    double m2 = *u1 * *u1 + *u2 * *u2;
+    if (m2 > umax * umax) { double s = umax / sqrt(m2); *u1 *= s; *u2 *= s; }
+}
+
+static void mdr_cells(const double *p, double *h, int k0, int n, double dx, double N, double a, double a_old,
+                      double d1, double d2, double *T1o, double *T2o) {
+    double GM = 4.0 * p[P_GSTAR];
+    double cc = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a);
+    double umax_per_w = p[P_MU] * p[P_ESTAR] * cc / GM;
+    double a2 = a * a, da = a - a_old;
+    int m1 = ncells(a, dx, n), m2 = ncells(a_old, dx, n);
+    int m = m1 > m2 ? m1 : m2;
+    int full = (int)(fmin(a, a_old) / dx);
+    if (full > m) full = m;
+    double dx2 = dx * dx / 3.0, S1 = 0.0, S2 = 0.0;
+    for (int i = 0; i < full; i++) {
+        int k = k0 + 2 * i;
+        double umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1));
+        double u1 = h[k] + d1, u2 = h[k + 1] + d2;
+        radial(&u1, &u2, umax);
+        h[k] = u1; h[k + 1] = u2;
+        S1 += u1; S2 += u2;
+    }
+    double T1 = S1 * dx, T2 = S2 * dx;
+    for (int i = full; i < m; i++) {
+        int k = k0 + 2 * i;
+        double x0 = i * dx;
+        double l_new = fmin(fmax(a - x0, 0.0), dx);
+        if (l_new <= 0.0) { h[k] = 0.0; h[k + 1] = 0.0; continue; }
+        double l_old = fmin(fmax(a_old - x0, 0.0), dx);
+        double u1 = h[k] + d1, u2 = h[k + 1] + d2;
+        if (l_new > l_old) {
+            double xm = x0 + 0.5 * (l_old + l_new);
+            double f = (a - xm) / da * (l_new - l_old);
+            u1 = (u1 * l_old + d1 * f) / l_new;
+            u2 = (u2 * l_old + d2 * f) / l_new;
+        }
+        double x1 = x0 + l_new;
+        radial(&u1, &u2, umax_per_w * (a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0));
+        h[k] = u1; h[k + 1] = u2;
+        T1 += u1 * l_new; T2 += u2 * l_new;
+    }
+    *T1o = T1 * (2.0 * GM); *T2o = T2 * (2.0 * GM);
+}
+
+static void mdr_merge(double *h, int k0, int n, double dx, double r) {
+    for (int j = 0; j < n / 2; j++) {
+        double x0 = 2 * j * dx;
+        double l0 = fmin(fmax(r - x0, 0.0), dx), l1 = fmin(fmax(r - x0 - dx, 0.0), dx);
+        double u1 = 0.0, u2 = 0.0;
+        if (l0 + l1 > 0.0) {
+            u1 = (h[k0 + 4 * j] * l0 + h[k0 + 4 * j + 2] * l1) / (l0 + l1);
+            u2 = (h[k0 + 4 * j + 1] * l0 + h[k0 + 4 * j + 3] * l1) / (l0 + l1);
+        }
+        h[k0 + 2 * j] = u1; h[k0 + 2 * j + 1] = u2;
+    }
+    for (int j = 2 * (n / 2); j < 2 * n; j++) h[k0 + j] = 0.0;
+}
+
+static void mdr_split(double *h, int k0, int n) {
+    for (int j = n / 2 - 1; j >= 0; j--) {
+        double u1 = h[k0 + 2 * j], u2 = h[k0 + 2 * j + 1];
+        h[k0 + 4 * j] = u1; h[k0 + 4 * j + 1] = u2; h[k0 + 4 * j + 2] = u1; h[k0 + 4 * j + 3] = u2;
+    }
+}
+
+static void mdr_adaptive(const double *p, double *h, double N, double a, double a_old, double nx, double ny,
+                         double nz, double ddx, double ddy, double ddz, double cs, double sn,
+                         double *Tx, double *Ty, double *Tz) {
+    int n = (int)p[P_NSPRING], k0 = B + R_CELLS;
+    double dx = h[B + R_DX];
+    if (N <= 0.0 || a <= 0.0) {
+        if (dx > 0.0) {
+            int m1 = ncells(a, dx, n), m2 = ncells(a_old, dx, n);
+            for (int j = 0; j < 2 * (m1 > m2 ? m1 : m2); j++) h[k0 + j] = 0.0;
+        }
+        for (int j = W_X; j < R_CELLS; j++) h[B + j] = 0.0;
+        *Tx = *Ty = *Tz = 0.0;
+        return;
+    }
+    double ex = h[B + W_X], ey = h[B + W_Y], ez = h[B + W_Z];
+    carry_unit(&ex, &ey, &ez, nx, ny, nz, cs, sn);
+    if (ex == 0.0 && ey == 0.0 && ez == 0.0) {
+        ex = ddx; ey = ddy; ez = ddz;
+        carry_unit(&ex, &ey, &ez, nx, ny, nz, 1.0, 0.0);
+        if (ex == 0.0 && ey == 0.0 && ez == 0.0) {
+            if (fabs(nx) < 0.9) { ex = 1.0; ey = 0.0; ez = 0.0; } else { ex = 0.0; ey = 1.0; ez = 0.0; }
+            carry_unit(&ex, &ey, &ez, nx, ny, nz, 1.0, 0.0);
+        }
+    }
+    double fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
+    double d1 = ddx * ex + ddy * ey + ddz * ez, d2 = ddx * fx + ddy * fy + ddz * fz;
+    if (dx <= 0.0 || a_old <= 0.0) {
+        for (int j = 0; j < 2 * n; j++) h[k0 + j] = 0.0;
+        a_old = 0.0;
+        dx = pow(2.0, floor(log2(2.0 * a / n)));
+    }
+    while (a > n * dx) { mdr_merge(h, k0, n, dx, a_old); dx *= 2.0; }
+    while (4.0 * a < n * dx && 4.0 * a_old < n * dx) { mdr_split(h, k0, n); dx *= 0.5; }
+    h[B + R_DX] = dx;
+    double T1, T2;
+    mdr_cells(p, h, k0, n, dx, N, a, a_old, d1, d2, &T1, &T2);
+    h[B + W_WORK] += 0.5 * ((h[B + R_T1] + T1) * d1 + (h[B + R_T2] + T2) * d2);
+    h[B + W_X] = ex; h[B + W_Y] = ey; h[B + W_Z] = ez;
+    h[B + R_T1] = T1; h[B + R_T2] = T2;
+    *Tx = T1 * ex + T2 * fx; *Ty = T1 * ey + T2 * fy; *Tz = T1 * ez + T2 * fz;
+}
+
+void batch(int law, long n, int nhist, int nparam, const double *params, const long *pair, double *H,
+           const double *nrm, const double *delta, const double *vel, const double *wn, double dt,
+           double *F, double *Ft) {
+    for (long c = 0; c < n; c++) {
+        const double *p = params + pair[c] * nparam;
+        double *h = H + c * nhist;
+        double nx = nrm[3 * c], ny = nrm[3 * c + 1], nz = nrm[3 * c + 2];
+        double vx = vel[3 * c], vy = vel[3 * c + 1], vz = vel[3 * c + 2];
+        double vn = vx * nx + vy * ny + vz * nz;
+        double ddx = (vx - vn * nx) * dt, ddy = (vy - vn * ny) * dt, ddz = (vz - vn * nz) * dt;
+        double cs = 1.0, sn = 0.0;
+        if (wn[c] != 0.0) {
+            double q = 0.5 * wn[c] * dt, inv = 1.0 / (1.0 + q * q);
+            cs = (1.0 - q * q) * inv;
+            sn = 2.0 * q * inv;
+        }
+        double dl = delta[c], N = 0.0, a = 0.0;
+        if (dl > 0.0) { a = sqrt(p[P_RSTAR] * dl); N = 4.0 / 3.0 * p[P_ESTAR] * a * dl; }
+        double Np = N > 0.0 ? N : 0.0, tx, ty, tz;
+        if (law == 0)
+            md_axis(p, h, Np, Np - h[V_N], a, h[V_A], nx, ny, nz, ddx, ddy, ddz, cs, sn, &tx, &ty, &tz);
+        else
+            mdr_adaptive(p, h, Np, a, h[V_A], nx, ny, nz, ddx, ddy, ddz, cs, sn, &tx, &ty, &tz);
+        h[V_N] = Np; h[V_A] = a;
+        F[3 * c] = -N * nx - tx; F[3 * c + 1] = -N * ny - ty; F[3 * c + 2] = -N * nz - tz;
+        Ft[3 * c] = -tx; Ft[3 * c + 1] = -ty; Ft[3 * c + 2] = -tz;
+    }
+}
+"""
+C_LAWS = {"md": 0, "mdr_adaptive": 1}
+
+
+@pytest.fixture(scope="module")
+def c_batch(tmp_path_factory):
+    gcc = shutil.which("gcc")
+    if gcc is None:
+        pytest.skip("gcc not found")
+    d = tmp_path_factory.mktemp("cref")
+    (d / "ref.c").write_text(C_SOURCE)
+    lib = d / "libref.so"
+    subprocess.run([gcc, "-O3", "-march=native", "-shared", "-fPIC", str(d / "ref.c"), "-o", str(lib), "-lm"],
+                   check=True)
+    f = ctypes.CDLL(str(lib)).batch
+    f.restype = None
+    return f
+
+
+def _ptr(a):
+    return a.ctypes.data_as(ctypes.c_void_p)
+
+
+def _run_c(benchmark, c_batch, tangential):
+    """The C loop; first checks that C and numba give the same forces and histories (same operations)."""
+    tab, pair, H, nrm, delta, vel, wn, f, t = _workload(tangential)
+    Hn, fn, tn = H.copy(), f.copy(), t.copy()
+    args = (ctypes.c_int(C_LAWS[tangential]), ctypes.c_long(N_CONTACTS), ctypes.c_int(H.shape[1]),
+            ctypes.c_int(tab.params.shape[1]), _ptr(tab.params), _ptr(pair), _ptr(H), _ptr(nrm), _ptr(delta),
+            _ptr(vel), _ptr(wn), ctypes.c_double(DT), _ptr(f), _ptr(t))
+    for _ in range(3):
+        c_batch(*args)
+        contact_forces_serial(tab.normal_id, tab.tangential_id, tab.params, pair, Hn, nrm, delta, vel, wn, DT, fn,
+                              tn)
+    assert np.abs(f - fn).max() <= 1e-12 * np.abs(fn).max()
+    assert np.abs(t - tn).max() <= 1e-12 * np.abs(tn).max()
+    benchmark.pedantic(c_batch, args=args, rounds=ROUNDS, iterations=1, warmup_rounds=2)
+    benchmark.extra_info["updates_per_s"] = N_CONTACTS / benchmark.stats.stats.min
+
+
+@pytest.mark.benchmark(group="contact3d")
+def test_c_md(benchmark, c_batch):
+    """Hertz + md in C (the reference of test_numba_md)."""
+    _run_c(benchmark, c_batch, "md")
+
+
+@pytest.mark.benchmark(group="contact3d")
+def test_numba_md(benchmark):
+    """Hertz + md, numba serial batch (ratio: min time of test_c_md / min time of this)."""
+    _run_numba(benchmark, "md")
+
+
+@pytest.mark.benchmark(group="contact3d")
+def test_c_default(benchmark, c_batch):
+    """Hertz + mdr_adaptive (the default vector law) in C."""
+    _run_c(benchmark, c_batch, "mdr_adaptive")
+
+
+@pytest.mark.benchmark(group="contact3d")
+def test_numba_default(benchmark):
+    """Hertz + mdr_adaptive, numba serial batch."""
+    _run_numba(benchmark, "mdr_adaptive")
