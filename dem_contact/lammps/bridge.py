@@ -230,7 +230,7 @@ class LammpsContacts:
             raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         self.hs = table.history_size
-        self.col_stat = K.atom_columns(self.slots, self.hs)
+        self.col_stat = K.atom_columns(self.slots)
         self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
         self.col_saved = self.col_stat + K.N_STAT
         p = prefix
@@ -239,6 +239,7 @@ class LammpsContacts:
             "neigh_modify delay 0 every 1 check yes",
             f"comm_modify vel yes cutoff {self.ghost_cutoff!r}",
             f"fix {p}_data all property/atom d2_{p} {self.ncols} ghost no",
+            f"fix {p}_hist all property/atom d2_{p}h {self.slots * self.hs} ghost no",
         ):
             lmp.command(cmd)
         _stat_computes(lmp, p, p, self.col_stat)
@@ -349,8 +350,9 @@ class LammpsContacts:
         nall, xa, v, omega, radius, rmass, ids, typ, torque = self._arrays()
         data = self._data()
         keys = data[:, :self.slots]
-        H = data[:, self.slots:self.col_stat].view()
-        H.shape = (data.shape[0], self.slots, self.hs)      # a view of LAMMPS's memory (never a copy)
+        H = self.lmp.numpy.extract_atom(f"d2_{self.prefix}h", nelem=data.shape[0],
+                                        dim=self.slots * self.hs).view()
+        H.shape = (data.shape[0] * self.slots, self.hs)     # a view of LAMMPS's memory (never a copy)
         stat = data[:, self.col_stat:self.col_stat + K.N_STAT]
         saved = data[:, self.col_saved:self.col_saved + K.N_SAVED]
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or

@@ -4,9 +4,10 @@ the kernels take numpy views of LAMMPS's per-atom arrays.
 
 History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
 ``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
-rebuilds and atom sorting): the keys of its rows first, ``keys`` (nmax, slots), then the rows, ``H``
-(nmax, slots, history_size): H[i] are the rows of atom i, a 2D array handed to the contact kernel with
-the row index. A key is the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row.
+rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), in one array, and the rows in
+another, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i, the
+contact index handed to the contact kernel. A key is the partner's atom id (> 0), -(w + 1) for wall w,
+or 0 for a free row.
 
 Newton's third law between ranks, without reverse communication: each rank computes the contacts of its
 own (local) atoms, including those with ghost atoms, and writes forces and torques on local atoms only.
@@ -50,9 +51,9 @@ R_NEED = 3       # largest number of history rows an atom needed
 N_SUMMARY = 4
 
 
-def atom_columns(slots: int, history_size: int) -> int:
-    """Columns of the per-atom array before the statistics: the keys and the rows."""
-    return slots * (1 + history_size)
+def atom_columns(slots: int) -> int:
+    """Columns of the per-atom array before the statistics: the keys."""
+    return slots
 
 
 @njit(cache=True)
@@ -265,7 +266,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
     atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
     wall_row; cand, cand_walls: the Verlet lists (``candidates``); keys: float64[nmax, slots], H:
-    float64[nmax, slots, hs] histories; params, sphere_row, wall_row: the pair
+    float64[nmax * slots, history_size] histories; params, sphere_row, wall_row: the pair
     table; dt [s]; advance: False evaluates on copies of the histories
     (LAMMPS's set-up call: nothing is advanced); frame_spin: pass the spin of the contact frame about
     the normal to the kernel (False: wn = 0, LAMMPS's granular models). fext: float64[nlocal, 3] receives the contact forces;
@@ -273,7 +274,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
     per-atom statistics (local rows written); saved: float64[nmax, N_SAVED] receives the force and
     torque of each local atom with step + 1. Returns float64[N_SUMMARY].
     """
-    hs = H.shape[2]
+    hs = H.shape[1]
     summary = np.zeros(N_SUMMARY)
     pairs, deltas, hits, wdel = overlapping(x, radius, walls, cand, cand_walls)
     npair = pairs.shape[0]
@@ -288,7 +289,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         for d in range(N_SAVED):
             saved[i, d] = 0.0
     # rows of the contacts that continue; mark them used
-    slots = H.shape[1]
+    slots = keys.shape[1]
     used = np.zeros((nlocal, slots), dtype=np.bool_)
     rowi = np.full(npair, -1, dtype=np.int64)
     rowj = np.full(npair, -1, dtype=np.int64)
@@ -327,7 +328,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
             for s in range(slots):
                 if not used[i, s] and keys[i, s] != 0.0:
                     keys[i, s] = 0.0
-                    H[i, s, :] = 0.0
+                    H[i * slots + s, :] = 0.0
     scratch = np.zeros((1, hs))
     for c in range(npair):
         i = pairs[c, 0]
@@ -346,7 +347,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
                     continue
         else:
             if ri >= 0:
-                scratch[0, :] = H[i, ri, :]
+                scratch[0, :] = H[i * slots + ri, :]
             else:
                 scratch[0, :] = 0.0
         # canonical order: the lower id is body 1
@@ -375,7 +376,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         row = sphere_row[typ[a] - 1, typ[b] - 1]
         if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
             # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
-            n_old = H[i, ri, V_N] if advance else scratch[0, V_N]
+            n_old = H[i * slots + ri, V_N] if advance else scratch[0, V_N]
             kick = 0.5 * dt * n_old * (1.0 / rmass[a] + 1.0 / rmass[b])
             vx -= kick * nx
             vy -= kick * ny
@@ -385,11 +386,11 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
             wn = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
                         + (omega[a, 2] + omega[b, 2]) * nz)
         if advance:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H[i], ri, nx, ny, nz, delta,
+            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H, i * slots + ri, nx, ny, nz, delta,
                                          vx, vy, vz, wn, dt)
             keys[i, ri] = tag[j]
             if local_j:
-                H[j, rj, :] = H[i, ri, :]
+                H[j * slots + rj, :] = H[i * slots + ri, :]
                 keys[j, rj] = tag[i]
         else:
             fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, nx, ny, nz, delta,
@@ -425,7 +426,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
                     continue
         else:
             if ri >= 0:
-                scratch[0, :] = H[i, ri, :]
+                scratch[0, :] = H[i * slots + ri, :]
             else:
                 scratch[0, :] = 0.0
         # body 1: the sphere; n from the sphere to the wall; the wall is at rest
@@ -442,7 +443,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         vz = v[i, 2] + (wx * ny - wy * nx)
         row = wall_row[typ[i] - 1, wall_mat[w]]
         if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
-            n_old = H[i, ri, V_N] if advance else scratch[0, V_N]
+            n_old = H[i * slots + ri, V_N] if advance else scratch[0, V_N]
             kick = 0.5 * dt * n_old / rmass[i]
             vx -= kick * nx
             vy -= kick * ny
@@ -451,7 +452,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
         if frame_spin:
             wn = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
         if advance:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H[i], ri, nx, ny, nz, delta,
+            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H, i * slots + ri, nx, ny, nz, delta,
                                          vx, vy, vz, wn, dt)
             keys[i, ri] = -(w + 1.0)
         else:
