@@ -1,4 +1,5 @@
-"""3D contact kernel: planar reduction, batch = per-contact, history helpers, energy, Hertz head-on impact."""
+"""3D contact kernels: planar reduction, batch = per-contact, history helpers, objectivity, energy on closed loops,
+checked entry and debug mode, Hertz head-on impact."""
 import math
 import os
 import subprocess
