@@ -15,7 +15,8 @@ import numpy as np
 from ..errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
-                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact, is_sliding)
+                         S_T, S_TANG, S_VN, S_VSLIP, SLIDE_IMPULSE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK,
+                         integrate_impact, is_sliding)
 from ..laws.slots import H_A
 from ..laws import closed_forms as cf
 from ..materials import Sphere, check_finite
@@ -289,8 +290,63 @@ def check_mdr_grid(scene: Scene, h, vn: float):
                              f"mdr_max_radius")
 
 
-def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> ImpactResult:
-    """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure)."""
+def derived_arrays(scene, out, vn, vt, spin, spin2, spc) -> dict:
+    """Rebound quantities and check flags of many impacts at once (numpy arrays, one entry per row of
+    ``out``), by the very operations ``build_result`` applies to one impact, so the numbers are identical.
+
+    Keys: e_n, e_t, f, f_over_mu, Theta, Psi_r, Omega_i, Omega_r, theta_deg, persistent_sliding, failed
+    (the impact raises NumericalError in ``build_result``), warned (it has at least one warning), and the
+    flags energy_created, energy_gained."""
+    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    m = 1.0 / inv_m
+    mu = scene.mu
+    vn_r, vt_r, w_r, w2_r = out[:, O_VN], out[:, O_VT], out[:, O_W1], out[:, O_W2]
+    PN, PT, tc, dmax, fmax = out[:, O_PN], out[:, O_PT], out[:, O_TC], out[:, O_DMAX], out[:, O_FMAX]
+    WN, WT = out[:, O_WN], out[:, O_WT]
+    with np.errstate(all="ignore"):
+        e_n = -vn_r / vn
+        v_ti = vt + R1 * spin + R2 * spin2
+        v_tr = vt_r + R1 * w_r + R2 * w2_r
+        f = PT / PN
+        tiny_vt = np.abs(vt) < 1e-100 * vn
+        e_t = np.where(tiny_vt, np.nan, vt_r / np.where(tiny_vt, 1.0, vt))
+        denom = (1.0 + e_n) * mu * vn
+        if mu > 0:
+            fm = f / mu
+            ok = denom > 0
+            Theta = np.where(ok, 2.0 * v_ti / denom, np.nan)
+            Psi_r = np.where(ok, 2.0 * v_tr / denom, np.nan)
+            Omega_i = np.where(ok, 2.0 * R1 * spin / (5.0 * denom), np.nan)
+            Omega_r = np.where(ok, 2.0 * R1 * w_r / (5.0 * denom), np.nan)
+            defined = (np.isfinite(fm) & np.isfinite(Theta) & np.isfinite(Psi_r) & np.isfinite(Omega_r))
+        else:
+            fm = Theta = Psi_r = Omega_i = Omega_r = np.full(vn.shape, np.nan)
+            defined = np.ones(vn.shape, dtype=bool)
+        defined &= np.isfinite(e_n) & np.isfinite(f) & (tiny_vt | np.isfinite(e_t))
+        state_ok = np.all(np.isfinite(out[:, [O_VN, O_VT, O_W1, O_W2, O_PN, O_PT, O_TC, O_DMAX, O_FMAX, O_WN,
+                                               O_WT]]), axis=1)
+        failed = ((out[:, O_STATUS] != STATUS_OK) | ~state_ok | ~(PN > 0.0) | ~(tc > 0.0) | ~defined)
+        I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
+        I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
+        E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
+        E1 = 0.5 * m * (vn_r**2 + vt_r**2) + 0.5 * I1 * w_r**2 + 0.5 * I2 * w2_r**2
+        error = E0 - E1 - WT - WN
+        created = out[:, O_MINWT] < -ENERGY_CREATION_TOL * E0
+        gained = (E1 - E0 > KE_ROUNDING_TOL * E0) | (e_n * e_n - 1.0 > KE_ROUNDING_TOL)
+        warned = (created | gained | (out[:, O_COULOMB] > 1e-9 * np.maximum(mu * fmax, 1e-300))
+                  | (np.abs(error) > ENERGY_BALANCE_TOL * E0)
+                  | (np.sqrt(dmax / scene.pair.R_star) > VALIDITY_A_OVER_R) | (spc < 10))
+        if mu > 0:
+            warned |= np.abs(f) > mu * (1.0 + 1e-9)
+        theta_deg = np.degrees(np.arctan2(vt, vn))
+    return dict(e_n=e_n, e_t=e_t, f=f, f_over_mu=fm, Theta=Theta, Psi_r=Psi_r, Omega_i=Omega_i, Omega_r=Omega_r,
+                theta_deg=theta_deg, persistent_sliding=out[:, O_SLID] >= 1.0 - SLIDE_IMPULSE_TOL, failed=failed,
+                warned=warned, energy_created=created, energy_gained=gained)
+
+
+def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None, model=None) -> ImpactResult:
+    """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure); ``model``:
+    the scene's ``describe()`` when the caller has it."""
     status = int(out[O_STATUS])
     if status == STATUS_MAX_STEPS:
         hint = ""
@@ -404,6 +460,6 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         max_force=out[O_FMAX], persistent_sliding=bool(is_sliding(out[O_SLID])),
         sliding_fraction=float(out[O_SLID]), steps=int(out[O_STEPS]), dt=dt,
         energy=energy, energy_created=created, coulomb_violation=max(coul, 0.0), warnings=msgs,
-        model=scene.describe(),
+        model=scene.describe() if model is None else model,
         settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "vn": vn, "vt": vt, "spin": spin},
         omega2_r=w2_r, series=series_dict, energy_gained=gained)
