@@ -69,12 +69,32 @@ class WuFit:
         return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
 
 
-def _linear_c12(T, y, c3, c4):
-    """Best (c1, c2) for fixed (c3, c4): the model is linear in c1, c2."""
-    A = np.column_stack([np.ones_like(T), np.tanh(c3 + c4 * T)])
-    sol, *_ = np.linalg.lstsq(A, y, rcond=None)
-    r = A @ sol - y
-    return sol, float(r @ r)
+#: Start grid over (c3, c4); (c1, c2) are solved by linear least squares at every node at once.
+START_C3 = np.linspace(-1.0, 3.0, 17)
+START_C4 = np.linspace(-1.5, -0.05, 30)
+
+
+def _start(T, y):
+    """Start values: at every (c3, c4) of the start grid the model is linear in (c1, c2); the 2x2 normal
+    equations of all nodes are solved together, and the node with the smallest residual among those with a
+    rising curve (c2 < 0) is taken. None when no node rises."""
+    c3 = np.repeat(START_C3, START_C4.size)
+    c4 = np.tile(START_C4, START_C3.size)
+    th = np.tanh(c3[:, None] + c4[:, None] * T[None, :])
+    n = T.size
+    st, stt = th.sum(axis=1), np.einsum("ij,ij->i", th, th)
+    sy, sty = y.sum(), th @ y
+    det = n * stt - st * st
+    with np.errstate(all="ignore"):
+        c2 = (n * sty - st * sy) / det
+        c1 = (sy - c2 * st) / n
+        r = c1[:, None] + c2[:, None] * th - y[None, :]
+        ss = np.einsum("ij,ij->i", r, r)
+    ok = (c2 < 0) & np.isfinite(ss) & (det > 1e-12 * n * n)
+    if not np.any(ok):
+        return None
+    k = np.flatnonzero(ok)[np.argmin(ss[ok])]
+    return np.array([c1[k], c2[k], c3[k], c4[k]])
 
 
 def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", f_scale: float = 0.01) -> WuFit:
@@ -82,8 +102,9 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
 
     Theta, f_over_mu: arrays of simulated points; persistent_sliding: optional boolean array, points
     flagged True are left out (as are points with f/mu >= 1 - 1e-6 and non-finite ones). Start values:
-    a grid over (c3, c4) with (c1, c2) solved by linear least squares; then scipy least_squares with a
-    robust loss (``loss``, ``f_scale``) within bounds c2 <= 0, c4 <= 0."""
+    a grid over (c3, c4) with (c1, c2) solved by linear least squares at all nodes at once; then scipy
+    least_squares with the analytic Jacobian and a robust loss (``loss``, ``f_scale``) within bounds
+    c2 <= 0, c4 <= 0."""
     from scipy.optimize import least_squares
 
     T = np.asarray(Theta, dtype=float).ravel()
@@ -100,20 +121,18 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
     T, y = T[keep], y[keep]
     if T.size < 5:
         raise InputError(f"the fit needs at least 5 points below persistent sliding (got {T.size})")
-    best = None
-    for c3 in np.linspace(-1.0, 3.0, 17):
-        for c4 in np.linspace(-1.5, -0.05, 30):
-            (c1, c2), ss = _linear_c12(T, y, c3, c4)
-            if c2 < 0 and (best is None or ss < best[0]):
-                best = (ss, (c1, c2, c3, c4))
+    best = _start(T, y)
     if best is None:
         raise NumericalError("no start values with a rising curve: f/mu does not rise with Theta")
-    x0 = np.clip(best[1], np.array(LOWER) + 1e-9, np.array(UPPER) - 1e-9)
+    x0 = np.clip(best, np.array(LOWER) + 1e-9, np.array(UPPER) - 1e-9)
 
     def resid(c):
         return wu_curve(T, c) - y
 
-    sol = least_squares(resid, x0, bounds=(LOWER, UPPER), loss=loss, f_scale=f_scale, x_scale="jac",
+    def jac(c):
+        return _jacobian(T, c)
+
+    sol = least_squares(resid, x0, jac=jac, bounds=(LOWER, UPPER), loss=loss, f_scale=f_scale, x_scale="jac",
                         xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=20000)
     if not sol.success:
         raise NumericalError(f"the fit of eq. 4.5 did not converge: {sol.message}")
