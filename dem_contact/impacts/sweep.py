@@ -101,8 +101,9 @@ class SweepResult:
     def _point(self, i):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # recorded in ImpactResult.warnings
-            return build_result(self._scene, self._out[i], self._vn[i], self._vt[i], self._spin[i], 0.0,
-                                self._dts[i], self._spcs[i], self._scheme, model=self.model)
+            return build_result(self._scene, self._out[i], float(self._vn[i]), float(self._vt[i]),
+                                float(self._spin[i]), 0.0, float(self._dts[i]), float(self._spcs[i]), self._scheme,
+                                model=self.model)
 
     def __len__(self):
         return self._out.shape[0]
