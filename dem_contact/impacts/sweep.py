@@ -1,5 +1,4 @@
-"""Sweeps: many independent impacts of one scene, run by a compiled kernel on parallel threads, and the
-direct critical angle.
+"""Sweeps: many independent impacts of one scene in a parallel kernel, and the direct critical angle.
 
 ``sweep_angles`` varies the impact angle at fixed normal speed (the protocol of Wu, Thornton & Li 2009),
 ``sweep_speed`` at fixed total speed (Kharaz et al. 2001; Chung & Ooi test 4), ``sweep_theta`` aims at
@@ -18,12 +17,10 @@ import math
 import sys
 import warnings
 from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
-import numba
-from numba import njit
+from numba import njit, prange
 
 from ..errors import InputError, NumericalError
 from .impact import (MAX_CONTACT_TIMES, SCALE_RANGE, SCHEMES, body_inertia, build_result, check_incident,
@@ -38,22 +35,18 @@ from ..laws.slots import H_A
 MAX_SWEEP_STEPS = 1e10
 #: Impacts per progress-bar update are chosen so that the bar advances about this many times.
 PROGRESS_UPDATES = 20
-#: On several threads (numba.get_num_threads(), set with numba.set_num_threads or NUMBA_NUM_THREADS) the
-#: impacts are cut into this many chunks per thread, run by a pool of threads on the GIL-free kernel.
-CHUNKS_PER_THREAD = 4
 
 
-@njit(nogil=True, cache=True)
+@njit(parallel=True, cache=True)
 def sweep_kernel(nid, tid, p, hist, vn, vt, w1, w2, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out):
-    """Integrate independent impacts one after the other, without the GIL (``sweep`` runs chunks of them
-    on several threads at once).
+    """Integrate independent impacts in parallel (prange over impacts, numba.get_num_threads() threads).
 
     p: parameter row (shared, read only); hist: float64[n, n_hist], zeroed rows, one per impact (written);
     vn, vt, w1, w2, dt: float64[n] incident normal speed [m/s], tangential velocity [m/s], spins [rad/s],
     time step [s]; max_steps: int64[n]; out: float64[n, N_OUT] (written, slots ``integrator.O_*``).
     """
     series = np.zeros((0, N_SERIES))
-    for i in range(vn.shape[0]):
+    for i in prange(vn.shape[0]):
         integrate_impact(nid, tid, p, hist[i], vn[i], vt[i], w1[i], w2[i], inv_m, R1, R2, inv_I1, inv_I2,
                          dt[i], max_steps[i], locate, out[i], series)
 
@@ -180,24 +173,9 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     hist = np.zeros((n, scene.history_size))
     w2 = np.zeros(n)
     locate = scheme == "located"
-    threads = max(1, min(numba.get_num_threads(), n))
-    # chunks: enough to share the impacts among the threads and to advance a progress bar
-    n_chunks = max(threads * CHUNKS_PER_THREAD if threads > 1 else 1, PROGRESS_UPDATES if progress else 1)
-    chunk = max(1, -(-n // n_chunks))
-    bounds = [(s, min(n, s + chunk)) for s in range(0, n, chunk)]
+    chunk = n if not progress else max(1, -(-n // PROGRESS_UPDATES))
     args = (scene.normal_id, scene.tangential_id, scene.params)
     body = (inv_m, R1, R2, inv_I1, inv_I2)
-
-    def run(se):
-        s, e = se
-        try:
-            sweep_kernel(*args, hist[s:e], vn[s:e], vt[s:e], spin[s:e], w2[s:e], *body, dts[s:e], max_steps[s:e],
-                         locate, out[s:e])
-        except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
-            raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
-                                 f"{e - 1} ({type(err).__name__}: {err})") from None
-        return e - s
-
     bar = None
     if progress:
         from tqdm import tqdm
@@ -208,19 +186,17 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
                          locate, np.zeros((1, N_OUT)))
         bar = tqdm(total=n, unit="impact", desc=f"sweep {scene.tangential}", leave=False)
     try:
-        if threads == 1 or len(bounds) == 1:
-            done = map(run, bounds)
-        else:
-            if not sweep_kernel.signatures:
-                run(bounds[0][:1] * 2)          # compile (or load) once, before the threads start
-            pool = ThreadPoolExecutor(threads)
-            done = pool.map(run, bounds)
-        for k in done:
+        for s in range(0, n, chunk):
+            e = min(n, s + chunk)
+            try:
+                sweep_kernel(*args, hist[s:e], vn[s:e], vt[s:e], spin[s:e], w2[s:e], *body, dts[s:e],
+                             max_steps[s:e], locate, out[s:e])
+            except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
+                raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
+                                     f"{e - 1} ({type(err).__name__}: {err})") from None
             if bar is not None:
-                bar.update(k)
+                bar.update(e - s)
     finally:
-        if threads > 1 and len(bounds) > 1:
-            pool.shutdown(cancel_futures=True)
         if bar is not None:
             bar.close()
     derived = derived_arrays(scene, out, vn, vt, spin, 0.0, spcs)
