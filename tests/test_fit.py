@@ -99,3 +99,25 @@ def test_extrapolated_theta_c_is_flagged():
     assert f.extrapolated and f.Theta_c > f.Theta_max
     assert f.Theta_c_model_err == float("inf")
     assert f.to_dict()["Theta_c_model_err"] is None
+
+
+@pytest.mark.parametrize("loss", ["soft_l1", "linear"])
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_fit_solver_reaches_scipy_minimum(loss, seed):
+    """The Levenberg-Marquardt solver of fit_wu reaches the minimum scipy's least_squares finds for the same
+    robust loss, bounds and data (eq. 4.5 with scatter and one outlier)."""
+    from scipy.optimize import least_squares
+    from dem_contact.rebound.fit import LOWER, SLIDING_LEVEL, UPPER, _jacobian, _start
+
+    rng = np.random.default_rng(seed)
+    T = np.sort(rng.uniform(0.0, 6.0, 60))
+    c_true = (0.45 + 0.05 * seed, -0.6, 0.9, -0.4 - 0.05 * seed)
+    y = rm.wu_curve(T, c_true) + 0.004 * rng.standard_normal(T.size)
+    y[7] += 0.1
+    f = fit_wu(T, y, loss=loss)
+    T, y = T[y < SLIDING_LEVEL], y[y < SLIDING_LEVEL]      # the points fit_wu fits
+    x0 = np.clip(_start(T, y), np.array(LOWER) + 1e-9, np.array(UPPER) - 1e-9)
+    ref = least_squares(lambda c: rm.wu_curve(T, c) - y, x0, jac=lambda c: _jacobian(T, c), bounds=(LOWER, UPPER),
+                        loss=loss, f_scale=0.01, x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=20000)
+    assert np.allclose(f.c, ref.x, rtol=1e-6, atol=1e-8)
+    assert f.Theta_c == pytest.approx(rm.wu_crossing(tuple(ref.x)), rel=1e-7)

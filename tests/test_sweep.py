@@ -1,6 +1,7 @@
 """Sweeps: exact agreement with single impacts, momentum identities, universality, critical angle, CLI."""
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -40,6 +41,35 @@ def test_sweep_with_spin_and_progress_equals_single_impacts(ee):
     for i in range(3):
         one = impact(ee, 3.0, vt[i], spin[i], steps_per_contact=SPC)
         assert res.points[i].omega_r == one.omega_r and res.points[i].vt_r == one.vt_r
+
+
+@pytest.mark.parametrize("tangential, spc", [("mdr_adaptive", SPC), ("mindlin_total", 7)])
+def test_sweep_arrays_and_flags_equal_the_impacts(ee, tangential, spc):
+    """The arrays of a sweep (computed from the output rows together) are those of the ImpactResults of its
+    impacts, flags and warnings included (7 steps per contact: every impact warns of coarse steps)."""
+    scene = scene_with(ee, tangential=tangential)
+    vt = np.array([0.0, 0.5, 2.0, 6.0])
+    spin = np.array([0.0, -40.0, 0.0, 25.0])
+    res = sweep(scene, 4.0, vt, spin, steps_per_contact=spc)
+    for i in range(vt.size):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            one = impact(scene, 4.0, vt[i], spin[i], steps_per_contact=spc)
+        for arr, key in (("theta_deg", "theta_i_deg"), ("Theta", "Theta"), ("f_over_mu", "f_over_mu"),
+                         ("e_n", "e_n"), ("e_t", "e_t"), ("Psi_r", "Psi_r"), ("Omega_r", "Omega_r"),
+                         ("Omega_i", "Omega_i"), ("persistent_sliding", "persistent_sliding"),
+                         ("energy_created", "energy_created"), ("energy_gained", "energy_gained")):
+            a, b = getattr(res, arr)[i], getattr(one, key)
+            assert a == b or (math.isnan(a) and math.isnan(b)), (arr, i)
+        assert res.points[i].warnings == one.warnings == [str(w.message) for w in caught]
+        assert res.points[-len(vt) + i] is res.points[i]
+    n_coarse = sum("steps per contact" in w for w in res.warnings)
+    assert n_coarse == (1 if spc < 10 else 0)
+
+
+def test_warmup_command(capsys):
+    assert main(["warmup"]) == 0
+    assert "kernels ready" in capsys.readouterr().out
 
 
 def test_momentum_identities_of_sweep_points(ee):

@@ -6,8 +6,10 @@ the energy budget.
 """
 from __future__ import annotations
 
+import functools
 import math
 import warnings
+import weakref
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -15,7 +17,8 @@ import numpy as np
 from ..errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
-                         S_T, S_TANG, S_VN, S_VSLIP, STATUS_MAX_STEPS, STATUS_NONFINITE, integrate_impact, is_sliding)
+                         S_T, S_TANG, S_VN, S_VSLIP, SLIDE_IMPULSE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK,
+                         integrate_impact, is_sliding)
 from ..laws.slots import H_A
 from ..laws import closed_forms as cf
 from ..materials import Sphere, check_finite
@@ -179,10 +182,15 @@ def speed_range(scene: Scene) -> tuple:
     """Normal speeds [m/s] for which the scene's elastic Hertz scales (peak overlap ~ vn^0.8, peak force
     ~ vn^1.2, contact time ~ vn^-0.2, kinetic energy ~ vn^2) all lie inside SCALE_RANGE."""
     pr = scene.pair
+    return _speed_range(pr.E_star, pr.R_star, pr.m_star)
+
+
+@functools.lru_cache(maxsize=64)
+def _speed_range(E_star, R_star, m_star):
     lo, hi = math.log(SCALE_RANGE[0]), math.log(SCALE_RANGE[1])
-    d1 = cf.hertz_max_overlap(pr.E_star, pr.R_star, pr.m_star, 1.0)
-    scales = [(d1, 0.8), (4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * d1**1.5, 1.2),
-              (cf.HERTZ_TC_FACTOR * d1, -0.2), (0.5 * pr.m_star, 2.0)]
+    d1 = cf.hertz_max_overlap(E_star, R_star, m_star, 1.0)
+    scales = [(d1, 0.8), (4.0 / 3.0 * E_star * math.sqrt(R_star) * d1**1.5, 1.2),
+              (cf.HERTZ_TC_FACTOR * d1, -0.2), (0.5 * m_star, 2.0)]
     v_lo, v_hi = -math.inf, math.inf
     for q1, k in scales:
         a, b = (lo - math.log(q1)) / k, (hi - math.log(q1)) / k
@@ -254,8 +262,10 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     """
     if not isinstance(scene, Scene):
         raise InputError(f"scene must be a Scene, got {type(scene).__name__}")
-    vn, vt, spin = check_incident(vn, vt, spin)
-    spin2 = check_finite("spin2 (initial angular velocity of body 2, rad/s)", spin2)
+    if not (type(vn) is float and type(vt) is float and type(spin) is float and type(spin2) is float
+            and vn > 0.0 and math.isfinite(vn + vt + spin + spin2)):
+        vn, vt, spin = check_incident(vn, vt, spin)
+        spin2 = check_finite("spin2 (initial angular velocity of body 2, rad/s)", spin2)
     if spin2 != 0.0 and not isinstance(scene.body2, Sphere):
         raise InputError("spin2 applies to a second sphere only: a wall does not turn")
     if scheme not in SCHEMES:
@@ -263,7 +273,8 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     check_scales(scene, vn, vt, spin, spin2)
     dt, spc = time_step(scene, vn, steps_per_contact, dt)
     check_mdr_reach(scene, vn)
-    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    inertia = body_inertia(scene)
+    inv_m, R1, R2, inv_I1, inv_I2 = inertia
     max_steps = int(math.ceil(MAX_CONTACT_TIMES * spc)) + 10
     if series:
         check_series_budget(max_steps)
@@ -277,7 +288,7 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
         raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
                              f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
     check_mdr_grid(scene, h, vn)
-    return build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser)
+    return build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser, inertia=inertia)
 
 
 def check_mdr_grid(scene: Scene, h, vn: float):
@@ -289,8 +300,108 @@ def check_mdr_grid(scene: Scene, h, vn: float):
                              f"mdr_max_radius")
 
 
-def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> ImpactResult:
-    """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure)."""
+def derived_arrays(scene, out, vn, vt, spin, spin2, spc) -> dict:
+    """Rebound quantities and check flags of many impacts at once (numpy arrays, one entry per row of
+    ``out``), by the very operations ``build_result`` applies to one impact, so the numbers are identical.
+
+    Keys: e_n, e_t, f, f_over_mu, Theta, Psi_r, Omega_i, Omega_r, theta_deg, persistent_sliding, failed
+    (the impact raises NumericalError in ``build_result``), warned (it has at least one warning), and the
+    flags energy_created, energy_gained."""
+    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    m = 1.0 / inv_m
+    mu = scene.mu
+    vn_r, vt_r, w_r, w2_r = out[:, O_VN], out[:, O_VT], out[:, O_W1], out[:, O_W2]
+    PN, PT, tc, dmax, fmax = out[:, O_PN], out[:, O_PT], out[:, O_TC], out[:, O_DMAX], out[:, O_FMAX]
+    WN, WT = out[:, O_WN], out[:, O_WT]
+    with np.errstate(all="ignore"):
+        e_n = -vn_r / vn
+        v_ti = vt + R1 * spin + R2 * spin2
+        v_tr = vt_r + R1 * w_r + R2 * w2_r
+        f = PT / PN
+        tiny_vt = np.abs(vt) < 1e-100 * vn
+        e_t = np.where(tiny_vt, np.nan, vt_r / np.where(tiny_vt, 1.0, vt))
+        denom = (1.0 + e_n) * mu * vn
+        if mu > 0:
+            fm = f / mu
+            ok = denom > 0
+            Theta = np.where(ok, 2.0 * v_ti / denom, np.nan)
+            Psi_r = np.where(ok, 2.0 * v_tr / denom, np.nan)
+            Omega_i = np.where(ok, 2.0 * R1 * spin / (5.0 * denom), np.nan)
+            Omega_r = np.where(ok, 2.0 * R1 * w_r / (5.0 * denom), np.nan)
+            defined = (np.isfinite(fm) & np.isfinite(Theta) & np.isfinite(Psi_r) & np.isfinite(Omega_r))
+        else:
+            fm = Theta = Psi_r = Omega_i = Omega_r = np.full(vn.shape, np.nan)
+            defined = np.ones(vn.shape, dtype=bool)
+        defined &= np.isfinite(e_n) & np.isfinite(f) & (tiny_vt | np.isfinite(e_t))
+        state_ok = np.all(np.isfinite(out[:, [O_VN, O_VT, O_W1, O_W2, O_PN, O_PT, O_TC, O_DMAX, O_FMAX, O_WN,
+                                               O_WT]]), axis=1)
+        failed = ((out[:, O_STATUS] != STATUS_OK) | ~state_ok | ~(PN > 0.0) | ~(tc > 0.0) | ~defined)
+        I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
+        I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
+        E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
+        E1 = 0.5 * m * (vn_r**2 + vt_r**2) + 0.5 * I1 * w_r**2 + 0.5 * I2 * w2_r**2
+        error = E0 - E1 - WT - WN
+        created = out[:, O_MINWT] < -ENERGY_CREATION_TOL * E0
+        gained = (E1 - E0 > KE_ROUNDING_TOL * E0) | (e_n * e_n - 1.0 > KE_ROUNDING_TOL)
+        warned = (created | gained | (out[:, O_COULOMB] > 1e-9 * np.maximum(mu * fmax, 1e-300))
+                  | (np.abs(error) > ENERGY_BALANCE_TOL * E0)
+                  | (np.sqrt(dmax / scene.pair.R_star) > VALIDITY_A_OVER_R) | (spc < 10))
+        if mu > 0:
+            warned |= np.abs(f) > mu * (1.0 + 1e-9)
+        theta_deg = np.degrees(np.arctan2(vt, vn))
+    return dict(e_n=e_n, e_t=e_t, f=f, f_over_mu=fm, Theta=Theta, Psi_r=Psi_r, Omega_i=Omega_i, Omega_r=Omega_r,
+                theta_deg=theta_deg, persistent_sliding=out[:, O_SLID] >= 1.0 - SLIDE_IMPULSE_TOL, failed=failed,
+                warned=warned, energy_created=created, energy_gained=gained)
+
+
+_DESCRIPTIONS = weakref.WeakKeyDictionary()
+
+
+def describe(scene: Scene) -> dict:
+    """``scene.describe()``, computed once per scene (the results of its impacts share it: read only)."""
+    d = _DESCRIPTIONS.get(scene)
+    if d is None:
+        d = _DESCRIPTIONS[scene] = scene.describe()
+    return d
+
+
+def _warning_texts(scene, o, f, e_n, energy, created, gained_total, gained_normal, a_over_R, spc) -> list:
+    """The warnings of one impact whose checks (see ``build_result``) found something."""
+    mu = scene.mu
+    E0 = energy.initial
+    WN, WT = energy.normal, energy.friction
+    msgs = []
+    if created:
+        msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
+                    f"(running work reached {o[O_MINWT]:.3e} J)")
+    works = f"work absorbed by the normal force {WN:.4g} J, by the tangential force {WT:.4g} J"
+    if gained_total:
+        msgs.append(f"kinetic energy gained: the final kinetic energy exceeds the initial one by "
+                    f"{(energy.final - E0) / E0:.3g} of it ({works})")
+    if gained_normal:
+        msgs.append(f"kinetic energy gained in the normal motion: e_n = {e_n:.8g} > 1 ({works})")
+    coul = o[O_COULOMB]
+    if coul > 1e-9 * max(mu * o[O_FMAX], 1e-300):
+        msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
+    if mu > 0 and abs(f) > mu * (1.0 + 1e-9):
+        why = (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
+               "smaller than the compressive force the Coulomb limit acts on") if scene.normal == "linear" else ""
+        msgs.append(f"impulse ratio |f| exceeds mu by {abs(f) / mu - 1.0:.3g} of mu{why}")
+    if abs(energy.error) > ENERGY_BALANCE_TOL * E0:
+        msgs.append(f"energy balance error {energy.error / E0:.3g} of the initial kinetic energy (more than "
+                    f"{ENERGY_BALANCE_TOL:g}): refine the time step")
+    if a_over_R > VALIDITY_A_OVER_R:
+        msgs.append(f"contact beyond the range of the contact laws: the contact radius reached "
+                    f"{a_over_R:.3g} R* (overlap {o[O_DMAX] / scene.pair.R_star:.3g} R*); Hertz-Mindlin "
+                    f"theory assumes a small contact, a <= {VALIDITY_A_OVER_R:g} R*")
+    if spc < 10:
+        msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
+    return msgs
+
+
+def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None, model=None, inertia=None) -> ImpactResult:
+    """Turn the integrator's output row into an ImpactResult (raises NumericalError on failure); ``model``:
+    the scene's ``describe()``, ``inertia``: ``body_inertia(scene)``, when the caller has them."""
     status = int(out[O_STATUS])
     if status == STATUS_MAX_STEPS:
         hint = ""
@@ -305,25 +416,26 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     if status == STATUS_NONFINITE:
         raise NumericalError(f"non-finite state (NaN or overflow) after {int(out[O_STEPS])} steps: the "
                              f"{scene.normal}/{scene.tangential} laws blew up at dt = {dt:g} s")
-    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
+    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene) if inertia is None else inertia
     m = 1.0 / inv_m
     mu = scene.mu
-    vn_r, vt_r, w_r, w2_r = out[O_VN], out[O_VT], out[O_W1], out[O_W2]
-    PN, PT = out[O_PN], out[O_PT]
+    o = out.tolist()
+    vn_r, vt_r, w_r, w2_r = o[O_VN], o[O_VT], o[O_W1], o[O_W2]
+    PN, PT, tc, dmax, fmax, WN, WT = o[O_PN], o[O_PT], o[O_TC], o[O_DMAX], o[O_FMAX], o[O_WN], o[O_WT]
     e_n = -vn_r / vn
     v_ti = vt + R1 * spin + R2 * spin2
     v_tr = vt_r + R1 * w_r + R2 * w2_r
-    state = {"final normal velocity": vn_r, "final tangential velocity": vt_r, "final spin": w_r,
-             "final spin of body 2": w2_r, "normal impulse": PN, "tangential impulse": PT,
-             "contact time": out[O_TC], "max overlap": out[O_DMAX], "max force": out[O_FMAX],
-             "normal work": out[O_WN], "tangential work": out[O_WT]}
-    bad = [k for k, v in state.items() if not math.isfinite(v)]
-    if bad:
+    if not math.isfinite(vn_r + vt_r + w_r + w2_r + PN + PT + tc + dmax + fmax + WN + WT):
+        state = {"final normal velocity": vn_r, "final tangential velocity": vt_r, "final spin": w_r,
+                 "final spin of body 2": w2_r, "normal impulse": PN, "tangential impulse": PT,
+                 "contact time": tc, "max overlap": dmax, "max force": fmax,
+                 "normal work": WN, "tangential work": WT}
+        bad = [k for k, v in state.items() if not math.isfinite(v)] or ["sum of the state"]
         raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
                              f"laws at dt = {dt:g} s")
-    if not PN > 0.0 or not out[O_TC] > 0.0:
+    if not PN > 0.0 or not tc > 0.0:
         raise NumericalError(f"the contact produced no normal impulse (normal impulse {PN:g} N s, contact time "
-                             f"{out[O_TC]:g} s): its forces underflow double precision")
+                             f"{tc:g} s): its forces underflow double precision")
     f = PT / PN
     # undefined (NaN, None in JSON): f/mu and the dimensionless groups at mu = 0, e_t at vt = 0
     fm = f / mu if mu > 0 else math.nan
@@ -338,57 +450,37 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
     # e_t = vt_r / vt is undefined at vt = 0 and overflows for |vt| below 1e-100 of vn: NaN there
     tiny_vt = abs(vt) < 1e-100 * vn
     e_t = vt_r / vt if not tiny_vt else math.nan
-    defined = {"e_n": e_n, "f": f, "f_over_mu": fm if mu > 0 else 0.0, "Theta": Theta if mu > 0 else 0.0,
-               "Psi_r": Psi_r if mu > 0 else 0.0, "Omega_r": Omega_r if mu > 0 else 0.0,
-               "e_t": e_t if not tiny_vt else 0.0}
-    bad = [k for k, v in defined.items() if not math.isfinite(v)]
-    if bad:
+    if not (math.isfinite(e_n) and math.isfinite(f) and (tiny_vt or math.isfinite(e_t))
+            and (mu <= 0 or (math.isfinite(fm) and math.isfinite(Theta) and math.isfinite(Psi_r)
+                             and math.isfinite(Omega_r)))):
+        defined = {"e_n": e_n, "f": f, "f_over_mu": fm if mu > 0 else 0.0, "Theta": Theta if mu > 0 else 0.0,
+                   "Psi_r": Psi_r if mu > 0 else 0.0, "Omega_r": Omega_r if mu > 0 else 0.0,
+                   "e_t": e_t if not tiny_vt else 0.0}
+        bad = [k for k, v in defined.items() if not math.isfinite(v)]
         raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
                              f"laws at dt = {dt:g} s")
     I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
     I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
     E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
     E1 = 0.5 * m * (vn_r**2 + vt_r**2) + 0.5 * I1 * w_r**2 + 0.5 * I2 * w2_r**2
-    WN, WT = out[O_WN], out[O_WT]
-    energy = EnergyBudget(initial=E0, final=E1, friction=WT, normal=WN, error=E0 - E1 - WT - WN)
+    energy = EnergyBudget(E0, E1, WT, WN, E0 - E1 - WT - WN)
     # A passive tangential law stores or dissipates: its running work can never be negative.
-    created = bool(out[O_MINWT] < -ENERGY_CREATION_TOL * E0)
-    msgs = []
-    if created:
-        msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
-                    f"(running work reached {out[O_MINWT]:.3e} J)")
-    works = f"work absorbed by the normal force {WN:.4g} J, by the tangential force {WT:.4g} J"
+    created = o[O_MINWT] < -ENERGY_CREATION_TOL * E0
     gained_total = E1 - E0 > KE_ROUNDING_TOL * E0
     # the normal motion alone: a passive normal law cannot return more than it received (e_n <= 1)
     gained_normal = e_n * e_n - 1.0 > KE_ROUNDING_TOL
-    if gained_total:
-        msgs.append(f"kinetic energy gained: the final kinetic energy exceeds the initial one by "
-                    f"{(E1 - E0) / E0:.3g} of it ({works})")
-    if gained_normal:
-        msgs.append(f"kinetic energy gained in the normal motion: e_n = {e_n:.8g} > 1 ({works})")
-    gained = bool(gained_total or gained_normal)
-    coul = out[O_COULOMB]
-    if coul > 1e-9 * max(mu * out[O_FMAX], 1e-300):
-        msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
-    if mu > 0 and abs(f) > mu * (1.0 + 1e-9):
-        why = (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
-               "smaller than the compressive force the Coulomb limit acts on") if scene.normal == "linear" else ""
-        msgs.append(f"impulse ratio |f| exceeds mu by {abs(f) / mu - 1.0:.3g} of mu{why}")
-    if abs(energy.error) > ENERGY_BALANCE_TOL * E0:
-        msgs.append(f"energy balance error {energy.error / E0:.3g} of the initial kinetic energy (more than "
-                    f"{ENERGY_BALANCE_TOL:g}): refine the time step")
-    a_over_R = math.sqrt(out[O_DMAX] / scene.pair.R_star)
-    if a_over_R > VALIDITY_A_OVER_R:
-        msgs.append(f"contact beyond the range of the contact laws: the contact radius reached "
-                    f"{a_over_R:.3g} R* (overlap {out[O_DMAX] / scene.pair.R_star:.3g} R*); Hertz-Mindlin "
-                    f"theory assumes a small contact, a <= {VALIDITY_A_OVER_R:g} R*")
-    if spc < 10:
-        msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
-    for msg in msgs:
-        warnings.warn(msg, RuntimeWarning, stacklevel=3)
+    gained = gained_total or gained_normal
+    coul = o[O_COULOMB]
+    a_over_R = math.sqrt(dmax / scene.pair.R_star)
+    msgs = []
+    if (created or gained or coul > 1e-9 * max(mu * fmax, 1e-300) or (mu > 0 and abs(f) > mu * (1.0 + 1e-9))
+            or abs(energy.error) > ENERGY_BALANCE_TOL * E0 or a_over_R > VALIDITY_A_OVER_R or spc < 10):
+        msgs = _warning_texts(scene, o, f, e_n, energy, created, gained_total, gained_normal, a_over_R, spc)
+        for msg in msgs:
+            warnings.warn(msg, RuntimeWarning, stacklevel=3)
     series_dict = None
     if ser is not None and ser.shape[0] > 0:
-        n = int(out[O_STEPS])
+        n = int(o[O_STEPS])
         names = {S_T: "t", S_DELTA: "overlap", S_N: "normal_force", S_TANG: "tangential_force",
                  S_A: "contact_radius", S_VN: "vn", S_VSLIP: "v_slip"}
         first = {S_VN: vn, S_VSLIP: v_ti}     # the state at first touch heads every column
@@ -400,10 +492,10 @@ def build_result(scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser=None) -> 
         e_n=e_n, e_t=e_t, f=f, f_over_mu=fm, Theta=Theta, Psi_r=Psi_r, Omega_i=Omega_i, Omega_r=Omega_r,
         rebound_angle_deg=math.degrees(math.atan2(vt_r, -vn_r)),
         patch_rebound_angle_deg=math.degrees(math.atan2(v_tr, -vn_r)),
-        normal_impulse=PN, tangential_impulse=PT, contact_time=out[O_TC], max_overlap=out[O_DMAX],
-        max_force=out[O_FMAX], persistent_sliding=bool(is_sliding(out[O_SLID])),
-        sliding_fraction=float(out[O_SLID]), steps=int(out[O_STEPS]), dt=dt,
+        normal_impulse=PN, tangential_impulse=PT, contact_time=tc, max_overlap=dmax,
+        max_force=fmax, persistent_sliding=is_sliding(o[O_SLID]),
+        sliding_fraction=o[O_SLID], steps=int(o[O_STEPS]), dt=dt,
         energy=energy, energy_created=created, coulomb_violation=max(coul, 0.0), warnings=msgs,
-        model=scene.describe(),
+        model=describe(scene) if model is None else model,
         settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "vn": vn, "vt": vt, "spin": spin},
         omega2_r=w2_r, series=series_dict, energy_gained=gained)

@@ -16,30 +16,30 @@ import dataclasses
 import math
 import sys
 import warnings
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit, prange
 
 from ..errors import InputError, NumericalError
-from .impact import (MAX_CONTACT_TIMES, SCHEMES, body_inertia, build_result, check_incident, check_mdr_grid,
-                     check_mdr_reach, check_scales, impact, time_step)
+from .impact import (MAX_CONTACT_TIMES, SCALE_RANGE, SCHEMES, body_inertia, build_result, check_incident,
+                     check_mdr_grid, check_mdr_reach, check_scales, derived_arrays, impact, speed_range, time_step)
 from .integrator import N_OUT, N_SERIES, integrate_impact
 from ..materials import Material, Sphere, Wall, check_finite
 from ..laws.model import Scene
+from ..laws.slots import H_A
 
 #: Work budget of one sweep: total steps per contact time summed over its impacts (about 1e8 steps per
 #: second and core with the default law).
 MAX_SWEEP_STEPS = 1e10
-#: Sweeps of at least this many impacts also show the progress of assembling their results.
-PROGRESS_RESULTS = 2000
 #: Impacts per progress-bar update are chosen so that the bar advances about this many times.
 PROGRESS_UPDATES = 20
 
 
 @njit(parallel=True, cache=True)
 def sweep_kernel(nid, tid, p, hist, vn, vt, w1, w2, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out):
-    """Integrate independent impacts in parallel (prange over impacts).
+    """Integrate independent impacts in parallel (prange over impacts, numba.get_num_threads() threads).
 
     p: parameter row (shared, read only); hist: float64[n, n_hist], zeroed rows, one per impact (written);
     vn, vt, w1, w2, dt: float64[n] incident normal speed [m/s], tangential velocity [m/s], spins [rad/s],
@@ -51,51 +51,91 @@ def sweep_kernel(nid, tid, p, hist, vn, vt, w1, w2, inv_m, R1, R2, inv_I1, inv_I
                          dt[i], max_steps[i], locate, out[i], series)
 
 
-@dataclass
+class _Points(Sequence):
+    """The impacts of a sweep as ImpactResults, each built from its output row when first asked for."""
+
+    def __init__(self, sweep_result):
+        self._res = sweep_result
+        self._built = {}
+
+    def __len__(self):
+        return self._res._out.shape[0]
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        n = len(self)
+        k = int(i)
+        if k < 0:
+            k += n
+        if not 0 <= k < n:
+            raise IndexError(f"impact {i} of a sweep of {n}")
+        r = self._built.get(k)
+        if r is None:
+            r = self._res._point(k)
+            self._built[k] = r
+        return r
+
+
 class SweepResult:
-    """Impacts of one sweep: ``points`` (one ImpactResult each) and the main quantities as arrays.
+    """Impacts of one sweep: the main quantities as arrays, ``points`` (one ImpactResult per impact, built
+    when read), ``model`` and ``settings``.
 
     theta_deg: impact angle of the centre velocity from the normal [deg]; Theta, Psi_r, Omega_r: the
     dimensionless groups of Wu, Thornton & Li 2009, section 2; f_over_mu: impulse ratio over mu; e_t (NaN at 0 deg),
-    e_n; persistent_sliding: the contact slid at every step.
+    e_n; persistent_sliding: the contact slid at every step; energy_created, energy_gained: the flags of
+    ``ImpactResult``.
     """
 
-    points: list
-    model: dict
-    settings: dict
-    theta_deg: np.ndarray = field(init=False)
-    Theta: np.ndarray = field(init=False)
-    f_over_mu: np.ndarray = field(init=False)
-    e_t: np.ndarray = field(init=False)
-    e_n: np.ndarray = field(init=False)
-    Psi_r: np.ndarray = field(init=False)
-    Omega_r: np.ndarray = field(init=False)
-    Omega_i: np.ndarray = field(init=False)
-    persistent_sliding: np.ndarray = field(init=False)
+    def __init__(self, scene, out, vn, vt, spin, dts, spcs, scheme, model, settings, derived):
+        self._scene, self._out, self._vn, self._vt, self._spin = scene, out, vn, vt, spin
+        self._dts, self._spcs, self._scheme = dts, spcs, scheme
+        self._warned = derived["warned"]
+        self.model = model
+        self.settings = settings
+        for name in ("theta_deg", "Theta", "f_over_mu", "e_t", "e_n", "Psi_r", "Omega_r", "Omega_i",
+                     "persistent_sliding", "energy_created", "energy_gained"):
+            setattr(self, name, derived[name])
+        self.points = _Points(self)
 
-    def __post_init__(self):
-        for name, attr in [("theta_deg", "theta_i_deg"), ("Theta", "Theta"), ("f_over_mu", "f_over_mu"),
-                           ("e_t", "e_t"), ("e_n", "e_n"), ("Psi_r", "Psi_r"), ("Omega_r", "Omega_r"),
-                           ("Omega_i", "Omega_i")]:
-            setattr(self, name, np.array([getattr(r, attr) for r in self.points], dtype=float))
-        self.persistent_sliding = np.array([r.persistent_sliding for r in self.points], dtype=bool)
+    def _point(self, i):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # recorded in ImpactResult.warnings
+            return build_result(self._scene, self._out[i], float(self._vn[i]), float(self._vt[i]),
+                                float(self._spin[i]), 0.0, float(self._dts[i]), float(self._spcs[i]), self._scheme,
+                                model=self.model)
 
     def __len__(self):
-        return len(self.points)
+        return self._out.shape[0]
 
     @property
     def warnings(self) -> list:
         """Distinct warnings of the impacts, each with the number of impacts that raised it."""
         counts = {}
-        for r in self.points:
-            for w in r.warnings:
+        for i in np.flatnonzero(self._warned):
+            for w in self.points[i].warnings:
                 key = w.split(" (")[0].split(" by ")[0]
                 counts[key] = counts.get(key, 0) + 1
-        return [f"{k} ({n} of {len(self.points)} impacts)" for k, n in counts.items()]
+        return [f"{k} ({n} of {len(self)} impacts)" for k, n in counts.items()]
 
     def to_dicts(self) -> list:
         """One JSON-ready dict per impact (the ImpactResult keys)."""
         return [r.to_dict() for r in self.points]
+
+
+def _check_inputs(scene, vn, vt, spin):
+    """check_incident and check_scales on arrays: the scalar checks raise for the first bad impact."""
+    v_lo, v_hi = speed_range(scene)
+    ok = np.isfinite(vn) & np.isfinite(vt) & np.isfinite(spin) & (vn > 0.0) & (vn >= v_lo) & (vn <= v_hi)
+    ok &= np.abs(vt) <= math.sqrt(2.0 * SCALE_RANGE[1] / scene.pair.m_star)
+    if isinstance(scene.sphere, Sphere):
+        ok &= np.abs(spin) <= math.sqrt(2.0 * SCALE_RANGE[1] / scene.sphere.inertia)
+    bad = np.flatnonzero(~ok)
+    if bad.size:
+        i = bad[0]
+        check_incident(vn[i], vt[i], spin[i])
+        check_scales(scene, vn[i], vt[i], spin[i])
+        raise InputError(f"impact {i}: vn = {vn[i]:g}, vt = {vt[i]:g}, spin = {spin[i]:g} out of range")
 
 
 def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = None, scheme: str = "located",
@@ -116,13 +156,12 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     if vn.ndim != 1 or vn.size == 0:
         raise InputError("vn, vt and spin must be one-dimensional with at least one impact")
     n = vn.size
-    for i in range(n):
-        check_incident(vn[i], vt[i], spin[i])
-        check_scales(scene, vn[i], vt[i], spin[i])
-    dts = np.empty(n)
-    spcs = np.empty(n)
-    for i in range(n):
-        dts[i], spcs[i] = time_step(scene, vn[i], steps_per_contact, None)
+    _check_inputs(scene, vn, vt, spin)
+    # one time step per distinct normal speed (a sweep at fixed vn computes it once)
+    speeds, where = np.unique(vn, return_inverse=True)
+    steps = [time_step(scene, v, steps_per_contact, None) for v in speeds]
+    dts = np.array([d for d, _ in steps])[where]
+    spcs = np.array([c for _, c in steps])[where]
     work = float(np.sum(spcs))
     if work > MAX_SWEEP_STEPS:
         raise InputError(f"the sweep asks for {work:.3g} steps ({n} impacts x {work / n:.3g} steps per contact); "
@@ -135,23 +174,23 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     w2 = np.zeros(n)
     locate = scheme == "located"
     chunk = n if not progress else max(1, -(-n // PROGRESS_UPDATES))
+    args = (scene.normal_id, scene.tangential_id, scene.params)
+    body = (inv_m, R1, R2, inv_I1, inv_I2)
     bar = None
     if progress:
         from tqdm import tqdm
         if not sweep_kernel.signatures:
-            # the first call loads the kernels from numba's cache or compiles them (tens of seconds)
+            # the first call loads the kernels from numba's cache or compiles them (seconds)
             print("compiling kernels (first run only) ...", file=sys.stderr, flush=True)
-            sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[:1].copy(), vn[:1], vt[:1],
-                         spin[:1], w2[:1], inv_m, R1, R2, inv_I1, inv_I2, dts[:1], max_steps[:1], locate,
-                         np.zeros((1, N_OUT)))
+            sweep_kernel(*args, hist[:1].copy(), vn[:1], vt[:1], spin[:1], w2[:1], *body, dts[:1], max_steps[:1],
+                         locate, np.zeros((1, N_OUT)))
         bar = tqdm(total=n, unit="impact", desc=f"sweep {scene.tangential}", leave=False)
     try:
         for s in range(0, n, chunk):
             e = min(n, s + chunk)
             try:
-                sweep_kernel(scene.normal_id, scene.tangential_id, scene.params, hist[s:e], vn[s:e], vt[s:e],
-                             spin[s:e], w2[s:e], inv_m, R1, R2, inv_I1, inv_I2, dts[s:e], max_steps[s:e], locate,
-                             out[s:e])
+                sweep_kernel(*args, hist[s:e], vn[s:e], vt[s:e], spin[s:e], w2[s:e], *body, dts[s:e],
+                             max_steps[s:e], locate, out[s:e])
             except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
                 raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
                                      f"{e - 1} ({type(err).__name__}: {err})") from None
@@ -160,31 +199,32 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     finally:
         if bar is not None:
             bar.close()
-    points = []
-    rows = range(n)
-    if progress and n >= PROGRESS_RESULTS:
-        from tqdm import tqdm
-        rows = tqdm(rows, unit="impact", desc="results", leave=False, mininterval=0.5)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # recorded per impact in ImpactResult.warnings
-        for i in rows:
-            try:
-                check_mdr_grid(scene, hist[i], vn[i])
-                points.append(build_result(scene, out[i], vn[i], vt[i], spin[i], 0.0, dts[i], spcs[i], scheme))
-            except NumericalError as err:
-                raise NumericalError(f"impact {i} (vn = {vn[i]:g} m/s, vt = {vt[i]:g} m/s, spin = "
-                                     f"{spin[i]:g} rad/s) failed: {err}") from None
+    derived = derived_arrays(scene, out, vn, vt, spin, 0.0, spcs)
+    failed = derived["failed"]
+    if scene.tangential == "mdr":
+        failed = failed | (hist[:, H_A] > scene.mdr_max_radius)
+    bad = np.flatnonzero(failed)
+    if bad.size:
+        i = bad[0]
+        try:
+            check_mdr_grid(scene, hist[i], vn[i])
+            build_result(scene, out[i], vn[i], vt[i], spin[i], 0.0, dts[i], spcs[i], scheme)
+            raise NumericalError("non-finite result")
+        except NumericalError as err:
+            raise NumericalError(f"impact {i} (vn = {vn[i]:g} m/s, vt = {vt[i]:g} m/s, spin = "
+                                 f"{spin[i]:g} rad/s) failed: {err}") from None
     settings = {"scheme": scheme, "steps_per_contact": float(spcs[0]) if np.all(spcs == spcs[0]) else None,
                 "n_impacts": n}
-    return SweepResult(points=points, model=scene.describe(), settings=settings)
+    return SweepResult(scene, out, vn, vt, spin, dts, spcs, scheme, scene.describe(), settings, derived)
 
 
 def _angles(angles_deg) -> np.ndarray:
     a = np.atleast_1d(np.asarray(angles_deg, dtype=float))
     if a.ndim != 1 or a.size == 0:
         raise InputError("angles_deg must be a non-empty list of angles [deg]")
-    for x in a:
-        check_finite("impact angle (deg)", x, lo=-90.0, hi=90.0, lo_open=True, hi_open=True)
+    bad = np.flatnonzero(~((a > -90.0) & (a < 90.0)))
+    if bad.size:
+        check_finite("impact angle (deg)", a[bad[0]], lo=-90.0, hi=90.0, lo_open=True, hi_open=True)
     return a
 
 
@@ -220,8 +260,9 @@ def sweep_theta(scene: Scene, Theta, vn: float = 5.0, *, steps_per_contact: floa
     if scene.mu <= 0:
         raise InputError("sweep_theta needs mu > 0")
     T = np.atleast_1d(np.asarray(Theta, dtype=float))
-    for x in T:
-        check_finite("Theta (dimensionless incidence)", x, lo=0.0, lo_open=False)
+    bad = np.flatnonzero(~((T >= 0.0) & np.isfinite(T)))
+    if bad.size:
+        check_finite("Theta (dimensionless incidence)", T[bad[0]], lo=0.0, lo_open=False)
     vn = check_finite("vn (normal impact speed towards the wall, m/s)", vn, lo=0.0)
     res = sweep(scene, vn, T * scene.mu * vn, 0.0, steps_per_contact=steps_per_contact, scheme=scheme,
                 progress=progress)

@@ -69,12 +69,32 @@ class WuFit:
         return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()}
 
 
-def _linear_c12(T, y, c3, c4):
-    """Best (c1, c2) for fixed (c3, c4): the model is linear in c1, c2."""
-    A = np.column_stack([np.ones_like(T), np.tanh(c3 + c4 * T)])
-    sol, *_ = np.linalg.lstsq(A, y, rcond=None)
-    r = A @ sol - y
-    return sol, float(r @ r)
+#: Start grid over (c3, c4); (c1, c2) are solved by linear least squares at every node at once.
+START_C3 = np.linspace(-1.0, 3.0, 17)
+START_C4 = np.linspace(-1.5, -0.05, 30)
+
+
+def _start(T, y):
+    """Start values: at every (c3, c4) of the start grid the model is linear in (c1, c2); the 2x2 normal
+    equations of all nodes are solved together, and the node with the smallest residual among those with a
+    rising curve (c2 < 0) is taken. None when no node rises."""
+    c3 = np.repeat(START_C3, START_C4.size)
+    c4 = np.tile(START_C4, START_C3.size)
+    th = np.tanh(c3[:, None] + c4[:, None] * T[None, :])
+    n = T.size
+    st, stt = th.sum(axis=1), np.einsum("ij,ij->i", th, th)
+    sy, sty = y.sum(), th @ y
+    det = n * stt - st * st
+    with np.errstate(all="ignore"):
+        c2 = (n * sty - st * sy) / det
+        c1 = (sy - c2 * st) / n
+        r = c1[:, None] + c2[:, None] * th - y[None, :]
+        ss = np.einsum("ij,ij->i", r, r)
+    ok = (c2 < 0) & np.isfinite(ss) & (det > 1e-12 * n * n)
+    if not np.any(ok):
+        return None
+    k = np.flatnonzero(ok)[np.argmin(ss[ok])]
+    return np.array([c1[k], c2[k], c3[k], c4[k]])
 
 
 def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", f_scale: float = 0.01) -> WuFit:
@@ -82,10 +102,10 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
 
     Theta, f_over_mu: arrays of simulated points; persistent_sliding: optional boolean array, points
     flagged True are left out (as are points with f/mu >= 1 - 1e-6 and non-finite ones). Start values:
-    a grid over (c3, c4) with (c1, c2) solved by linear least squares; then scipy least_squares with a
-    robust loss (``loss``, ``f_scale``) within bounds c2 <= 0, c4 <= 0."""
-    from scipy.optimize import least_squares
-
+    a grid over (c3, c4) with (c1, c2) solved by linear least squares at all nodes at once; then
+    Levenberg-Marquardt on the analytic Jacobian with the robust soft-L1 loss (``loss="soft_l1"``, scale
+    ``f_scale``; ``"linear"``: plain least squares; another scipy ``least_squares`` loss name uses scipy)
+    within bounds c2 <= 0, c4 <= 0."""
     T = np.asarray(Theta, dtype=float).ravel()
     y = np.asarray(f_over_mu, dtype=float).ravel()
     if T.shape != y.shape:
@@ -100,25 +120,27 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
     T, y = T[keep], y[keep]
     if T.size < 5:
         raise InputError(f"the fit needs at least 5 points below persistent sliding (got {T.size})")
-    best = None
-    for c3 in np.linspace(-1.0, 3.0, 17):
-        for c4 in np.linspace(-1.5, -0.05, 30):
-            (c1, c2), ss = _linear_c12(T, y, c3, c4)
-            if c2 < 0 and (best is None or ss < best[0]):
-                best = (ss, (c1, c2, c3, c4))
+    best = _start(T, y)
     if best is None:
         raise NumericalError("no start values with a rising curve: f/mu does not rise with Theta")
-    x0 = np.clip(best[1], np.array(LOWER) + 1e-9, np.array(UPPER) - 1e-9)
+    x0 = np.clip(best, np.array(LOWER) + 1e-9, np.array(UPPER) - 1e-9)
 
     def resid(c):
         return wu_curve(T, c) - y
 
-    sol = least_squares(resid, x0, bounds=(LOWER, UPPER), loss=loss, f_scale=f_scale, x_scale="jac",
-                        xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=20000)
-    if not sol.success:
-        raise NumericalError(f"the fit of eq. 4.5 did not converge: {sol.message}")
-    c = tuple(float(v) for v in sol.x)
-    r = resid(sol.x)
+    if loss in ("soft_l1", "linear"):
+        x = _robust_gauss_newton(T, y, x0, f_scale if loss == "soft_l1" else math.inf)
+    else:
+        from scipy.optimize import least_squares
+
+        sol = least_squares(resid, x0, jac=lambda c: _jacobian(T, c), bounds=(LOWER, UPPER), loss=loss,
+                            f_scale=f_scale, x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=20000)
+        if not sol.success:
+            raise NumericalError(f"the fit of eq. 4.5 did not converge: {sol.message}")
+        x = sol.x
+    sol_x = x
+    c = tuple(float(v) for v in sol_x)
+    r = resid(sol_x)
     dof = max(T.size - 4, 1)
     s2 = float(r @ r) / dof
     J = _jacobian(T, c)
@@ -157,6 +179,56 @@ def fit_wu(Theta, f_over_mu, persistent_sliding=None, *, loss: str = "soft_l1", 
                  rms=float(math.sqrt(np.mean(r * r))), max_residual=float(np.max(np.abs(r))),
                  n_points=int(T.size), Theta_max=T_max, Theta_c_model_err=model_err, extrapolated=extrapolated,
                  warnings=msgs)
+
+
+#: Convergence of the Gauss-Newton iteration: relative step size, and the most iterations.
+FIT_XTOL = 1e-13
+FIT_MAX_ITER = 500
+
+
+def _robust_gauss_newton(T, y, x0, f_scale):
+    """Minimise sum f_scale^2 rho((r / f_scale)^2), rho(z) = 2 (sqrt(1 + z) - 1) (the soft-L1 loss; plain
+    least squares for f_scale = inf), r = eq. 4.5 - y, within the bounds LOWER, UPPER: Levenberg-Marquardt
+    steps on the analytic Jacobian of eq. 4.5 with the loss's Gauss-Newton weights rho'(z) (gradient) and
+    rho'(z) + 2 z rho''(z) = (1 + z)^-3/2 (curvature; Triggs et al. 2000), each step projected on the bounds
+    and accepted only when it lowers the cost."""
+    lo, hi = np.array(LOWER), np.array(UPPER)
+
+    def cost_and_weights(c):
+        r = wu_curve(T, c) - y
+        if not math.isfinite(f_scale):
+            return 0.5 * float(r @ r), r, np.ones_like(r), np.ones_like(r)
+        z = (r / f_scale) ** 2
+        s = np.sqrt(1.0 + z)
+        return float(np.sum(f_scale**2 * (s - 1.0))), r, 1.0 / s, 1.0 / (s * s * s)
+
+    x = np.array(x0, dtype=float)
+    cost, r, w1, w2 = cost_and_weights(x)
+    lam = 1e-3
+    for _ in range(FIT_MAX_ITER):
+        J = _jacobian(T, x)
+        g = J.T @ (w1 * r)
+        H = J.T @ (w2[:, None] * J)
+        d = np.diag(H).copy()
+        while True:
+            try:
+                step = -np.linalg.solve(H + lam * np.diag(np.maximum(d, 1e-300)), g)
+            except np.linalg.LinAlgError:
+                step = np.full(4, np.nan)
+            xn = np.clip(x + step, lo, hi)
+            if np.all(np.isfinite(xn)):
+                cn, rn, w1n, w2n = cost_and_weights(xn)
+                if cn <= cost:
+                    break
+            lam *= 10.0
+            if lam > 1e16:
+                return x        # no step lowers the cost: a minimum to rounding
+        moved = np.max(np.abs(xn - x) / (np.abs(x) + 1e-3))
+        x, cost, r, w1, w2 = xn, cn, rn, w1n, w2n
+        lam = max(lam * 0.1, 1e-12)
+        if moved < FIT_XTOL:
+            return x
+    raise NumericalError(f"the fit of eq. 4.5 did not converge in {FIT_MAX_ITER} iterations")
 
 
 def _shift(c, k, h):
