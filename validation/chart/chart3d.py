@@ -4,8 +4,8 @@ beside this file; the BEM forces are read from bem_paths_n64.csv (recomputed wit
 a minute at 64 elements across; --check FILE compares with a finer reference written the same way) and the
 spinning impacts from validation/spin/bem_spin_reference.csv (written by validation/spin/spin.py).
 
-    PYTHONPATH=$PWD python validation/chart/chart3d.py [--recompute] [--check validation/chart/bem_paths_n128.csv]
-    PYTHONPATH=$PWD python validation/chart/chart3d.py --write-reference 128 validation/chart/bem_paths_n128.csv
+    python validation/chart/chart3d.py [--recompute] [--check validation/chart/bem_paths_n128.csv]
+    python validation/chart/chart3d.py --write-reference 128 validation/chart/bem_paths_n128.csv
 """
 import pathlib
 import sys
@@ -47,7 +47,7 @@ def main():
              f"contact frame fixed). Reference: `dem_contact.reference.bem` with {n_across} elements across the "
              "contact. Error: max over the path of |T - T_BEM| / (mu N); time: one kernel update, serial loop, "
              "warm JIT, best of 5 runs (shared machine: compare ratios).", "",
-             "Regenerate: `PYTHONPATH=$PWD python validation/chart/chart3d.py` (a few seconds; the reference is "
+             "Regenerate: `python validation/chart/chart3d.py` (a few seconds; the reference is "
              "read from `bem_paths_n64.csv`, `--recompute` rebuilds it, about a minute).", "",
              "| law | " + " | ".join(labels) + " | max | ns per update |",
              "|---|" + "---|" * (len(labels) + 2)]

@@ -1,7 +1,7 @@
 """Impacts with out-of-plane spin, EE scene of Wu, Thornton & Li (2009): steel on steel, R = 10 mm,
 V_n = 5 m/s, mu = 0.3. Writes spin.csv, bem_cases.csv, spin.png and report.md beside this file.
 
-    PYTHONPATH=$PWD python validation/spin/spin.py [--quick] [--recompute]
+    python validation/spin/spin.py [--quick] [--recompute]
 
 The BEM impacts are stored in bem_spin_reference.csv (--recompute: about 1 minute more, with a grid check).
 """
@@ -37,7 +37,7 @@ def main():
              "impact angle; a spin wx about x (the incident tangential direction) gives the contact point a "
              "velocity across the impact plane, s_y = -R wx, measured by Theta_across = 2 s_y / ((1 + e_n) mu V_n). "
              "Frame of `dem_contact.impacts.impact3d`: z into the wall.", "",
-             "Regenerate: `PYTHONPATH=$PWD python validation/spin/spin.py` (about a minute; the BEM impacts are "
+             "Regenerate: `python validation/spin/spin.py` (about a minute; the BEM impacts are "
              "read from `bem_spin_reference.csv`, `--recompute` recomputes them with a grid check, about 2 minutes "
              "more).", ""]
     sc = preset_scene("EE", VN)
