@@ -5,7 +5,7 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact import impact
-from .common import add_scene_options, angle_to_vt, dump_json, scene_from_args, time_options
+from .common import add_scene_options, angle_to_vt, dump_json, model_line, scene_from_args, time_options
 
 ORDER = 1
 
@@ -40,10 +40,7 @@ def run(args) -> int:
     if args.json:
         print(dump_json(r.to_dict(series=args.series)))
         return 0
-    m = r.model
-    print(f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, "
-          f"kappa = {m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} "
-          f"steps per contact (dt = {r.dt:.4g} s)")
+    print(model_line(r))
     print(f"incident: vn = {r.vn_i:g} m/s, vt = {r.vt_i:g} m/s, spin = {r.omega_i:g} rad/s "
           f"(angle {r.theta_i_deg:.4g} deg, Theta = {r.Theta:.6g})" if r.Theta == r.Theta else
           f"(angle {r.theta_i_deg:.4g} deg, Theta undefined at mu = 0)")

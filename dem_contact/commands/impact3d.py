@@ -8,7 +8,7 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
-from .common import add_scene_options, dump_json, scene_from_args, time_options
+from .common import add_scene_options, dump_json, model_line, scene_from_args, time_options
 from .sweep import parse_angles
 
 ORDER = 2
@@ -87,10 +87,7 @@ def run(args) -> int:
     if args.json:
         print(dump_json(r.to_dict(series=args.series)))
         return 0
-    m = r.model
-    print(f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, kappa = "
-          f"{m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} steps per "
-          f"contact (dt = {r.dt:.4g} s); {'fixed' if args.fixed_frame else 'turning'} contact frame")
+    print(f"{model_line(r)}; {'fixed' if args.fixed_frame else 'turning'} contact frame")
     print(FRAME)
     vec = lambda v: "(" + ", ".join(f"{x:.8g}" for x in v) + ")"  # noqa: E731
     print(f"incident: vn = {r.vn_i:g} m/s, vt = {vec(r.vt_i)} m/s, spin = {vec(r.spin_i)} rad/s")
