@@ -5,7 +5,8 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact import impact
-from .common import add_scene_options, angle_to_vt, dump_json, model_line, scene_from_args, time_options
+from .common import (add_scene_options, angle_to_vt, dump_json, model_line, print_energy_and_warnings,
+                     scene_from_args, time_options)
 
 ORDER = 1
 
@@ -55,9 +56,5 @@ def run(args) -> int:
     for name, val, unit in rows:
         print(f"  {name:15s} {val:.8g} {unit}" if val == val else f"  {name:15s} {undefined[name]}")
     print(f"  persistent sliding: {'yes' if r.persistent_sliding else 'no'}; steps: {r.steps}")
-    e = r.energy
-    print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "
-          f"normal {e.normal:.6g}, balance error {e.error:.3g}")
-    for w in r.warnings:
-        print(f"warning: {w}")
+    print_energy_and_warnings(r)
     return 0

@@ -8,7 +8,8 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
-from .common import add_scene_options, dump_json, model_line, scene_from_args, time_options
+from .common import (add_scene_options, dump_json, model_line, print_energy_and_warnings, scene_from_args,
+                     time_options)
 from .sweep import parse_angles
 
 ORDER = 2
@@ -101,11 +102,7 @@ def run(args) -> int:
             ("out of plane", r.out_of_plane_angle_deg, "deg"), ("contact time", r.contact_time, "s")]
     for name, val, unit in rows:
         print(f"  {name:15s} {val:.8g} {unit}")
-    e = r.energy
-    print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "
-          f"normal {e.normal:.6g}, balance error {e.error:.3g}")
-    for w in r.warnings:
-        print(f"warning: {w}")
+    print_energy_and_warnings(r)
     return 0
 
 
