@@ -25,6 +25,14 @@ THETA_C_STYLES = {"fit": dict(color="C0", ls="--", lw=1.3), "simulation": dict(c
                   "eq. 4.1": dict(color="C3", ls=":", lw=1.8)}
 
 
+def _save(fig, path, dpi=DPI):
+    """Lay out ``fig``, write it as a PNG to ``path``, close it and return ``path``."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
+
+
 def _physical(m):
     """Blank the model curves where the fit is unphysical (f/mu < 0 near Theta = 0, which makes e_t > 1)."""
     bad = m["f_over_mu"] < 0.0
@@ -106,10 +114,7 @@ def sweep_figure(res, path, *, fit=None, published=None, kappa=None, title=None,
     m = res.model
     fig.suptitle(title or (f"{m['normal_law']} / {m['tangential_law']}, mu = {m['mu']:g}, "
                            f"kappa = {m['kappa']:.4f}"), fontsize=11)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def overlay_figure(results: dict, path, *, quantity: str = "f_over_mu", collapse: bool = False,
@@ -139,10 +144,7 @@ def overlay_figure(results: dict, path, *, quantity: str = "f_over_mu", collapse
     ax.legend(fontsize=7)
     if title:
         ax.set_title(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -278,10 +280,7 @@ def chung_ooi_figure(res, path) -> list:
     writes a PNG to ``path`` and returns ``[path]``."""
     fig = _CO_FIGURES[res.test](res, path)
     fig.suptitle(f"Chung & Ooi test {res.test}: {res.title}", fontsize=11)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return [path]
+    return [_save(fig, path)]
 
 
 def speed_accuracy_figure(rows, path, *, quantity: str = "err_f_over_mu"):
@@ -327,10 +326,7 @@ def speed_accuracy_figure(rows, path, *, quantity: str = "err_f_over_mu"):
         ax.set_title(f"normal law: {normal} (solid located, dashed standard end)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return _save(fig, path, dpi=130)
 
 
 def stability_figure(rows, path):
@@ -354,10 +350,7 @@ def stability_figure(rows, path):
     handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in colours]
     ax.legend(handles, outcomes, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.set_title("stability map (EE steel scene; accuracy: |f/mu or e_n error| vs MDR <= 0.02)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return _save(fig, path, dpi=130)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -382,10 +375,7 @@ def curves_figure(panels, path, *, ncols: int = 2, title=None):
         ax.set_visible(False)
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=None):
@@ -424,9 +414,7 @@ def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=Non
     a1.legend(fontsize=8)
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def spin_figure(rows, path, *, bem_rows=(), planar=None, title=None):
@@ -469,10 +457,7 @@ def spin_figure(rows, path, *, bem_rows=(), planar=None, title=None):
         a.legend(fontsize=7)
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def _shared_labels(ax, pts):
@@ -542,7 +527,4 @@ def chart3d_figure(rows, path, *, title=None, spin_rows=None):
     a1.legend(fontsize=7, ncol=2)
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return path
+    return _save(fig, path)

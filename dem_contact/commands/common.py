@@ -77,6 +77,23 @@ def dump_json(obj) -> str:
     return json.dumps(obj, indent=2, allow_nan=False)
 
 
+def model_line(r) -> str:
+    """The first line of an impact's text report: laws, friction, scheme and time step of result ``r``."""
+    m = r.model
+    return (f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, "
+            f"kappa = {m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} "
+            f"steps per contact (dt = {r.dt:.4g} s)")
+
+
+def print_energy_and_warnings(r) -> None:
+    """The last lines of an impact's text report: the energy budget of result ``r`` and its warnings."""
+    e = r.energy
+    print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "
+          f"normal {e.normal:.6g}, balance error {e.error:.3g}")
+    for w in r.warnings:
+        print(f"warning: {w}")
+
+
 def angle_to_vt(vn: float, angle_deg: float) -> float:
     if not -90.0 < angle_deg < 90.0:
         raise InputError(f"angle = {angle_deg:g} deg is outside the valid range (-90, 90)")

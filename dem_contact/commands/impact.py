@@ -5,7 +5,8 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact import impact
-from .common import add_scene_options, angle_to_vt, dump_json, scene_from_args, time_options
+from .common import (add_scene_options, angle_to_vt, dump_json, model_line, print_energy_and_warnings,
+                     scene_from_args, time_options)
 
 ORDER = 1
 
@@ -40,10 +41,7 @@ def run(args) -> int:
     if args.json:
         print(dump_json(r.to_dict(series=args.series)))
         return 0
-    m = r.model
-    print(f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, "
-          f"kappa = {m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} "
-          f"steps per contact (dt = {r.dt:.4g} s)")
+    print(model_line(r))
     print(f"incident: vn = {r.vn_i:g} m/s, vt = {r.vt_i:g} m/s, spin = {r.omega_i:g} rad/s "
           f"(angle {r.theta_i_deg:.4g} deg, Theta = {r.Theta:.6g})" if r.Theta == r.Theta else
           f"(angle {r.theta_i_deg:.4g} deg, Theta undefined at mu = 0)")
@@ -58,9 +56,5 @@ def run(args) -> int:
     for name, val, unit in rows:
         print(f"  {name:15s} {val:.8g} {unit}" if val == val else f"  {name:15s} {undefined[name]}")
     print(f"  persistent sliding: {'yes' if r.persistent_sliding else 'no'}; steps: {r.steps}")
-    e = r.energy
-    print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "
-          f"normal {e.normal:.6g}, balance error {e.error:.3g}")
-    for w in r.warnings:
-        print(f"warning: {w}")
+    print_energy_and_warnings(r)
     return 0

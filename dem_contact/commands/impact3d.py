@@ -8,7 +8,8 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
-from .common import add_scene_options, dump_json, scene_from_args, time_options
+from .common import (add_scene_options, dump_json, model_line, print_energy_and_warnings, scene_from_args,
+                     time_options)
 from .sweep import parse_angles
 
 ORDER = 2
@@ -87,10 +88,7 @@ def run(args) -> int:
     if args.json:
         print(dump_json(r.to_dict(series=args.series)))
         return 0
-    m = r.model
-    print(f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, kappa = "
-          f"{m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} steps per "
-          f"contact (dt = {r.dt:.4g} s); {'fixed' if args.fixed_frame else 'turning'} contact frame")
+    print(f"{model_line(r)}; {'fixed' if args.fixed_frame else 'turning'} contact frame")
     print(FRAME)
     vec = lambda v: "(" + ", ".join(f"{x:.8g}" for x in v) + ")"  # noqa: E731
     print(f"incident: vn = {r.vn_i:g} m/s, vt = {vec(r.vt_i)} m/s, spin = {vec(r.spin_i)} rad/s")
@@ -104,11 +102,7 @@ def run(args) -> int:
             ("out of plane", r.out_of_plane_angle_deg, "deg"), ("contact time", r.contact_time, "s")]
     for name, val, unit in rows:
         print(f"  {name:15s} {val:.8g} {unit}")
-    e = r.energy
-    print(f"energy [J]: initial {e.initial:.6g}, final {e.final:.6g}, friction {e.friction:.6g}, "
-          f"normal {e.normal:.6g}, balance error {e.error:.3g}")
-    for w in r.warnings:
-        print(f"warning: {w}")
+    print_energy_and_warnings(r)
     return 0
 
 

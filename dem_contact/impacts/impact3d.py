@@ -41,7 +41,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
@@ -53,7 +53,7 @@ from ..laws.model import Scene
 from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
 from ..laws.slots import H_A, H_N, P_MU
 from ..materials import Wall, check_finite
-from .impact import (ENERGY_CREATION_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget, _json_safe, body_inertia,
+from .impact import (ENERGY_CREATION_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget, ImpactResult, body_inertia,
                      time_step)
 from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK
 
@@ -110,6 +110,15 @@ def _contact(nid, tid, params, H, delta, sx, sy, vn, wn, dt):
 
 # -------------------------------------------------------------------------------------------------------
 
+@njit(inline="always", cache=True)
+def _half_kick(vx, vy, w1x, w1y, w2x, w2y, Fx, Fy, hdt, inv_m, R1, R2, inv_I1, inv_I2):
+    """Half a step of the tangential force (Fx, Fy) on the relative velocity and the two spins:
+    m* dV = F_t dt, I dw = R n x F_t dt with n x F = (-Fy, Fx, 0)."""
+    return (vx + 0.5 * hdt * Fx * inv_m, vy + 0.5 * hdt * Fy * inv_m,
+            w1x - 0.5 * hdt * R1 * Fy * inv_I1, w1y + 0.5 * hdt * R1 * Fx * inv_I1,
+            w2x - 0.5 * hdt * R2 * Fy * inv_I2, w2y + 0.5 * hdt * R2 * Fx * inv_I2)
+
+
 @njit(cache=True)
 def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
                        dt, max_steps, locate, frame_spin, out, series):
@@ -159,13 +168,9 @@ def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, 
             kick = 0.5 * hdt * N * inv_m
             vn_h = vn - kick
             delta_new = delta + vn_h * hdt
-        # half kick of the tangential force: m* dV = F_t dt, I dw = R n x F_t dt with n x F = (-Fy, Fx, 0)
-        vx_h = vx + 0.5 * hdt * Fx * inv_m
-        vy_h = vy + 0.5 * hdt * Fy * inv_m
-        w1x_h = w1x - 0.5 * hdt * R1 * Fy * inv_I1
-        w1y_h = w1y + 0.5 * hdt * R1 * Fx * inv_I1
-        w2x_h = w2x - 0.5 * hdt * R2 * Fy * inv_I2
-        w2y_h = w2y + 0.5 * hdt * R2 * Fx * inv_I2
+        # half kick of the tangential force
+        vx_h, vy_h, w1x_h, w1y_h, w2x_h, w2y_h = _half_kick(vx, vy, w1x, w1y, w2x, w2y, Fx, Fy, hdt, inv_m, R1, R2,
+                                                            inv_I1, inv_I2)
         # slip s = V + (R1 w1 + R2 w2) x n, with w x n = (wy, -wx, 0)
         sx = vx_h + R1 * w1y_h + R2 * w2y_h
         sy = vy_h - R1 * w1x_h - R2 * w2x_h
@@ -187,12 +192,8 @@ def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, 
         if WT < minWT:
             minWT = WT
         vn = vn_h - 0.5 * hdt * Nn * inv_m
-        vx = vx_h + 0.5 * hdt * Fxn * inv_m
-        vy = vy_h + 0.5 * hdt * Fyn * inv_m
-        w1x = w1x_h - 0.5 * hdt * R1 * Fyn * inv_I1
-        w1y = w1y_h + 0.5 * hdt * R1 * Fxn * inv_I1
-        w2x = w2x_h - 0.5 * hdt * R2 * Fyn * inv_I2
-        w2y = w2y_h + 0.5 * hdt * R2 * Fxn * inv_I2
+        vx, vy, w1x, w1y, w2x, w2y = _half_kick(vx_h, vy_h, w1x_h, w1y_h, w2x_h, w2y_h, Fxn, Fyn, hdt, inv_m, R1, R2,
+                                                inv_I1, inv_I2)
         t += hdt
         delta = delta_new
         N = Nn
@@ -311,14 +312,7 @@ class Impact3DResult:
     settings: dict = field(default_factory=dict)
     series: dict | None = None
 
-    def to_dict(self, series: bool = False) -> dict:
-        """JSON-ready dict (NaN and inf become None)."""
-        d = asdict(self)
-        if not series:
-            d.pop("series")
-        elif self.series is not None:
-            d["series"] = {k: v.tolist() for k, v in self.series.items()}
-        return _json_safe(d)
+    to_dict = ImpactResult.to_dict
 
 
 def _vector(name: str, what: str, value, n: int) -> np.ndarray:

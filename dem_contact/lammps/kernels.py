@@ -257,6 +257,15 @@ def _free_row(keys, i):
     return -1
 
 
+@njit(inline="always", cache=True)
+def _load_scratch(scratch, H, r, has_row):
+    """Row 0 of ``scratch`` := history row r of H if the contact has one (has_row), else zeros."""
+    if has_row:
+        scratch[0, :] = H[r, :]
+    else:
+        scratch[0, :] = 0.0
+
+
 @njit(cache=True)
 def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, keys, H,
                   nid, tid, params, sphere_row, wall_row, dt, advance, frame_spin, fext, torque, stat,
@@ -346,10 +355,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
                 if rj < 0:
                     continue
         else:
-            if ri >= 0:
-                scratch[0, :] = H[i * slots + ri, :]
-            else:
-                scratch[0, :] = 0.0
+            _load_scratch(scratch, H, i * slots + ri, ri >= 0)
         # canonical order: the lower id is body 1
         if tag[i] < tag[j]:
             a = i
@@ -425,10 +431,7 @@ def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat,
                 if ri < 0:
                     continue
         else:
-            if ri >= 0:
-                scratch[0, :] = H[i * slots + ri, :]
-            else:
-                scratch[0, :] = 0.0
+            _load_scratch(scratch, H, i * slots + ri, ri >= 0)
         # body 1: the sphere; n from the sphere to the wall; the wall is at rest
         nx = -walls[w, 3]
         ny = -walls[w, 4]

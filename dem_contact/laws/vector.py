@@ -160,16 +160,22 @@ def turn(x, y, z, nx, ny, nz, cs, sn):
 
 
 @njit(inline="always", **JIT)
+def in_plane(x, y, z, nx, ny, nz, un):
+    """(x, y, z) less its part un = (x, y, z).n along n, and the squared length of what is left."""
+    x -= un * nx
+    y -= un * ny
+    z -= un * nz
+    return x, y, z, x * x + y * y + z * z
+
+
+@njit(inline="always", **JIT)
 def carry(x, y, z, nx, ny, nz, cs, sn):
     """A history vector carried into the tangent plane of n keeping its magnitude (projection and
     rescaling, as LAMMPS granular's tangential models do), then turned with the contact about n."""
     un = x * nx + y * ny + z * nz
     if un != 0.0:
         m2 = x * x + y * y + z * z
-        x -= un * nx
-        y -= un * ny
-        z -= un * nz
-        p2 = x * x + y * y + z * z
+        x, y, z, p2 = in_plane(x, y, z, nx, ny, nz, un)
         s = math.sqrt(m2 / p2) if p2 > 0.0 else 0.0
         x *= s
         y *= s
@@ -183,11 +189,7 @@ def carry(x, y, z, nx, ny, nz, cs, sn):
 def carry_unit(x, y, z, nx, ny, nz, cs, sn):
     """A unit axis carried into the tangent plane of n and turned with the contact about n; returns
     (0, 0, 0) when the axis is unset or parallel to n."""
-    un = x * nx + y * ny + z * nz
-    x -= un * nx
-    y -= un * ny
-    z -= un * nz
-    p2 = x * x + y * y + z * z
+    x, y, z, p2 = in_plane(x, y, z, nx, ny, nz, x * nx + y * ny + z * nz)
     if p2 <= 0.0:
         return 0.0, 0.0, 0.0
     s = 1.0 / math.sqrt(p2)

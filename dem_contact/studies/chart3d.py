@@ -19,7 +19,7 @@ from __future__ import annotations
 import csv
 import math
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -29,6 +29,7 @@ from ..laws.model import TANGENTIAL_LAWS, Scene
 from ..materials import STEEL, Sphere, Wall
 from ..reference.bem import bem_path_scene
 from ..reference.paths import COMPARISON_SET, scene_path
+from .chart import write_csv  # noqa: F401  (re-exported: one CSV writer for both charts)
 from .paths import _drive, check_path, path_scene, run_path
 
 #: Constant overlap of the chart's paths [m].
@@ -177,11 +178,3 @@ def spin_impact_chart(reference, laws=LAWS, vn: float = 5.0, repeats: int = 20) 
         t = time_per_impact(sc, vn, (b.vt, 0.0), (b.spin_x, 0.0, 0.0), b.steps, repeats)
         out.append(SpinImpactRow(label, err, 1e6 * t))
     return out
-
-
-def write_csv(rows, path):
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(asdict(rows[0])))
-        w.writeheader()
-        for r in rows:
-            w.writerow(asdict(r))

@@ -372,25 +372,19 @@ def _run_c(benchmark, c_batch, tangential):
     benchmark.extra_info["updates_per_s"] = N_CONTACTS / benchmark.stats.stats.min
 
 
-@pytest.mark.benchmark(group="contact3d")
-def test_c_md(benchmark, c_batch):
-    """Hertz + md in C (the reference of test_numba_md)."""
-    _run_c(benchmark, c_batch, "md")
+#: the laws measured against C: Hertz + md, and Hertz + mdr_adaptive (the default vector law)
+C_COMPARED = ["md", "mdr_adaptive"]
 
 
 @pytest.mark.benchmark(group="contact3d")
-def test_numba_md(benchmark):
-    """Hertz + md, numba serial batch (ratio: min time of test_c_md / min time of this)."""
-    _run_numba(benchmark, "md")
+@pytest.mark.parametrize("tangential", C_COMPARED)
+def test_c(benchmark, c_batch, tangential):
+    """Hertz + the law in C (the reference of test_numba with the same law)."""
+    _run_c(benchmark, c_batch, tangential)
 
 
 @pytest.mark.benchmark(group="contact3d")
-def test_c_default(benchmark, c_batch):
-    """Hertz + mdr_adaptive (the default vector law) in C."""
-    _run_c(benchmark, c_batch, "mdr_adaptive")
-
-
-@pytest.mark.benchmark(group="contact3d")
-def test_numba_default(benchmark):
-    """Hertz + mdr_adaptive, numba serial batch."""
-    _run_numba(benchmark, "mdr_adaptive")
+@pytest.mark.parametrize("tangential", C_COMPARED)
+def test_numba(benchmark, tangential):
+    """Hertz + the law, numba serial batch (ratio: min time of test_c / min time of this, same law)."""
+    _run_numba(benchmark, tangential)

@@ -9,16 +9,16 @@ from dem_contact.impacts.impact3d import N_OUT3, N_SERIES3, integrate_impact3d, 
 from dem_contact.impacts.integrator import N_OUT, N_SERIES, integrate_impact
 
 
-def _scene(tangential):
-    return dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, tangential=tangential, v_ref=5.0)
+def _setup(tangential):
+    """The scene, time step, steps per contact and inertia of both benchmarks (5 m/s)."""
+    sc = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, tangential=tangential, v_ref=5.0)
+    return (sc, *time_step(sc, 5.0), body_inertia(sc))
 
 
 @pytest.mark.benchmark(group="one impact, planar vs 3D kernel")
 @pytest.mark.parametrize("tangential", ["mdr_adaptive", "md"])
 def test_bench_planar_kernel(benchmark, tangential):
-    sc = _scene(tangential)
-    dt, spc = time_step(sc, 5.0)
-    inv_m, R1, R2, iI1, iI2 = body_inertia(sc)
+    sc, dt, spc, (inv_m, R1, R2, iI1, iI2) = _setup(tangential)
     out, ser, h = np.zeros(N_OUT), np.zeros((0, N_SERIES)), sc.new_history()
 
     def run():
@@ -34,9 +34,7 @@ def test_bench_planar_kernel(benchmark, tangential):
 @pytest.mark.benchmark(group="one impact, planar vs 3D kernel")
 @pytest.mark.parametrize("tangential", ["mdr_adaptive", "md"])
 def test_bench_3d_kernel(benchmark, tangential):
-    sc = _scene(tangential)
-    dt, spc = time_step(sc, 5.0)
-    inv_m, R1, R2, iI1, iI2 = body_inertia(sc)
+    sc, dt, spc, (inv_m, R1, R2, iI1, iI2) = _setup(tangential)
     out, ser = np.zeros(N_OUT3), np.zeros((0, N_SERIES3))
     params, H = new_contact_state(sc)
     w1, w2 = np.array([300.0, -50.0, 20.0]), np.zeros(3)
