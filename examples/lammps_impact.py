@@ -19,7 +19,7 @@ import sys
 
 import numpy as np
 
-from dem_contact.errors import InputError
+from dem_contact.errors import InputError, NumericalError
 from dem_contact.dem.pairs import pair_table
 from dem_contact.impacts.impact import build_result, time_step
 from dem_contact.impacts.integrator import (N_OUT, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
@@ -132,6 +132,9 @@ def main(argv=None):
     except InputError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except NumericalError as e:
+        print(f"numerical failure: {e}", file=sys.stderr)
+        return 3
     if a.json:
         print(json.dumps(r.to_dict(), indent=2, allow_nan=False))
     else:

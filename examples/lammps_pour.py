@@ -25,7 +25,7 @@ import time
 import numpy as np
 
 from dem_contact.dem.pairs import pair_table
-from dem_contact.errors import InputError
+from dem_contact.errors import InputError, NumericalError
 from dem_contact.laws.slots import P_ESTAR, P_GSTAR, P_MU
 from dem_contact.materials import Material, Sphere, Wall
 
@@ -98,6 +98,9 @@ def main(argv=None):
     except InputError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except NumericalError as e:
+        print(f"numerical failure: {e}", file=sys.stderr)
+        return 3
 
 
 def run(a):

@@ -302,3 +302,13 @@ def test_contact_across_a_periodic_boundary():
     scale = np.abs(inside).max()
     assert np.abs(across - inside).max() < 1e-9 * scale
     assert np.abs(across[:, 0:3] + across[:, 3:6]).max() < 1e-9 * scale
+
+
+def test_a_failing_law_is_reported_not_integrated():
+    """A law that returns a non-finite force (here: a fixed mdr grid outgrown by contacts faster than the
+    speed it was placed for) stops the run with a NumericalError (exit 3), never with LAMMPS integrating NaN."""
+    r = subprocess.run([sys.executable, "examples/lammps_pour.py", "--json", "--small", "--normal", "hertz_damped",
+                        "--tangential", "mdr"], capture_output=True, text=True, cwd=ROOT, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert r.returncode == 3, r.stdout[-2000:] + r.stderr[-2000:]
+    assert "non-finite force" in r.stderr and "Traceback" not in r.stderr

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, NumericalError
 from ..dem.pairs import PairTable
 from . import kernels as K
 
@@ -324,6 +324,10 @@ class LammpsContacts:
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
         self.lmp.command(f"run {int(nsteps)}")
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
+        if not math.isfinite(need):
+            raise NumericalError("a contact law returned a non-finite force or torque during the run (a contact "
+                                 "outgrew the springs of the mdr law: raise v_max; or the time step is too long "
+                                 "for the contact): the run is not valid")
         if need > self.slots:
             raise InputError(f"too few history slots: an atom had {int(need)} contacts at once but slots = "
                              f"{self.slots}; attach with slots >= {int(need)} (the run stopped there)")
@@ -373,6 +377,12 @@ class LammpsContacts:
             self.table.wall_row, self.lmp.extract_global("dt"), not setup, self.frame_spin,
             fext, torque, stat, saved, ntimestep)
         if not setup:
+            # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marks its atom; run() raises
+            bad = ~(np.isfinite(fext[:nlocal]).all(axis=1) & np.isfinite(torque[:nlocal]).all(axis=1))
+            if bad.any():
+                fext[:nlocal][bad] = 0.0
+                torque[:nlocal][bad] = 0.0
+                stat[:nlocal, K.ST_NEED][bad] = np.inf
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])
             self.max_overlap = max(self.max_overlap, summary[K.R_OVERLAP])
         self.callback_s += time.perf_counter() - t0
