@@ -193,3 +193,15 @@ def test_command(tmp_path, capsys):
                  ["impact3d", "--spin-vector", "1", "nan", "0"], ["impact3d", "--vt", "1", "0", "--direction", "3"]):
         assert main(argv) == 2, argv
         assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_magnitudes_beyond_double_precision_are_refused():
+    """A spin or tangential speed whose kinetic energy overflows is an InputError naming it (as in impact())."""
+    import dem_contact as dc
+    from dem_contact.impacts.impact3d import impact3d
+
+    sc = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    with pytest.raises(dc.InputError, match="spin"):
+        impact3d(sc, 5.0, (1.0, 0.0), (1e300, 0.0, 0.0))
+    with pytest.raises(dc.InputError, match="vt"):
+        impact3d(sc, 5.0, (1e300, 1e300), (0.0, 0.0, 0.0))

@@ -54,7 +54,7 @@ from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
 from ..laws.slots import H_A, H_N, P_MU
 from ..materials import Wall, check_finite
 from .impact import (ENERGY_CREATION_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget, ImpactResult, body_inertia,
-                     time_step)
+                     check_scales, time_step)
 from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK
 
 # slots of the output row of integrate_impact3d
@@ -349,6 +349,7 @@ def impact3d(scene: Scene, vn: float, vt=(0.0, 0.0), spin=(0.0, 0.0, 0.0), *, sp
         raise InputError("spin2 applies to sphere-sphere impacts only (body 2 is a wall)")
     if scheme not in SCHEMES:
         raise InputError(f"scheme {scheme!r} is unknown; choose one of: {', '.join(SCHEMES)}")
+    check_scales(scene, vn, math.hypot(*vt), math.hypot(*w1), math.hypot(*w2))
     dt, spc = time_step(scene, vn, steps_per_contact, dt)
     inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     max_steps = int(math.ceil(MAX_CONTACT_TIMES * spc)) + 10
@@ -422,6 +423,9 @@ def build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser=
     E1 = 0.5 * m * (vn_r ** 2 + float(vt_r @ vt_r)) + 0.5 * I1 * float(w1_r @ w1_r) + 0.5 * I2 * float(w2_r @ w2_r)
     WN, WT = out[Q_WN], out[Q_WT]
     energy = EnergyBudget(initial=E0, final=E1, friction=WT, normal=WN, error=E0 - E1 - WT - WN)
+    if not all(math.isfinite(x) for x in (E0, E1, WT, WN, PN)):
+        raise NumericalError(f"non-finite result (energy or impulse) with the {scene.normal}/{scene.tangential} "
+                             f"laws at dt = {dt:g} s")
     created = bool(out[Q_MINWT] < -ENERGY_CREATION_TOL * E0)
     msgs = []
     if created:
