@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError, NumericalError
+from ..dem.contact3d import contact_forces_serial
 from ..dem.pairs import PairTable
 from . import kernels as K
 
@@ -253,6 +254,13 @@ class LammpsContacts:
         self._last_step = None
         self._checked = False
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
+        self._cand_rows = None         # history slots found for each candidate (-1: none yet)
+        self._rebuilt = False          # lists rebuilt and no step advanced since
+        self._view_key = None          # (nmax, nall) of the cached views of LAMMPS's arrays
+        self._view = None
+        self._buffers = None           # work arrays of the contacts of a step (kernels.contact_buffers)
+        self._used = None
+        self.dt = None
         self._x_ref = self._tag_ref = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
@@ -340,49 +348,67 @@ class LammpsContacts:
         nmax = self.lmp.extract_setting("nmax")
         return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
 
-    def _arrays(self):
+    def _views(self, nall):
+        """numpy views of LAMMPS's per-atom arrays (x, v, omega, radius, rmass, id, type, torque, keys, H,
+        stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
+        whenever nmax (the allocated length) or nall changes."""
         lmp = self.lmp
-        nall = lmp.extract_setting("nall")
-        ex = lmp.numpy.extract_atom
-        return (nall, ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
-                ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
-                ex("type", nelem=nall), ex("torque", nelem=nall, dim=3))
+        nmax = lmp.extract_setting("nmax")
+        if self._view_key != (nmax, nall):
+            ex = lmp.numpy.extract_atom
+            data = self._data()
+            H = ex(f"d2_{self.prefix}h", nelem=nmax, dim=self.slots * self.hs).view()
+            H.shape = (nmax * self.slots, self.hs)       # a view of LAMMPS's memory (never a copy)
+            self._view = (ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
+                          ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
+                          ex("type", nelem=nall), ex("torque", nelem=nall, dim=3), data[:, :self.slots], H,
+                          data[:, self.col_stat:self.col_stat + K.N_STAT],
+                          data[:, self.col_saved:self.col_saved + K.N_SAVED])
+            self._view_key = (nmax, nall)
+        return self._view
 
     @staticmethod
     def _callback(self, ntimestep, nlocal, tag, x, fext):
         t0 = time.perf_counter()
-        nall, xa, v, omega, radius, rmass, ids, typ, torque = self._arrays()
-        data = self._data()
-        keys = data[:, :self.slots]
-        H = self.lmp.numpy.extract_atom(f"d2_{self.prefix}h", nelem=data.shape[0],
-                                        dim=self.slots * self.hs).view()
-        H.shape = (data.shape[0] * self.slots, self.hs)     # a view of LAMMPS's memory (never a copy)
-        stat = data[:, self.col_stat:self.col_stat + K.N_STAT]
-        saved = data[:, self.col_saved:self.col_saved + K.N_SAVED]
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
         # at the first step): forces are needed, but nothing may advance
         setup = self._last_step is None or ntimestep == self._last_step
         self._last_step = ntimestep
+        if setup:
+            # a new run: arrays may have been reallocated, atoms changed between runs
+            self._view_key = None
+            self._cand = None
+            self.dt = self.lmp.extract_global("dt")
+        nall = self.lmp.extract_setting("nall")
+        xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
         if setup and K.reapply_saved(nlocal, fext, torque, saved, ntimestep):
             self.callback_s += time.perf_counter() - t0
             return
         if self._cand is None or K.moved(nlocal, nall, xa, ids, self._x_ref, self._tag_ref, 0.5 * self.skin):
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._x_ref = xa[:nall].copy()
             self._tag_ref = ids[:nall].copy()
+            self._rebuilt = True
             self.list_builds += 1
-        summary = K.step_contacts(
-            nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, keys, H,
-            self.table.normal_id, self.table.tangential_id, self.table.params, self.table.sphere_row,
-            self.table.wall_row, self.lmp.extract_global("dt"), not setup, self.frame_spin,
-            fext, torque, stat, saved, ntimestep)
+        if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
+            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.hs)
+        if self._used is None or len(self._used) < nlocal:
+            self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
+        work, body, src, dst, rows, normals, overlaps, vel, wn, Hc, forces, tforces = self._buffers
+        t = self.table
+        m, need = K.gather_contacts(
+            nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
+            keys, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt, self.frame_spin, stat,
+            self._used, *self._buffers[:10])
+        contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], Hc[:m], normals[:m], overlaps[:m],
+                              vel[:m], wn[:m], self.dt, forces[:m], tforces[:m])
         if not setup:
-            # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marks its atom; run() raises
-            bad = ~(np.isfinite(fext[:nlocal]).all(axis=1) & np.isfinite(torque[:nlocal]).all(axis=1))
-            if bad.any():
-                fext[:nlocal][bad] = 0.0
-                torque[:nlocal][bad] = 0.0
-                stat[:nlocal, K.ST_NEED][bad] = np.inf
+            self._rebuilt = False
+        summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H, forces, tforces,
+                                     not setup, fext, torque, stat, saved, ntimestep)
+        if not setup:
+            # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])
             self.max_overlap = max(self.max_overlap, summary[K.R_OVERLAP])
         self.callback_s += time.perf_counter() - t0

@@ -5,9 +5,14 @@ the kernels take numpy views of LAMMPS's per-atom arrays.
 History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
 ``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
 rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), in one array, and the rows in
-another, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i, the
-contact index handed to the contact kernel. A key is the partner's atom id (> 0), -(w + 1) for wall w,
-or 0 for a free row.
+another, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is
+the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. The Verlet list keeps the slot
+numbers found for each candidate pair, so a continuing contact finds its rows without a search.
+
+One step: ``gather_contacts`` finds the contacts among the Verlet candidates, their history rows and the
+inputs of the law, with the histories copied into one contiguous array; the batch law kernel of the law
+family (``dem.contact3d.contact_forces_serial``, the law inlined in its loop) advances them; and
+``scatter_contacts`` writes the histories back and the forces and torques into LAMMPS's arrays.
 
 Newton's third law between ranks, without reverse communication: each rank computes the contacts of its
 own (local) atoms, including those with ghost atoms, and writes forces and torques on local atoms only.
@@ -28,7 +33,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import contact_force
 from ..laws.contact import HERTZ_DAMPED, LINEAR_NORMAL
 from ..laws.vector import V_N
 
@@ -43,24 +47,17 @@ N_STAT = 4
 SF_STEP = 6      # 1 + the time step at which the stored force and torque were computed (0: none)
 N_SAVED = 7
 
-# per-rank summary returned by step_contacts
+# per-rank summary returned by scatter_contacts
 R_PAIRS = 0      # sphere-sphere contacts evaluated on this rank
 R_WALLS = 1      # wall contacts evaluated on this rank
 R_OVERLAP = 2    # largest overlap [m]
-R_NEED = 3       # largest number of history rows an atom needed
+R_BAD = 3        # local atoms whose contact force or torque was not finite (given none)
 N_SUMMARY = 4
 
 
 def atom_columns(slots: int) -> int:
     """Columns of the per-atom array before the statistics: the keys."""
     return slots
-
-
-@njit(cache=True)
-def law(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """The one call of the contact kernel: force on body 1 and its tangential part for the contact whose
-    history is row c of H (``dem.contact3d.contact_force``, conventions there)."""
-    return contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 @njit(cache=True)
@@ -258,221 +255,333 @@ def _free_row(keys, i):
 
 
 @njit(inline="always", cache=True)
-def _load_scratch(scratch, H, r, has_row):
-    """Row 0 of ``scratch`` := history row r of H if the contact has one (has_row), else zeros."""
-    if has_row:
-        scratch[0, :] = H[r, :]
-    else:
-        scratch[0, :] = 0.0
+def _candidate(cand, cand_walls, c, tag, nlocal):
+    """Candidate c of the lists (sphere pairs, then wall pairs): (i, j, key of j in atom i's rows, whether
+    j is a local atom); j = -1 for a wall."""
+    npc = cand.shape[0]
+    if c < npc:
+        j = cand[c, 1]
+        return cand[c, 0], j, float(tag[j]), j < nlocal
+    return cand_walls[c - npc, 0], -1, -(cand_walls[c - npc, 1] + 1.0), False
+
+
+@njit(inline="always", cache=True)
+def _release(keys, H, i, r):
+    """Free slot r of atom i: key and history zeroed."""
+    keys[i, r] = 0.0
+    row = i * keys.shape[1] + r
+    for q in range(H.shape[1]):
+        H[row, q] = 0.0
 
 
 @njit(cache=True)
-def step_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, keys, H,
-                  nid, tid, params, sphere_row, wall_row, dt, advance, frame_spin, fext, torque, stat,
-                  saved, step):
-    """One step of contact forces for the local atoms of one rank.
+def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
+                    keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, work, body,
+                    src, dst, pair_rows, normals, overlaps, velocities, wn, Hc):
+    """The contacts of the local atoms at this step, laid out for the batch law kernel
+    (``dem.contact3d.contact_forces_serial``), with their history rows gathered.
 
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
     atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
-    wall_row; cand, cand_walls: the Verlet lists (``candidates``); keys: float64[nmax, slots], H:
-    float64[nmax * slots, history_size] histories; params, sphere_row, wall_row: the pair
-    table; dt [s]; advance: False evaluates on copies of the histories
-    (LAMMPS's set-up call: nothing is advanced); frame_spin: pass the spin of the contact frame about
-    the normal to the kernel (False: wn = 0, LAMMPS's granular models). fext: float64[nlocal, 3] receives the contact forces;
-    torque: float64[nall, 3], contact torques are added to the local rows; stat: float64[nmax, N_STAT]
-    per-atom statistics (local rows written); saved: float64[nmax, N_SAVED] receives the force and
-    torque of each local atom with step + 1. Returns float64[N_SUMMARY].
-    """
+    wall_row; cand, cand_walls: the Verlet lists (``candidates``); cand_rows: int64[len(cand) +
+    len(cand_walls), 2] the history slots of both atoms of each candidate found at earlier steps (-1: none;
+    all -1 when the lists were rebuilt): a continuing contact finds its rows without a search; keys:
+    float64[nmax, slots], H: float64[nmax * slots, history_size] histories; params rows: sphere_row,
+    wall_row; dt [s]; advance: False at LAMMPS's set-up call (nothing is advanced: rows are neither freed
+    nor taken); rebuilt: the lists were rebuilt since the last step (the rows of every local atom that no
+    contact uses are then freed; otherwise a contact that ended frees the rows cached for its candidate,
+    which a contact always is until the next rebuild); frame_spin: pass the spin of the contact frame about
+    the normal (False: wn = 0, LAMMPS's granular models); stat: float64[nmax, N_STAT] per-atom statistics
+    (local rows written, ST_NEED the largest since the column was zeroed); used: bool[>= nlocal, slots]
+    scratch.
+
+    Fills the first m rows of the buffers (``contact_buffers``, at least as long as the candidates): body
+    int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w; body
+    1 = -1: a contact left out, no free history row); src, dst int64[:] the H rows of atom i and of the other
+    (local) atom j that keep its history (-1: none); pair_rows int64[:], normals float64[:, 3], overlaps
+    float64[:], velocities float64[:, 3], wn float64[:]: the inputs of the law; Hc float64[:, history_size]
+    the gathered histories (zero for a new contact); work int64[:, 3] scratch. Returns (m, need): need is the
+    largest number of contacts of a local atom. A contact left out is counted in ST_NEED."""
     hs = H.shape[1]
-    summary = np.zeros(N_SUMMARY)
-    pairs, deltas, hits, wdel = overlapping(x, radius, walls, cand, cand_walls)
-    npair = pairs.shape[0]
-    nhit = hits.shape[0]
-    count = np.zeros(nlocal)
+    slots = keys.shape[1]
+    npc = cand.shape[0]
+    nwc = cand_walls.shape[0]
+    full = advance and rebuilt
     for i in range(nlocal):
         for d in range(N_STAT):
             if d != ST_NEED:
                 stat[i, d] = 0.0
+        if full:
+            for r in range(slots):
+                used[i, r] = False
+    n = 0
+    late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
+    ended = 0           # candidates whose contact ended (work[:ended, 2])
+    for c in range(npc + nwc):
+        dx = dy = dz = r2 = rs = delta = nx = ny = nz = 0.0
+        w = -1
+        if c < npc:
+            i = cand[c, 0]
+            j = cand[c, 1]
+            dx = x[j, 0] - x[i, 0]
+            dy = x[j, 1] - x[i, 1]
+            dz = x[j, 2] - x[i, 2]
+            rs = radius[i] + radius[j]
+            r2 = dx * dx + dy * dy + dz * dz
+            touch = r2 < rs * rs
+            local_j = j < nlocal
+        else:
+            i = cand_walls[c - npc, 0]
+            w = cand_walls[c - npc, 1]
+            j = -1
+            nx = -walls[w, 3]
+            ny = -walls[w, 4]
+            nz = -walls[w, 5]
+            delta = radius[i] + ((x[i, 0] - walls[w, 0]) * nx + (x[i, 1] - walls[w, 1]) * ny
+                                 + (x[i, 2] - walls[w, 2]) * nz)
+            touch = delta > 0.0
+            local_j = False
+        ri = cand_rows[c, 0]
+        rj = cand_rows[c, 1] if local_j else -1
+        if not touch:
+            if advance and (ri >= 0 or rj >= 0):
+                work[ended, 2] = c
+                ended += 1
+            continue
+        stat[i, ST_PAIRS if j >= 0 else ST_WALLS] += 1.0
+        if local_j:
+            stat[j, ST_PAIRS] += 1.0
+        if ri < 0 or (local_j and rj < 0):
+            work[late, 0] = n
+            work[late, 1] = c
+            late += 1
+        else:
+            # a continuing contact: its rows are cached; the law reads atom i's (both copies are equal)
+            s_i = i * slots + ri
+            src[n] = s_i
+            dst[n] = j * slots + rj if local_j else -1
+            for q in range(hs):
+                Hc[n, q] = H[s_i, q]
+        if j >= 0:
+            # canonical order: the lower id is body 1
+            if tag[i] < tag[j]:
+                a = i
+                b = j
+            else:
+                a = j
+                b = i
+                dx = -dx
+                dy = -dy
+                dz = -dz
+            r = math.sqrt(r2)
+            delta = rs - r
+            nx = dx / r
+            ny = dy / r
+            nz = dz / r
+            ra = radius[a]
+            rb = radius[b]
+            wx = ra * omega[a, 0] + rb * omega[b, 0]
+            wy = ra * omega[a, 1] + rb * omega[b, 1]
+            wz = ra * omega[a, 2] + rb * omega[b, 2]
+            vx = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
+            vy = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
+            vz = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
+            pair_rows[n] = sphere_row[typ[a] - 1, typ[b] - 1]
+            wn[n] = 0.0
+            if frame_spin:
+                wn[n] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
+                               + (omega[a, 2] + omega[b, 2]) * nz)
+        else:
+            # body 1: the sphere; n from the sphere to the wall; the wall is at rest
+            a = i
+            b = -(w + 1)
+            ra = radius[i]
+            wx = ra * omega[i, 0]
+            wy = ra * omega[i, 1]
+            wz = ra * omega[i, 2]
+            vx = v[i, 0] + (wy * nz - wz * ny)
+            vy = v[i, 1] + (wz * nx - wx * nz)
+            vz = v[i, 2] + (wx * ny - wy * nx)
+            pair_rows[n] = wall_row[typ[i] - 1, wall_mat[w]]
+            wn[n] = 0.0
+            if frame_spin:
+                wn[n] = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
+        body[n, 0] = a
+        body[n, 1] = b
+        normals[n, 0] = nx
+        normals[n, 1] = ny
+        normals[n, 2] = nz
+        overlaps[n] = delta
+        velocities[n, 0] = vx
+        velocities[n, 1] = vy
+        velocities[n, 2] = vz
+        n += 1
+    need = 0.0
+    for i in range(nlocal):
+        k = stat[i, ST_PAIRS] + stat[i, ST_WALLS]
+        need = max(need, k)
+        if k > stat[i, ST_NEED]:
+            stat[i, ST_NEED] = k
+    for k in range(ended):
+        # contacts that ended free their rows (reset)
+        c = work[k, 2]
+        i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
+        r = cand_rows[c, 0]
+        if r >= 0 and keys[i, r] == key_i:
+            _release(keys, H, i, r)
+        r = cand_rows[c, 1]
+        if local_j and r >= 0 and keys[j, r] == tag[i]:
+            _release(keys, H, j, r)
+        cand_rows[c, 0] = -1
+        cand_rows[c, 1] = -1
+    for k in range(late):
+        # rows not cached: found by their keys (first step after a rebuild) or none yet (a new contact)
+        c = work[k, 1]
+        i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
+        ri = _find_row(keys, i, key_i)
+        cand_rows[c, 0] = ri
+        if full and ri >= 0:
+            used[i, ri] = True
+        if local_j:
+            rj = _find_row(keys, j, float(tag[i]))
+            cand_rows[c, 1] = rj
+            if full and rj >= 0:
+                used[j, rj] = True
+    if full:
+        # after a rebuild: the rows no contact uses are freed (contacts that ended, rows that came with
+        # an atom from another rank) before new contacts take rows
+        for i in range(nlocal):
+            for r in range(slots):
+                if not used[i, r] and keys[i, r] != 0.0:
+                    _release(keys, H, i, r)
+    for k in range(late):
+        # new contacts take free rows (advance only), or are left out (too few slots: the run stops at
+        # the next check); the law reads atom i's row, else atom j's, else none (zeros)
+        n_ = work[k, 0]
+        c = work[k, 1]
+        i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
+        ri = cand_rows[c, 0]
+        rj = cand_rows[c, 1] if local_j else -1
+        hrow = i * slots + ri if ri >= 0 else (j * slots + rj if rj >= 0 else -1)
+        if advance:
+            fi = ri if ri >= 0 else _free_row(keys, i)
+            fj = (rj if rj >= 0 else _free_row(keys, j)) if local_j else -1
+            if fi < 0 or (local_j and fj < 0):
+                body[n_, 0] = -1
+                continue
+            keys[i, fi] = key_i
+            cand_rows[c, 0] = ri = fi
+            if local_j:
+                keys[j, fj] = tag[i]
+                cand_rows[c, 1] = rj = fj
+        src[n_] = i * slots + ri if ri >= 0 else -1
+        dst[n_] = j * slots + rj if rj >= 0 else -1
+        for q in range(hs):
+            Hc[n_, q] = H[hrow, q] if hrow >= 0 else 0.0
+    if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
+        # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
+        for k in range(n):
+            a = body[k, 0]
+            b = body[k, 1]
+            if a < 0:
+                continue
+            inv_m = 1.0 / rmass[a] + 1.0 / rmass[b] if b >= 0 else 1.0 / rmass[a]
+            kick = 0.5 * dt * Hc[k, V_N] * inv_m
+            for d in range(3):
+                velocities[k, d] -= kick * normals[k, d]
+    return n, need
+
+
+def contact_buffers(n, history_size):
+    """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, pair_rows, normals,
+    overlaps, velocities, wn, Hc, forces, tforces)."""
+    return (np.empty((n, 3), dtype=np.int64), np.empty((n, 2), dtype=np.int64), np.empty(n, dtype=np.int64),
+            np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty((n, 3)), np.empty(n),
+            np.empty((n, 3)), np.empty(n), np.empty((n, history_size)), np.empty((n, 3)), np.empty((n, 3)))
+
+
+@njit(cache=True)
+def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H, forces, tforces, advance, fext,
+                     torque, stat, saved, step):
+    """Write back the m contacts of ``gather_contacts`` after the law: the histories into both rows
+    (advance only) and the forces and torques of the local atoms. forces, tforces: float64[m, 3] force on
+    body 1 and its tangential part; fext: float64[nlocal, 3] receives the contact forces; torque:
+    float64[nall, 3], contact torques are added to the local rows; saved: float64[nmax, N_SAVED] receives
+    the force and torque of each local atom with step + 1. A local atom whose force or torque is not finite
+    gets none, and ST_NEED = inf marks it. Returns float64[N_SUMMARY]."""
+    hs = Hc.shape[1]
+    summary = np.zeros(N_SUMMARY)
+    for i in range(nlocal):
         for d in range(3):
             fext[i, d] = 0.0
         for d in range(N_SAVED):
             saved[i, d] = 0.0
-    # rows of the contacts that continue; mark them used
-    slots = keys.shape[1]
-    used = np.zeros((nlocal, slots), dtype=np.bool_)
-    rowi = np.full(npair, -1, dtype=np.int64)
-    rowj = np.full(npair, -1, dtype=np.int64)
-    roww = np.full(nhit, -1, dtype=np.int64)
-    for c in range(npair):
-        i = pairs[c, 0]
-        j = pairs[c, 1]
-        stat[i, ST_PAIRS] += 1.0
-        count[i] += 1.0
-        rowi[c] = _find_row(keys, i, float(tag[j]))
-        if rowi[c] >= 0:
-            used[i, rowi[c]] = True
-        if j < nlocal:
-            stat[j, ST_PAIRS] += 1.0
-            count[j] += 1.0
-            rowj[c] = _find_row(keys, j, float(tag[i]))
-            if rowj[c] >= 0:
-                used[j, rowj[c]] = True
-    for c in range(nhit):
-        i = hits[c, 0]
-        stat[i, ST_WALLS] += 1.0
-        count[i] += 1.0
-        roww[c] = _find_row(keys, i, -(hits[c, 1] + 1.0))
-        if roww[c] >= 0:
-            used[i, roww[c]] = True
-    need = 0.0
-    for i in range(nlocal):
-        if count[i] > need:
-            need = count[i]
-        if count[i] > stat[i, ST_NEED]:
-            stat[i, ST_NEED] = count[i]
-    summary[R_NEED] = need
-    if advance:
-        # contacts that ended free their rows (reset) before new contacts take rows
-        for i in range(nlocal):
-            for s in range(slots):
-                if not used[i, s] and keys[i, s] != 0.0:
-                    keys[i, s] = 0.0
-                    H[i * slots + s, :] = 0.0
-    scratch = np.zeros((1, hs))
-    for c in range(npair):
-        i = pairs[c, 0]
-        j = pairs[c, 1]
-        local_j = j < nlocal
-        ri = rowi[c]
-        rj = rowj[c]
+    for n in range(m):
+        if body[n, 0] < 0:
+            continue                # left out: no free history row
         if advance:
-            if ri < 0:
-                ri = _free_row(keys, i)
-                if ri < 0:
-                    continue                       # out of rows: reported through ST_NEED
-            if local_j and rj < 0:
-                rj = _free_row(keys, j)
-                if rj < 0:
-                    continue
-        else:
-            _load_scratch(scratch, H, i * slots + ri, ri >= 0)
-        # canonical order: the lower id is body 1
-        if tag[i] < tag[j]:
-            a = i
-            b = j
-        else:
-            a = j
-            b = i
-        dx = x[b, 0] - x[a, 0]
-        dy = x[b, 1] - x[a, 1]
-        dz = x[b, 2] - x[a, 2]
-        r = math.sqrt(dx * dx + dy * dy + dz * dz)
-        nx = dx / r
-        ny = dy / r
-        nz = dz / r
-        delta = deltas[c]
-        ra = radius[a]
-        rb = radius[b]
-        wx = ra * omega[a, 0] + rb * omega[b, 0]
-        wy = ra * omega[a, 1] + rb * omega[b, 1]
-        wz = ra * omega[a, 2] + rb * omega[b, 2]
-        vx = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
-        vy = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
-        vz = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
-        row = sphere_row[typ[a] - 1, typ[b] - 1]
-        if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
-            # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
-            n_old = H[i * slots + ri, V_N] if advance else scratch[0, V_N]
-            kick = 0.5 * dt * n_old * (1.0 / rmass[a] + 1.0 / rmass[b])
-            vx -= kick * nx
-            vy -= kick * ny
-            vz -= kick * nz
-        wn = 0.0
-        if frame_spin:
-            wn = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
-                        + (omega[a, 2] + omega[b, 2]) * nz)
-        if advance:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H, i * slots + ri, nx, ny, nz, delta,
-                                         vx, vy, vz, wn, dt)
-            keys[i, ri] = tag[j]
-            if local_j:
-                H[j * slots + rj, :] = H[i * slots + ri, :]
-                keys[j, rj] = tag[i]
-        else:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, nx, ny, nz, delta,
-                                         vx, vy, vz, wn, dt)
-        # torque on body k: (R_k - delta/2) n x Ft on both bodies (r_a = +arm n, force on b = -Ft)
+            if src[n] >= 0:
+                for q in range(hs):
+                    H[src[n], q] = Hc[n, q]
+            if dst[n] >= 0:
+                for q in range(hs):
+                    H[dst[n], q] = Hc[n, q]
+        a = body[n, 0]
+        b = body[n, 1]
+        nx = normals[n, 0]
+        ny = normals[n, 1]
+        nz = normals[n, 2]
+        tx = tforces[n, 0]
+        ty = tforces[n, 1]
+        tz = tforces[n, 2]
+        delta = overlaps[n]
         cx = ny * tz - nz * ty
         cy = nz * tx - nx * tz
         cz = nx * ty - ny * tx
-        for k in (a, b):
-            if k >= nlocal:
-                continue
-            sgn = 1.0 if k == a else -1.0
-            arm = radius[k] - 0.5 * delta
-            fext[k, 0] += sgn * fx
-            fext[k, 1] += sgn * fy
-            fext[k, 2] += sgn * fz
-            saved[k, 3] += arm * cx
-            saved[k, 4] += arm * cy
-            saved[k, 5] += arm * cz
-            if delta > stat[k, ST_OVERLAP]:
-                stat[k, ST_OVERLAP] = delta
-        summary[R_PAIRS] += 1.0
-        if delta > summary[R_OVERLAP]:
-            summary[R_OVERLAP] = delta
-    for c in range(nhit):
-        i = hits[c, 0]
-        w = hits[c, 1]
-        ri = roww[c]
-        if advance:
-            if ri < 0:
-                ri = _free_row(keys, i)
-                if ri < 0:
-                    continue
+        if b >= 0:
+            # torque on body k: (R_k - delta/2) n x Ft on both bodies (r_a = +arm n, force on b = -Ft)
+            summary[R_PAIRS] += 1.0
+            if a < nlocal:
+                arm = radius[a] - 0.5 * delta
+                fext[a, 0] += forces[n, 0]
+                fext[a, 1] += forces[n, 1]
+                fext[a, 2] += forces[n, 2]
+                saved[a, 3] += arm * cx
+                saved[a, 4] += arm * cy
+                saved[a, 5] += arm * cz
+                stat[a, ST_OVERLAP] = max(stat[a, ST_OVERLAP], delta)
+            if b < nlocal:
+                arm = radius[b] - 0.5 * delta
+                fext[b, 0] -= forces[n, 0]
+                fext[b, 1] -= forces[n, 1]
+                fext[b, 2] -= forces[n, 2]
+                saved[b, 3] += arm * cx
+                saved[b, 4] += arm * cy
+                saved[b, 5] += arm * cz
+                stat[b, ST_OVERLAP] = max(stat[b, ST_OVERLAP], delta)
         else:
-            _load_scratch(scratch, H, i * slots + ri, ri >= 0)
-        # body 1: the sphere; n from the sphere to the wall; the wall is at rest
-        nx = -walls[w, 3]
-        ny = -walls[w, 4]
-        nz = -walls[w, 5]
-        delta = wdel[c]
-        ri_ = radius[i]
-        wx = ri_ * omega[i, 0]
-        wy = ri_ * omega[i, 1]
-        wz = ri_ * omega[i, 2]
-        vx = v[i, 0] + (wy * nz - wz * ny)
-        vy = v[i, 1] + (wz * nx - wx * nz)
-        vz = v[i, 2] + (wx * ny - wy * nx)
-        row = wall_row[typ[i] - 1, wall_mat[w]]
-        if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
-            n_old = H[i * slots + ri, V_N] if advance else scratch[0, V_N]
-            kick = 0.5 * dt * n_old / rmass[i]
-            vx -= kick * nx
-            vy -= kick * ny
-            vz -= kick * nz
-        wn = 0.0
-        if frame_spin:
-            wn = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
-        if advance:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, H, i * slots + ri, nx, ny, nz, delta,
-                                         vx, vy, vz, wn, dt)
-            keys[i, ri] = -(w + 1.0)
-        else:
-            fx, fy, fz, tx, ty, tz = law(nid, tid, params, row, scratch, 0, nx, ny, nz, delta,
-                                         vx, vy, vz, wn, dt)
-        fext[i, 0] += fx
-        fext[i, 1] += fy
-        fext[i, 2] += fz
-        saved[i, 3] += ri_ * (ny * tz - nz * ty)
-        saved[i, 4] += ri_ * (nz * tx - nx * tz)
-        saved[i, 5] += ri_ * (nx * ty - ny * tx)
-        if delta > stat[i, ST_OVERLAP]:
-            stat[i, ST_OVERLAP] = delta
-        summary[R_WALLS] += 1.0
-        if delta > summary[R_OVERLAP]:
-            summary[R_OVERLAP] = delta
+            # a wall: the arm is the radius
+            summary[R_WALLS] += 1.0
+            arm = radius[a]
+            fext[a, 0] += forces[n, 0]
+            fext[a, 1] += forces[n, 1]
+            fext[a, 2] += forces[n, 2]
+            saved[a, 3] += arm * cx
+            saved[a, 4] += arm * cy
+            saved[a, 5] += arm * cz
+            stat[a, ST_OVERLAP] = max(stat[a, ST_OVERLAP], delta)
+        summary[R_OVERLAP] = max(summary[R_OVERLAP], delta)
     for i in range(nlocal):
+        ok = True
+        for d in range(3):
+            ok = ok and math.isfinite(fext[i, d]) and math.isfinite(saved[i, 3 + d])
+        if not ok:
+            for d in range(3):
+                fext[i, d] = 0.0
+                saved[i, 3 + d] = 0.0
+            if advance:
+                stat[i, ST_NEED] = math.inf
+            summary[R_BAD] += 1.0
         for d in range(3):
             saved[i, d] = fext[i, d]
             torque[i, d] += saved[i, 3 + d]
