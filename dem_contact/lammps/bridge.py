@@ -395,6 +395,7 @@ class LammpsContacts:
             self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.hs)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
+            self._acc = np.empty((2 * nlocal + 16, 7))
         work, body, src, dst, rows, normals, overlaps, vel, wn, Hc, forces, tforces = self._buffers
         t = self.table
         m, need = K.gather_contacts(
@@ -406,7 +407,7 @@ class LammpsContacts:
         if not setup:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H, forces, tforces,
-                                     not setup, fext, torque, stat, saved, ntimestep)
+                                     not setup, fext, torque, stat, saved, ntimestep, self._acc)
         if not setup:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])

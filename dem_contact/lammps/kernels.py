@@ -502,22 +502,21 @@ def contact_buffers(n, history_size):
 
 @njit(cache=True)
 def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H, forces, tforces, advance, fext,
-                     torque, stat, saved, step):
+                     torque, stat, saved, step, acc):
     """Write back the m contacts of ``gather_contacts`` after the law: the histories into both rows
     (advance only) and the forces and torques of the local atoms. forces, tforces: float64[m, 3] force on
     body 1 and its tangential part; fext: float64[nlocal, 3] receives the contact forces; torque:
     float64[nall, 3], contact torques are added to the local rows; saved: float64[nmax, N_SAVED] receives
-    the force and torque of each local atom with step + 1. A local atom whose force or torque is not finite
-    gets none, and ST_NEED = inf marks it. Returns float64[N_SUMMARY]."""
+    the force and torque of each local atom with step + 1; acc: float64[>= nlocal, 7] scratch. A local atom
+    whose force or torque is not finite gets none, and ST_NEED = inf marks it. Returns float64[N_SUMMARY]."""
     hs = Hc.shape[1]
     summary = np.zeros(N_SUMMARY)
     for i in range(nlocal):
-        for d in range(3):
-            fext[i, d] = 0.0
-        for d in range(N_SAVED):
-            saved[i, d] = 0.0
+        for d in range(7):
+            acc[i, d] = 0.0
     for n in range(m):
-        if body[n, 0] < 0:
+        a = body[n, 0]
+        if a < 0:
             continue                # left out: no free history row
         if advance:
             if src[n] >= 0:
@@ -526,7 +525,6 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H
             if dst[n] >= 0:
                 for q in range(hs):
                     H[dst[n], q] = Hc[n, q]
-        a = body[n, 0]
         b = body[n, 1]
         nx = normals[n, 0]
         ny = normals[n, 1]
@@ -534,58 +532,55 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H
         tx = tforces[n, 0]
         ty = tforces[n, 1]
         tz = tforces[n, 2]
+        fx = forces[n, 0]
+        fy = forces[n, 1]
+        fz = forces[n, 2]
         delta = overlaps[n]
         cx = ny * tz - nz * ty
         cy = nz * tx - nx * tz
         cz = nx * ty - ny * tx
+        # torque on a sphere: (R - delta/2) n x Ft on both bodies of a pair (r_a = +arm n, force on b =
+        # -Ft); R n x Ft against a wall
+        arm = radius[a] - 0.5 * delta if b >= 0 else radius[a]
+        if a < nlocal:
+            acc[a, 0] += fx
+            acc[a, 1] += fy
+            acc[a, 2] += fz
+            acc[a, 3] += arm * cx
+            acc[a, 4] += arm * cy
+            acc[a, 5] += arm * cz
+            acc[a, 6] = max(acc[a, 6], delta)
         if b >= 0:
-            # torque on body k: (R_k - delta/2) n x Ft on both bodies (r_a = +arm n, force on b = -Ft)
             summary[R_PAIRS] += 1.0
-            if a < nlocal:
-                arm = radius[a] - 0.5 * delta
-                fext[a, 0] += forces[n, 0]
-                fext[a, 1] += forces[n, 1]
-                fext[a, 2] += forces[n, 2]
-                saved[a, 3] += arm * cx
-                saved[a, 4] += arm * cy
-                saved[a, 5] += arm * cz
-                stat[a, ST_OVERLAP] = max(stat[a, ST_OVERLAP], delta)
             if b < nlocal:
                 arm = radius[b] - 0.5 * delta
-                fext[b, 0] -= forces[n, 0]
-                fext[b, 1] -= forces[n, 1]
-                fext[b, 2] -= forces[n, 2]
-                saved[b, 3] += arm * cx
-                saved[b, 4] += arm * cy
-                saved[b, 5] += arm * cz
-                stat[b, ST_OVERLAP] = max(stat[b, ST_OVERLAP], delta)
+                acc[b, 0] -= fx
+                acc[b, 1] -= fy
+                acc[b, 2] -= fz
+                acc[b, 3] += arm * cx
+                acc[b, 4] += arm * cy
+                acc[b, 5] += arm * cz
+                acc[b, 6] = max(acc[b, 6], delta)
         else:
-            # a wall: the arm is the radius
             summary[R_WALLS] += 1.0
-            arm = radius[a]
-            fext[a, 0] += forces[n, 0]
-            fext[a, 1] += forces[n, 1]
-            fext[a, 2] += forces[n, 2]
-            saved[a, 3] += arm * cx
-            saved[a, 4] += arm * cy
-            saved[a, 5] += arm * cz
-            stat[a, ST_OVERLAP] = max(stat[a, ST_OVERLAP], delta)
         summary[R_OVERLAP] = max(summary[R_OVERLAP], delta)
     for i in range(nlocal):
         ok = True
-        for d in range(3):
-            ok = ok and math.isfinite(fext[i, d]) and math.isfinite(saved[i, 3 + d])
+        for d in range(6):
+            ok = ok and math.isfinite(acc[i, d])
         if not ok:
-            for d in range(3):
-                fext[i, d] = 0.0
-                saved[i, 3 + d] = 0.0
+            for d in range(6):
+                acc[i, d] = 0.0
             if advance:
                 stat[i, ST_NEED] = math.inf
             summary[R_BAD] += 1.0
         for d in range(3):
-            saved[i, d] = fext[i, d]
-            torque[i, d] += saved[i, 3 + d]
+            fext[i, d] = acc[i, d]
+            torque[i, d] += acc[i, 3 + d]
+        for d in range(6):
+            saved[i, d] = acc[i, d]
         saved[i, SF_STEP] = step + 1.0
+        stat[i, ST_OVERLAP] = acc[i, 6]
     return summary
 
 
