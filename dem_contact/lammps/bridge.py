@@ -419,6 +419,14 @@ class LammpsContacts:
             self._tag_ref = ids[:nall].copy()
             self._rebuilt = True
             self.list_builds += 1
+            self._near = np.ones(nlocal + 1, dtype=np.bool_)
+            if not self.lmp.extract_global("triclinic"):
+                g = self.lmp.extract_global
+                lo, hi = np.array(g("sublo")), np.array(g("subhi"))
+                blo, bhi = np.array(g("boxlo")), np.array(g("boxhi"))
+                periodic = np.array(g("periodicity"), dtype=bool)
+                K.near_boundary(nlocal, xa, lo, hi, periodic | (lo > blo), periodic | (hi < bhi), 2.0 * self.skin,
+                                self._near)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
             self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.hs)
         if self._used is None or len(self._used) < nlocal:
@@ -429,7 +437,7 @@ class LammpsContacts:
         m, need = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt, self.frame_spin, stat,
-            self._used, *self._buffers[:10])
+            self._used, self._near, *self._buffers[:10])
         contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], Hc[:m], normals[:m], overlaps[:m],
                               vel[:m], wn[:m], self.dt, forces[:m], tforces[:m])
         if not setup:

@@ -266,6 +266,25 @@ def _candidate(cand, cand_walls, c, tag, nlocal):
 
 
 @njit(inline="always", cache=True)
+def _copies(i, j, ri, rj, tag, slots, local_j, near):
+    """The H rows that keep the history of contact (i, j) with slots ri, rj: (current, second copy or -1).
+
+    A contact with a ghost atom or a wall has one copy here, atom i's. A contact of two local atoms has a
+    copy in each atom's rows: the current one is that of the lower atom id (so local indices, which LAMMPS
+    changes when it sorts atoms, do not matter); the other is kept equal to it (written every step) only
+    while one of the two atoms is near its subdomain boundary (``near``), that is while it may move to
+    another rank and take its copy along. Once an atom is near the boundary at a rebuild of the lists, the
+    copy is rewritten at the next step."""
+    if not local_j:
+        return i * slots + ri, -1
+    a = i * slots + ri
+    b = j * slots + rj
+    if tag[j] < tag[i]:
+        a, b = b, a
+    return a, (b if near[i] or near[j] else -1)
+
+
+@njit(inline="always", cache=True)
 def _release(keys, H, i, r):
     """Free slot r of atom i: key and history zeroed."""
     keys[i, r] = 0.0
@@ -276,8 +295,8 @@ def _release(keys, H, i, r):
 
 @njit(cache=True)
 def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
-                    keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, work, body,
-                    src, dst, pair_rows, normals, overlaps, velocities, wn, Hc):
+                    keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near, work,
+                    body, src, dst, pair_rows, normals, overlaps, velocities, wn, Hc):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
     (``dem.contact3d.contact_forces_serial``), with their history rows gathered.
 
@@ -293,12 +312,13 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     which a contact always is until the next rebuild); frame_spin: pass the spin of the contact frame about
     the normal (False: wn = 0, LAMMPS's granular models); stat: float64[nmax, N_STAT] per-atom statistics
     (local rows written, ST_NEED the largest since the column was zeroed); used: bool[>= nlocal, slots]
-    scratch.
+    scratch; near: bool[>= nlocal] the local atoms that may change rank before the lists are rebuilt
+    (``near_boundary``).
 
     Fills the first m rows of the buffers (``contact_buffers``, at least as long as the candidates): body
     int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w; body
-    1 = -1: a contact left out, no free history row); src, dst int64[:] the H rows of atom i and of the other
-    (local) atom j that keep its history (-1: none); pair_rows int64[:], normals float64[:, 3], overlaps
+    1 = -1: a contact left out, no free history row); src int64[:] the H row the law's history is written
+    back to (-1: none) and dst int64[:] the row of a second copy (-1: none), see ``_copies``; pair_rows int64[:], normals float64[:, 3], overlaps
     float64[:], velocities float64[:, 3], wn float64[:]: the inputs of the law; Hc float64[:, history_size]
     the gathered histories (zero for a new contact); work int64[:, 3] scratch. Returns (m, need): need is the
     largest number of contacts of a local atom. A contact left out is counted in ST_NEED."""
@@ -356,12 +376,12 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             work[late, 1] = c
             late += 1
         else:
-            # a continuing contact: its rows are cached; the law reads atom i's (both copies are equal)
-            s_i = i * slots + ri
-            src[n] = s_i
-            dst[n] = j * slots + rj if local_j else -1
+            # a continuing contact: its rows are cached
+            s, d = _copies(i, j, ri, rj, tag, slots, local_j, near)
+            src[n] = s
+            dst[n] = d
             for q in range(hs):
-                Hc[n, q] = H[s_i, q]
+                Hc[n, q] = H[s, q]
         if j >= 0:
             # canonical order: the lower id is body 1
             if tag[i] < tag[j]:
@@ -462,7 +482,12 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
         ri = cand_rows[c, 0]
         rj = cand_rows[c, 1] if local_j else -1
-        hrow = i * slots + ri if ri >= 0 else (j * slots + rj if rj >= 0 else -1)
+        # the history read: the current copy (``_copies``), else the other, else none (a new contact)
+        hrow = -1
+        if ri >= 0 and (rj < 0 or tag[i] < tag[j]):
+            hrow = i * slots + ri
+        elif rj >= 0:
+            hrow = j * slots + rj
         if advance:
             fi = ri if ri >= 0 else _free_row(keys, i)
             fj = (rj if rj >= 0 else _free_row(keys, j)) if local_j else -1
@@ -474,8 +499,10 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             if local_j:
                 keys[j, fj] = tag[i]
                 cand_rows[c, 1] = rj = fj
-        src[n_] = i * slots + ri if ri >= 0 else -1
-        dst[n_] = j * slots + rj if rj >= 0 else -1
+        if ri >= 0 and (not local_j or rj >= 0):
+            src[n_], dst[n_] = _copies(i, j, ri, rj, tag, slots, local_j, near)
+        else:
+            src[n_] = dst[n_] = -1         # set-up call, a new contact: evaluated, nothing kept
         for q in range(hs):
             Hc[n_, q] = H[hrow, q] if hrow >= 0 else 0.0
     if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
@@ -490,6 +517,21 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             for d in range(3):
                 velocities[k, d] -= kick * normals[k, d]
     return n, need
+
+
+@njit(cache=True)
+def near_boundary(nlocal, x, sublo, subhi, open_lo, open_hi, reach, near):
+    """near[i] := local atom i lies within ``reach`` of a face of its subdomain that an atom can cross
+    (open_lo, open_hi: bool[3], the faces shared with another subdomain or a periodic boundary). Between
+    two rebuilds of the Verlet lists an atom moves less than skin from where it was at the last one (LAMMPS
+    exchanges atoms when one moved skin/2 since its own last build), so with reach >= skin the atoms that
+    can change rank before the next rebuild are all marked."""
+    for i in range(nlocal):
+        f = False
+        for d in range(3):
+            if (open_lo[d] and x[i, d] - sublo[d] < reach) or (open_hi[d] and subhi[d] - x[i, d] < reach):
+                f = True
+        near[i] = f
 
 
 def contact_buffers(n, history_size):
