@@ -105,9 +105,9 @@ def _cells(x, n, cell):
 
 @njit(cache=True)
 def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
-    """Verlet lists of the local atoms: sphere pairs (i local; j local with j > i, or ghost) closer than
-    r_i + r_j + skin, and wall pairs (i, w) closer than r_i + skin. walls: float64[n_walls, 6], a point
-    and the unit normal pointing into the domain. Valid while no atom has moved more than skin / 2 and
+    """Verlet lists of the local atoms: sphere pairs (i local; j local with a higher atom id, or ghost)
+    closer than r_i + r_j + skin, in the order of i, and wall pairs (i, w) closer than r_i + skin. walls:
+    float64[n_walls, 6], a point and the unit normal pointing into the domain. Valid while no atom has moved more than skin / 2 and
     the local and ghost atoms keep their indices. Returns (pairs int64[m, 2], wall_pairs int64[k, 2])."""
     lo, dims, cell, start, order, which = _cells(x, nall, 2.0 * rmax + skin)
     d0 = dims[0]
@@ -131,7 +131,7 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
                 k0 = (ax * d1 + ay) * d2
                 for q in range(start[k0 + max(cz - 1, 0)], start[k0 + min(cz + 2, d2)]):
                     j = order[q]
-                    if j == i or (j < nlocal and j < i) or tag[j] == tag[i]:
+                    if j == i or tag[j] == tag[i] or (j < nlocal and tag[j] < tag[i]):
                         continue
                     dx = x[j, 0] - xi
                     dy = x[j, 1] - yi
