@@ -395,6 +395,18 @@ class LammpsContacts:
             self._view_key = (nmax, nall)
         return self._view
 
+    def _near_boundary(self, nlocal, x):
+        """The local atoms that may change rank before the next rebuild of the lists (all of them in a
+        triclinic box)."""
+        near = np.ones(nlocal + 1, dtype=np.bool_)
+        g = self.lmp.extract_global
+        if not g("triclinic"):
+            lo, hi = np.array(g("sublo")), np.array(g("subhi"))
+            periodic = np.array(g("periodicity"), dtype=bool)
+            K.near_boundary(nlocal, x, lo, hi, periodic | (lo > np.array(g("boxlo"))),
+                            periodic | (hi < np.array(g("boxhi"))), 2.0 * self.skin, near)
+        return near
+
     @staticmethod
     def _callback(self, ntimestep, nlocal, tag, x, fext):
         t0 = time.perf_counter()
@@ -419,22 +431,15 @@ class LammpsContacts:
             self._tag_ref = ids[:nall].copy()
             self._rebuilt = True
             self.list_builds += 1
-            self._near = np.ones(nlocal + 1, dtype=np.bool_)
-            if not self.lmp.extract_global("triclinic"):
-                g = self.lmp.extract_global
-                lo, hi = np.array(g("sublo")), np.array(g("subhi"))
-                blo, bhi = np.array(g("boxlo")), np.array(g("boxhi"))
-                periodic = np.array(g("periodicity"), dtype=bool)
-                K.near_boundary(nlocal, xa, lo, hi, periodic | (lo > blo), periodic | (hi < bhi), 2.0 * self.skin,
-                                self._near)
+            self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
             self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.hs)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
             self._acc = np.empty((2 * nlocal + 16, 7))
-        work, body, src, dst, rows, normals, overlaps, vel, wn, Hc, forces, tforces = self._buffers
+        _, body, src, dst, rows, normals, overlaps, vel, wn, Hc, forces, tforces = self._buffers
         t = self.table
-        m, need = K.gather_contacts(
+        m = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt, self.frame_spin, stat,
             self._used, self._near, *self._buffers[:10])

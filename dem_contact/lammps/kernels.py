@@ -320,8 +320,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     1 = -1: a contact left out, no free history row); src int64[:] the H row the law's history is written
     back to (-1: none) and dst int64[:] the row of a second copy (-1: none), see ``_copies``; pair_rows int64[:], normals float64[:, 3], overlaps
     float64[:], velocities float64[:, 3], wn float64[:]: the inputs of the law; Hc float64[:, history_size]
-    the gathered histories (zero for a new contact); work int64[:, 3] scratch. Returns (m, need): need is the
-    largest number of contacts of a local atom. A contact left out is counted in ST_NEED."""
+    the gathered histories (zero for a new contact); work int64[:, 3] scratch. Returns m. A contact left
+    out is counted in ST_NEED."""
     hs = H.shape[1]
     slots = keys.shape[1]
     npc = cand.shape[0]
@@ -436,12 +436,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         velocities[n, 1] = vy
         velocities[n, 2] = vz
         n += 1
-    need = 0.0
     for i in range(nlocal):
-        k = stat[i, ST_PAIRS] + stat[i, ST_WALLS]
-        need = max(need, k)
-        if k > stat[i, ST_NEED]:
-            stat[i, ST_NEED] = k
+        stat[i, ST_NEED] = max(stat[i, ST_NEED], stat[i, ST_PAIRS] + stat[i, ST_WALLS])
     for k in range(ended):
         # contacts that ended free their rows (reset)
         c = work[k, 2]
@@ -516,7 +512,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             kick = 0.5 * dt * Hc[k, V_N] * inv_m
             for d in range(3):
                 velocities[k, d] -= kick * normals[k, d]
-    return n, need
+    return n
 
 
 @njit(cache=True)
