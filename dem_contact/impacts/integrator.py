@@ -23,6 +23,8 @@ import math
 
 import numpy as np
 from numba import njit
+from numba.core import cgutils, types
+from numba.extending import intrinsic
 
 from ..laws.contact import contact_step, normal_force, normal_gap
 from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
@@ -72,6 +74,22 @@ def is_sliding(fraction):
     return fraction >= 1.0 - SLIDE_IMPULSE_TOL
 
 
+@intrinsic
+def borrowed(typingctx, arr):
+    """The array without its reference count (a null meminfo): passing it to a jitted function then costs
+    no atomic increment and decrement. Valid while ``arr`` lives; never store or return it."""
+    if not isinstance(arr, types.Array):
+        return None
+
+    def codegen(context, builder, signature, args):
+        ary = cgutils.create_struct_proxy(arr)(context, builder, value=args[0])
+        ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
+        ary.parent = cgutils.get_null_value(ary.parent.type)
+        return ary._getvalue()
+
+    return arr(arr), codegen
+
+
 @njit(cache=True)
 def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
                      dt, max_steps, locate, out, series):
@@ -84,6 +102,8 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     out: float64[N_OUT] written with the results; series: float64[n, N_SERIES], the first n steps are
     recorded (pass shape (0, N_SERIES) for none).
     """
+    p = borrowed(p)
+    h = borrowed(h)
     mu = p[P_MU]
     delta = 0.0
     vn = vn0
