@@ -49,6 +49,16 @@ O_STATUS = 14   # 0 ended, 1 step limit reached, 2 non-finite state
 O_MINWT = 15    # minimum over time of the running tangential work [J]
 N_OUT = 16
 
+# slots of the body row of impact_kernel (impact.body_row)
+B_NORMAL = 0        # normal law id
+B_TANGENTIAL = 1    # tangential law id
+B_INV_M = 2         # 1/m* [1/kg]
+B_R1 = 3            # radius of body 1 [m]
+B_R2 = 4            # radius of body 2 [m] (0: a wall)
+B_INV_I1 = 5        # 1/I1 [1/(kg m^2)]
+B_INV_I2 = 6        # 1/I2 [1/(kg m^2)] (0: a wall)
+N_BODY = 7
+
 # columns of the optional time series
 S_T, S_DELTA, S_N, S_TANG, S_A, S_VN, S_VSLIP = range(7)
 N_SERIES = 7
@@ -212,3 +222,13 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     out[O_COULOMB] = coulomb
     out[O_STATUS] = status
     out[O_MINWT] = minWT
+
+
+@njit(cache=True)
+def impact_kernel(body, p, h, vn0, vt0, w10, w20, dt, max_steps, locate, out, series):
+    """One impact from a clean history: zeroes the history row h, then ``integrate_impact`` with the law ids
+    and inertia of the body row ``body`` (slots B_*; ``impact.body_row``). Fewer arguments than
+    ``integrate_impact``: a call from Python costs less."""
+    h[:] = 0.0
+    integrate_impact(int(body[B_NORMAL]), int(body[B_TANGENTIAL]), p, h, vn0, vt0, w10, w20, body[B_INV_M],
+                     body[B_R1], body[B_R2], body[B_INV_I1], body[B_INV_I2], dt, max_steps, locate, out, series)
