@@ -112,7 +112,7 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     out: float64[N_OUT] written with the results; series: float64[n, N_SERIES], the first n steps are
     recorded (pass shape (0, N_SERIES) for none).
     """
-    p = borrowed(p)
+    p = borrowed(p)     # the laws take these rows at every step: uncounted views cost no atomic operations
     h = borrowed(h)
     mu = p[P_MU]
     delta = 0.0
