@@ -58,7 +58,7 @@ assert (O_VN, O_VT, O_W1, O_W2, O_PN, O_PT, O_TC, O_DMAX, O_FMAX, O_SLID, O_STEP
         O_MINWT) == tuple(range(N_OUT))
 
 
-@dataclass
+@dataclass(slots=True)
 class EnergyBudget:
     """Energy of the impact [J]. friction and normal are the works absorbed by the tangential and normal
     forces along the path (trapezoid rule); error = initial - final - friction - normal."""
@@ -556,9 +556,12 @@ def _build_result(c, scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser, mode
         raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
                              f"laws at dt = {dt:g} s")
     I1 = c.I1
-    I2 = c.I2
-    E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
-    E1 = 0.5 * m * (vn_r**2 + vt_r**2) + 0.5 * I1 * w_r**2 + 0.5 * I2 * w2_r**2
+    E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2
+    E1 = 0.5 * m * (vn_r**2 + vt_r**2) + 0.5 * I1 * w_r**2
+    if c.sphere2:       # (a wall's terms are 0: I2 = 0, spin2 = w2_r = 0)
+        I2 = c.I2
+        E0 += 0.5 * I2 * spin2**2
+        E1 += 0.5 * I2 * w2_r**2
     energy = EnergyBudget(E0, E1, WT, WN, E0 - E1 - WT - WN)
     # A passive tangential law stores or dissipates: its running work can never be negative.
     created = minwt < -ENERGY_CREATION_TOL * E0
