@@ -21,6 +21,10 @@ def check_finite(name: str, value, lo=None, hi=None, lo_open=True, hi_open=False
         x = float(value)
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a number, got {value!r}") from None
+    if ((math.isfinite(x) or (allow_inf and not math.isnan(x)))
+            and (lo is None or x > lo or (not lo_open and x == lo))
+            and (hi is None or x < hi or (not hi_open and x == hi))):
+        return x
     lo_s = "-inf" if lo is None else f"{lo:g}"
     hi_s = "inf" if hi is None else f"{hi:g}"
     rng = f"{'(' if lo_open else '['}{lo_s}, {hi_s}{')' if hi_open or hi is None else ']'}"

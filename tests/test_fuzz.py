@@ -7,6 +7,7 @@ mu = 0); kinetic energy gained is always flagged; |f| <= mu unless warned; the i
 identities hold to 1e-9 (Wu, Thornton & Li 2009, eqs 2.21-2.23, in their dimensional form for two
 spheres). A few hundred cases run in the normal test run; ``pytest -m fuzz`` runs thousands.
 """
+import dataclasses
 import math
 import warnings
 
@@ -80,7 +81,7 @@ def check(c):
         undefined.add("e_t")
     if mu == 0.0:
         undefined |= {"f_over_mu", "Theta", "Psi_r", "Omega_i", "Omega_r"}
-    for k, v in r.__dict__.items():
+    for k, v in ((fd.name, getattr(r, fd.name)) for fd in dataclasses.fields(r)):
         if isinstance(v, float) and k not in undefined:
             assert math.isfinite(v), (k, v)
     for k in ("initial", "final", "friction", "normal", "error"):

@@ -154,3 +154,18 @@ def test_rebound_angle_and_json(steel_sphere, steel_wall):
                 "max_overlap", "max_force", "persistent_sliding", "steps"):
         assert key in d
     assert set(d["energy"]) == {"initial", "final", "friction", "normal", "error"}
+
+
+@pytest.mark.parametrize("normal,kw", NORMALS)
+def test_default_time_step_is_the_contact_time_over_the_steps(steel_sphere, steel_wall, normal, kw):
+    """impact() at the default resolution steps exactly t_c / DEFAULT_STEPS_PER_CONTACT, t_c from
+    Scene.contact_time, for every normal law and speed (as with an explicit steps_per_contact)."""
+    sc = scene(steel_sphere, steel_wall, mu=0.3, normal=normal, **kw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for vn in (0.3, 2.0, 7.5):
+            spc = dc.DEFAULT_STEPS_PER_CONTACT
+            r = dc.impact(sc, vn, 1.0)
+            assert r.dt == sc.contact_time(vn) / spc
+            assert r.dt == dc.impact(sc, vn, 1.0, steps_per_contact=spc).dt
+            assert r.settings["steps_per_contact"] == spc

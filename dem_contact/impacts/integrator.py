@@ -23,6 +23,8 @@ import math
 
 import numpy as np
 from numba import njit
+from numba.core import cgutils, types
+from numba.extending import intrinsic
 
 from ..laws.contact import contact_step, normal_force, normal_gap
 from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
@@ -46,6 +48,16 @@ O_COULOMB = 13  # max over steps of |T| - mu N [N] (<= 0 when Coulomb holds)
 O_STATUS = 14   # 0 ended, 1 step limit reached, 2 non-finite state
 O_MINWT = 15    # minimum over time of the running tangential work [J]
 N_OUT = 16
+
+# slots of the body row of impact_kernel (impact.body_row)
+B_NORMAL = 0        # normal law id
+B_TANGENTIAL = 1    # tangential law id
+B_INV_M = 2         # 1/m* [1/kg]
+B_R1 = 3            # radius of body 1 [m]
+B_R2 = 4            # radius of body 2 [m] (0: a wall)
+B_INV_I1 = 5        # 1/I1 [1/(kg m^2)]
+B_INV_I2 = 6        # 1/I2 [1/(kg m^2)] (0: a wall)
+N_BODY = 7
 
 # columns of the optional time series
 S_T, S_DELTA, S_N, S_TANG, S_A, S_VN, S_VSLIP = range(7)
@@ -72,6 +84,22 @@ def is_sliding(fraction):
     return fraction >= 1.0 - SLIDE_IMPULSE_TOL
 
 
+@intrinsic
+def borrowed(typingctx, arr):
+    """The array without its reference count (a null meminfo): passing it to a jitted function then costs
+    no atomic increment and decrement. Valid while ``arr`` lives; never store or return it."""
+    if not isinstance(arr, types.Array):
+        return None
+
+    def codegen(context, builder, signature, args):
+        ary = cgutils.create_struct_proxy(arr)(context, builder, value=args[0])
+        ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
+        ary.parent = cgutils.get_null_value(ary.parent.type)
+        return ary._getvalue()
+
+    return arr(arr), codegen
+
+
 @njit(cache=True)
 def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
                      dt, max_steps, locate, out, series):
@@ -84,6 +112,8 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     out: float64[N_OUT] written with the results; series: float64[n, N_SERIES], the first n steps are
     recorded (pass shape (0, N_SERIES) for none).
     """
+    p = borrowed(p)     # the laws take these rows at every step: uncounted views cost no atomic operations
+    h = borrowed(h)
     mu = p[P_MU]
     delta = 0.0
     vn = vn0
@@ -192,3 +222,13 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
     out[O_COULOMB] = coulomb
     out[O_STATUS] = status
     out[O_MINWT] = minWT
+
+
+@njit(cache=True)
+def impact_kernel(body, p, h, vn0, vt0, w10, w20, dt, max_steps, locate, out, series):
+    """One impact from a clean history: zeroes the history row h, then ``integrate_impact`` with the law ids
+    and inertia of the body row ``body`` (slots B_*; ``impact.body_row``). Fewer arguments than
+    ``integrate_impact``: a call from Python costs less."""
+    h[:] = 0.0
+    integrate_impact(int(body[B_NORMAL]), int(body[B_TANGENTIAL]), p, h, vn0, vt0, w10, w20, body[B_INV_M],
+                     body[B_R1], body[B_R2], body[B_INV_I1], body[B_INV_I2], dt, max_steps, locate, out, series)

@@ -12,9 +12,15 @@ THORNTON_MIN_VELOCITY_RATIO = 1e-12
 HERTZ_TC_FACTOR = 2.9433
 
 
+def hertz_overlap_coefficients(E_star, R_star, m_star):
+    """(c1, c2) = (15 m*, 16 E* sqrt(R*)) of delta_max = (c1 V^2 / c2)^(2/5)."""
+    return 15.0 * m_star, 16.0 * E_star * math.sqrt(R_star)
+
+
 def hertz_max_overlap(E_star, R_star, m_star, v):
     """delta_max = (15 m* V^2 / (16 E* sqrt(R*)))^(2/5) [m] for an elastic impact at normal speed v."""
-    return (15.0 * m_star * v * v / (16.0 * E_star * math.sqrt(R_star))) ** 0.4
+    c1, c2 = hertz_overlap_coefficients(E_star, R_star, m_star)
+    return (c1 * v * v / c2) ** 0.4
 
 
 def hertz_contact_time(E_star, R_star, m_star, v):

@@ -25,7 +25,7 @@ MDR = 7
 MDR_ADAPTIVE = 8
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def normal_force(nid, p, h, delta, vel):
     """Normal force N [N] (may be tensile only for the linear law) and contact radius a [m]."""
     if nid == HERTZ:
@@ -37,7 +37,7 @@ def normal_force(nid, p, h, delta, vel):
     return normal.linear(p, delta, vel)
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def normal_gap(nid, p, h, delta, vel):
     """Pure: > 0 while the bodies are in contact at overlap ``delta`` and rate ``vel``, <= 0 otherwise."""
     if nid == THORNTON:
@@ -47,7 +47,7 @@ def normal_gap(nid, p, h, delta, vel):
     return delta
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def tangential_force(tid, p, h, N, dN, a, a_old, dd):
     """Tangential force T [N] in the direction of the displacement increment ``dd`` [m]."""
     if tid == MD:
@@ -69,7 +69,7 @@ def tangential_force(tid, p, h, N, dN, a, a_old, dd):
     return tangential.mindlin_total(p, h, N, a, dd, 2.0 / 3.0)
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def contact_step(nid, tid, p, h, delta, vel, dd):
     """Advance one contact by one step to overlap ``delta`` [m] (rate ``vel`` [m/s]) with tangential
     displacement increment ``dd`` [m]. Returns (N, a, T); N is the law's force (tension only for the

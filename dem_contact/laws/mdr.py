@@ -276,7 +276,7 @@ def initial_width(a, n, R):
     return L * 2.0 ** math.floor(math.log2(2.0 * a / (n * L)))
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def mdr_adaptive(p, h, N, a, a_old, dd):
     """MDR with few cells on a grid that follows the contact (no grid to set up; Popov & Hess 2015, chapter 6).
 

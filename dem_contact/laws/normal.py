@@ -15,7 +15,7 @@ from .slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR, 
                     P_MSTAR, P_MU, P_PY, P_RSTAR, P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def hertz(p, delta):
     """Hertz (Johnson 1985, eq. 4.23): a = sqrt(R* delta), N = (4/3) E* a delta."""
     if delta <= 0.0:
@@ -117,7 +117,7 @@ def _thornton_traction_loading(p, h, delta):
     return F, a
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
 def thornton_gap(h, delta):
     """Positive while in contact: delta - delta_p (delta_p = 0 before yield)."""
     return delta - h[H_DP]

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import dem_contact as dc
-from dem_contact.impacts.impact import body_inertia, time_step
-from dem_contact.impacts.integrator import N_OUT, N_SERIES, integrate_impact
+from dem_contact.impacts.impact import body_row, max_steps, time_step
+from dem_contact.impacts.integrator import N_OUT, N_SERIES, impact_kernel
 from dem_contact.impacts.presets import preset_scene
 
 
@@ -24,26 +24,20 @@ def test_bench_impact_python(benchmark, scene):
 
 
 def _kernel(sc):
-    """The bare integrator on one impact of ``sc`` (vn = 5, vt = 2 m/s), run once (warm JIT); returns
-    (run, out)."""
+    """The jitted kernel of ``impact`` on one impact of ``sc`` (vn = 5, vt = 2 m/s) from a clean history, run
+    once (warm JIT); returns (args, out): ``impact_kernel(*args)`` runs it."""
     dt, spc = time_step(sc, 5.0)
-    inv_m, R1, R2, iI1, iI2 = body_inertia(sc)
     out = np.zeros(N_OUT)
     ser = np.zeros((0, N_SERIES))
-    h = sc.new_history()
-
-    def run():
-        h[:] = 0.0
-        integrate_impact(sc.normal_id, sc.tangential_id, sc.params, h, 5.0, 2.0, 0.0, 0.0,
-                         inv_m, R1, R2, iI1, iI2, dt, int(50 * spc), True, out, ser)
-    run()
-    return run, out
+    args = (body_row(sc), sc.params, sc.new_history(), 5.0, 2.0, 0.0, 0.0, dt, max_steps(spc), True, out, ser)
+    impact_kernel(*args)
+    return args, out
 
 
 @pytest.mark.benchmark(group="one impact")
 def test_bench_impact_kernel(benchmark, scene):
-    run, out = _kernel(scene)
-    benchmark(run)
+    args, out = _kernel(scene)
+    benchmark(impact_kernel, *args)
     assert out[0] < 0
 
 
@@ -51,6 +45,6 @@ def test_bench_impact_kernel(benchmark, scene):
 @pytest.mark.parametrize("profile", ["truncated", "scaled"])
 def test_bench_pe_profile(benchmark, profile):
     """PE at 5 m/s (plastic loading): the truncated pressure's line load against the Hertz shape."""
-    run, out = _kernel(preset_scene("PE", 5.0, mdr_profile=profile))
-    benchmark(run)
+    args, out = _kernel(preset_scene("PE", 5.0, mdr_profile=profile))
+    benchmark(impact_kernel, *args)
     assert out[0] < 0
