@@ -9,7 +9,10 @@ lattice closed by six walls (--lid), spacing 0.995 diameters, at rest: about 3 c
 steps. wall_s is the time inside LAMMPS's ``run`` (contact search, laws, forces, integration,
 communication); contact updates = contacts counted x steps between counts.
 
-Usage: python tests/benchmarks/lammps_throughput.py [--n 20000] [--steps 500] [--ranks 1 2] [--json]
+Each case runs --repeat times, interleaved with the others; the fastest run of each case is reported
+(on a machine shared with other work the slower runs measure the other work).
+
+Usage: python tests/benchmarks/lammps_throughput.py [--n 20000] [--steps 500] [--ranks 1 2] [--repeat 3] [--json]
 """
 import argparse
 import json
@@ -43,21 +46,27 @@ def main():
     p.add_argument("--every", type=int, default=100)
     p.add_argument("--spacing", type=float, default=0.995, help="lattice spacing [diameters] (0.995)")
     p.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    p.add_argument("--repeat", type=int, default=3, help="runs of each case, interleaved; the fastest counts (3)")
     p.add_argument("--json", action="store_true")
     a = p.parse_args()
     scene = ["--n", str(a.n), "--steps", str(a.steps), "--every", str(a.every), "--spacing", str(a.spacing),
              "--speed", "0", "--same-size", "--lid"]
     for args in CASES.values():                      # compile and cache the kernels first
         pour(["--n", "200", "--steps", "20", "--every", "10", *args], 1)
+    best = {}
+    for _ in range(a.repeat):
+        for ranks in a.ranks:
+            for name, args in CASES.items():
+                d = pour(scene + args, ranks)
+                if (name, ranks) not in best or d["wall_s"] < best[name, ranks]["wall_s"]:
+                    best[name, ranks] = d
     rows = []
-    for ranks in a.ranks:
-        for name, args in CASES.items():
-            d = pour(scene + args, ranks)
-            ns = 1e9 / d["contact_updates_per_s_per_rank"]
-            rows.append({"case": name, "ranks": ranks, "natoms": d["natoms"], "steps": d["steps"],
-                         "contacts_at_end": d["contacts"], "wall_s": d["wall_s"],
-                         "contact_updates_per_s_per_rank": d["contact_updates_per_s_per_rank"],
-                         "ns_per_contact_update_per_rank": ns})
+    for (name, ranks), d in best.items():
+        ns = 1e9 / d["contact_updates_per_s_per_rank"]
+        rows.append({"case": name, "ranks": ranks, "natoms": d["natoms"], "steps": d["steps"],
+                     "contacts_at_end": d["contacts"], "wall_s": d["wall_s"], "runs": a.repeat,
+                     "contact_updates_per_s_per_rank": d["contact_updates_per_s_per_rank"],
+                     "ns_per_contact_update_per_rank": ns})
     for r in rows:
         base = next(b for b in rows if b["case"] == "lammps native" and b["ranks"] == r["ranks"])
         one = next((b for b in rows if b["case"] == r["case"] and b["ranks"] == 1), None)
