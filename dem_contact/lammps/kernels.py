@@ -105,10 +105,11 @@ def _cells(x, n, cell):
 
 @njit(cache=True)
 def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
-    """Verlet lists of the local atoms: sphere pairs (i local; j local with a higher atom id, or ghost)
-    closer than r_i + r_j + skin, in the order of i, and wall pairs (i, w) closer than r_i + skin. walls:
-    float64[n_walls, 6], a point and the unit normal pointing into the domain. Valid while no atom has moved more than skin / 2 and
-    the local and ghost atoms keep their indices. Returns (pairs int64[m, 2], wall_pairs int64[k, 2])."""
+    """Verlet lists of the local atoms: sphere pairs (i local; j local with a higher atom id, or ghost) closer
+    than r_i + r_j + skin, in the order of i, and wall pairs (i, w) closer than r_i + skin. walls:
+    float64[n_walls, 6], a point and the unit normal pointing into the domain. Valid while no atom has moved
+    more than skin / 2 and the local and ghost atoms keep their indices. Returns (pairs int64[m, 2],
+    wall_pairs int64[k, 2])."""
     lo, dims, cell, start, order, which = _cells(x, nall, 2.0 * rmax + skin)
     d0 = dims[0]
     d1 = dims[1]
@@ -316,12 +317,12 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     (``near_boundary``).
 
     Fills the first m rows of the buffers (``contact_buffers``, at least as long as the candidates): body
-    int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w; body
-    1 = -1: a contact left out, no free history row); src int64[:] the H row the law's history is written
-    back to (-1: none) and dst int64[:] the row of a second copy (-1: none), see ``_copies``; pair_rows int64[:], normals float64[:, 3], overlaps
-    float64[:], velocities float64[:, 3], wn float64[:]: the inputs of the law; Hc float64[:, history_size]
-    the gathered histories (zero for a new contact); work int64[:, 3] scratch. Returns m. A contact left
-    out is counted in ST_NEED."""
+    int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w; body 1
+    = -1: a contact left out, no free history row); src int64[:] the H row the law's history is written back
+    to (-1: none) and dst int64[:] the row of a second copy (-1: none), see ``_copies``; pair_rows int64[:],
+    normals float64[:, 3], overlaps float64[:], velocities float64[:, 3], wn float64[:]: the inputs of the
+    law; Hc float64[:, history_size] the gathered histories (zero for a new contact); work int64[:, 3]
+    scratch. Returns m. A contact left out is counted in ST_NEED."""
     hs = H.shape[1]
     slots = keys.shape[1]
     npc = cand.shape[0]
