@@ -396,9 +396,10 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 dz = -dz
             r = math.sqrt(r2)
             delta = rs - r
-            nx = dx / r
-            ny = dy / r
-            nz = dz / r
+            rinv = 1.0 / r          # n = dx / r as LAMMPS's granular models compute it
+            nx = dx * rinv
+            ny = dy * rinv
+            nz = dz * rinv
             ra = radius[a]
             rb = radius[b]
             wx = ra * omega[a, 0] + rb * omega[b, 0]
