@@ -290,23 +290,51 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
         S1 = 0.0
         S2 = 0.0
         Q0 = 0.0      # truncated profile: the integral of the line load up to the cell's lower edge
-        w3 = 1.0      # 3 i (i + 1) + 1 (exact): the mean of a^2 - x^2 over cell i is a^2 - dx^2 w3 / 3
-        step = 6.0
-        for i in range(full):
-            k = k0 + 2 * i
-            if kt < 1.0:
+        if kt < 1.0:
+            for i in range(full):
+                k = k0 + 2 * i
                 Q1 = _truncated_integral((i + 1) * dx, a, kt)
                 umax = umax_per_w * (Q1 - Q0) / dx
                 Q0 = Q1
-            else:
+                u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
+                H[c, k] = u1
+                H[c, k + 1] = u2
+                S1 += u1
+                S2 += u2
+        else:
+            # cells sticking (the common case) in a loop without square roots: u += d, and a flag for any
+            # cell near or beyond its circle; then, if flagged, the radial return of every cell. The mean of
+            # a^2 - x^2 over cell i is a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
+            w3 = 1.0
+            step = 6.0
+            near = False
+            for i in range(full):
+                k = k0 + 2 * i
                 umax = umax_per_w * (a2 - dx2 * w3)
                 w3 += step
                 step += 6.0
-            u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
-            H[c, k] = u1
-            H[c, k + 1] = u2
-            S1 += u1
-            S2 += u2
+                u1 = H[c, k] + d1
+                u2 = H[c, k + 1] + d2
+                H[c, k] = u1
+                H[c, k + 1] = u2
+                S1 += u1
+                S2 += u2
+                near |= u1 * u1 + u2 * u2 > V.NEAR * (umax * umax)
+            if near:
+                S1 = 0.0
+                S2 = 0.0
+                w3 = 1.0
+                step = 6.0
+                for i in range(full):
+                    k = k0 + 2 * i
+                    umax = umax_per_w * (a2 - dx2 * w3)
+                    w3 += step
+                    step += 6.0
+                    u1, u2 = V.radial(H[c, k], H[c, k + 1], umax)
+                    H[c, k] = u1
+                    H[c, k + 1] = u2
+                    S1 += u1
+                    S2 += u2
         T1 = S1 * dx
         T2 = S2 * dx
         for i in range(full, m):

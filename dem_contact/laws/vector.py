@@ -398,6 +398,10 @@ def initial_width(a, n, R):
     return math.ldexp(L, int(math.floor(math.log2(2.0 * a / (n * L)))))
 
 
+#: a cell with |u|^2 > NEAR umax^2 may be beyond its Coulomb circle (the margin covers the rounding of |u|^2)
+NEAR = 1.0 - 1e-9
+
+
 @njit(inline="always", **JIT)
 def radial(u1, u2, umax):
     """Local Coulomb circle |u| <= umax of an MDR cell: radial return (direction kept)."""
