@@ -303,8 +303,9 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
                 S2 += u2
         else:
             # cells sticking (the common case) in a loop without square roots: u += d, and a flag for any
-            # cell near or beyond its circle; then, if flagged, the radial return of every cell. The mean of
-            # a^2 - x^2 over cell i is a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
+            # cell near or beyond its circle; if flagged, the cells before the first such cell keep their
+            # values and the radial return acts from it on. The mean of a^2 - x^2 over cell i is
+            # a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
             w3 = 1.0
             step = 6.0
             near = False
@@ -325,7 +326,20 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
                 S2 = 0.0
                 w3 = 1.0
                 step = 6.0
-                for i in range(full):
+                i0 = 0
+                while i0 < full:
+                    k = k0 + 2 * i0
+                    u1 = H[c, k]
+                    u2 = H[c, k + 1]
+                    umax = umax_per_w * (a2 - dx2 * w3)
+                    if u1 * u1 + u2 * u2 > V.NEAR * (umax * umax):
+                        break
+                    w3 += step
+                    step += 6.0
+                    S1 += u1
+                    S2 += u2
+                    i0 += 1
+                for i in range(i0, full):
                     k = k0 + 2 * i
                     umax = umax_per_w * (a2 - dx2 * w3)
                     w3 += step

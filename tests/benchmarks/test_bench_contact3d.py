@@ -194,9 +194,16 @@ static void mdr_cells(const double *p, double *h, int k0, int n, double dx, doub
         S1 += u1; S2 += u2;
         near |= u1 * u1 + u2 * u2 > NEAR * (umax * umax);
     }
-    if (near) {                           /* radial return of every cell */
+    if (near) {                           /* cells before the first flagged one keep their values */
         S1 = 0.0; S2 = 0.0;
-        for (int i = 0; i < full; i++) {
+        int i0 = 0;
+        for (; i0 < full; i0++) {
+            int k = k0 + 2 * i0;
+            double umax = umax_per_w * (a2 - dx2 * (3 * i0 * (i0 + 1) + 1));
+            if (h[k] * h[k] + h[k + 1] * h[k + 1] > NEAR * (umax * umax)) break;
+            S1 += h[k]; S2 += h[k + 1];
+        }
+        for (int i = i0; i < full; i++) {  /* radial return from there on */
             int k = k0 + 2 * i;
             double umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1));
             double u1 = h[k], u2 = h[k + 1];
