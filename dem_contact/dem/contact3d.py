@@ -65,6 +65,10 @@ __all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotat
 # compiled. ``contact_force`` calls one non-inlined leaf per family (``_leaf_*``), to keep the cold compile
 # of a user's loop short.
 
+#: mdr.truncated_integral inlined (the truncated profile of Thornton's plastic loading, in _step_mdr)
+_truncated_integral = njit(inline="always", **dict(JIT, cache=False))(M.truncated_integral.py_func)
+
+
 @njit(inline="always", **JIT)
 def _kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
     """Overlap rate v . n, slip increment dd = (v - (v . n) n) dt, and (cos, sin) of the turn of the contact
@@ -187,12 +191,22 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
     Thornton's plastic loading, ``mdr.truncation``). mdr_adaptive: the grid of ``mdr.mdr_adaptive`` (cell
     width in the history; its ``merged``, ``halves``, ``shrink_edge`` and ``initial_width``), mdr: the fixed
     grid of ``mdr.mdr`` (NaN when the contact outgrows it)."""
+    # Every parameter is read first and the history row last, on every path: numba's reference-count
+    # pruning then removes the increments of the two arrays (which would cost two atomic operations per
+    # contact); so the law has one exit and calls only inlined functions.
     vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
     E = params[row, P_ESTAR]
-    N, a, s0, s1, s2, s3 = _normal(nid, E, params[row, P_RSTAR], params[row, P_MSTAR],
-                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
-                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
-                                   H[c, V_RP], H[c, V_DP], delta, vel)
+    R = params[row, P_RSTAR]
+    G = params[row, P_GSTAR]
+    mu = params[row, P_MU]
+    p_y = params[row, P_PY]
+    profile = params[row, P_MDR_PROFILE]
+    n = int(params[row, P_NSPRING])
+    adaptive = tid == MDR_ADAPTIVE
+    dx = params[row, P_DX]
+    N, a, s0, s1, s2, s3 = _normal(nid, E, R, params[row, P_MSTAR], params[row, P_GAMMA], params[row, P_KN],
+                                   params[row, P_DELTA_Y], params[row, P_F_Y], p_y, H[c, V_DSTAR],
+                                   H[c, V_FSTAR], H[c, V_RP], H[c, V_DP], delta, vel)
     if nid == THORNTON:
         H[c, V_DSTAR] = s0
         H[c, V_FSTAR] = s1
@@ -201,126 +215,184 @@ def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
     b = tangential_base(nid)
     Np = N if N > 0.0 else 0.0
     a_old = H[c, V_A]
-    H[c, V_N] = Np
-    H[c, V_A] = a
-    n = int(params[row, P_NSPRING])
     k0 = b + V.R_CELLS
-    adaptive = tid == MDR_ADAPTIVE
-    dx = H[c, b + V.R_DX] if adaptive else params[row, P_DX]
+    if adaptive:
+        dx = H[c, b + V.R_DX]
+    tx = 0.0
+    ty = 0.0
+    tz = 0.0
     if Np <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
         if dx > 0.0:
             for j in range(2 * max(V.cells(a, dx, n), V.cells(a_old, dx, n))):
                 H[c, k0 + j] = 0.0
         for j in range(W_X, V.R_CELLS):
             H[c, b + j] = 0.0
-        return -N * nx, -N * ny, -N * nz, 0.0, 0.0, 0.0
-    if not adaptive and a > n * dx:
-        return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
-    ex, ey, ez, fx, fy, fz, d1, d2 = V.mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
-                                                 ddx, ddy, ddz, cs, sn)
-    R = params[row, P_RSTAR]
-    if adaptive:
-        # the grid of mdr.mdr_adaptive (its merge, split and shrink-edge rules on both components)
-        if dx <= 0.0 or a_old <= 0.0:
-            for j in range(2 * n):
-                H[c, k0 + j] = 0.0
-            a_old = 0.0
-            dx = M.initial_width(a, n, R)
-        while a > n * dx:
-            for j in range(n // 2):
-                x0 = 2 * j * dx
-                u1 = M.merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
-                u2 = M.merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
-                H[c, k0 + 2 * j] = u1
-                H[c, k0 + 2 * j + 1] = u2
-            for j in range(2 * (n // 2), 2 * n):
-                H[c, k0 + j] = 0.0
-            dx *= 2.0
-        while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
-            hdx = 0.5 * dx
-            for j in range(n // 2 - 1, -1, -1):
-                u10, u11 = M.halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
-                u20, u21 = M.halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
-                H[c, k0 + 4 * j] = u10
-                H[c, k0 + 4 * j + 1] = u20
-                H[c, k0 + 4 * j + 2] = u11
-                H[c, k0 + 4 * j + 3] = u21
-            dx *= 0.5
-        H[c, b + V.R_DX] = dx
-        if a < a_old:
-            i, f = M.shrink_edge(n, dx, a, a_old)
-            if i >= 0:
-                H[c, k0 + 2 * i] *= f
-                H[c, k0 + 2 * i + 1] *= f
-    # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
-    GM = 4.0 * params[row, P_GSTAR]
-    kt = 1.0
-    if nid == THORNTON:
-        kt = M.truncation(params[row, P_MDR_PROFILE], params[row, P_PY], s1, Np, a, E, R)
-    umax_per_w = M.coulomb_per_w(params[row, P_MU], E, params[row, P_GSTAR], R, Np, a, kt)
-    a2 = a * a
-    da = a - a_old
-    m = max(V.cells(a, dx, n), V.cells(a_old, dx, n))
-    full = min(int(min(a, a_old) / dx), m)
-    dx2 = dx * dx / 3.0
-    S1 = 0.0
-    S2 = 0.0
-    Q0 = 0.0      # truncated profile: the integral of the line load up to the cell's lower edge
-    for i in range(full):
-        k = k0 + 2 * i
+    elif not adaptive and a > n * dx:
+        tx = math.nan
+        ty = math.nan
+        tz = math.nan
+        N = math.nan
+    else:
+        ex, ey, ez, fx, fy, fz, d1, d2 = V.mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
+                                                     ddx, ddy, ddz, cs, sn)
+        if adaptive:
+            # the grid of mdr.mdr_adaptive (its merge, split and shrink-edge rules on both components)
+            if dx <= 0.0 or a_old <= 0.0:
+                for j in range(2 * n):
+                    H[c, k0 + j] = 0.0
+                a_old = 0.0
+                dx = V.initial_width(a, n, R)
+                H[c, b + V.R_DX] = dx
+            if a > n * dx or (4.0 * a < n * dx and 4.0 * a_old < n * dx):
+                while a > n * dx:
+                    for j in range(n // 2):
+                        x0 = 2 * j * dx
+                        u1 = M.merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
+                        u2 = M.merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
+                        H[c, k0 + 2 * j] = u1
+                        H[c, k0 + 2 * j + 1] = u2
+                    for j in range(2 * (n // 2), 2 * n):
+                        H[c, k0 + j] = 0.0
+                    dx *= 2.0
+                while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
+                    hdx = 0.5 * dx
+                    for j in range(n // 2 - 1, -1, -1):
+                        u10, u11 = M.halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
+                        u20, u21 = M.halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
+                        H[c, k0 + 4 * j] = u10
+                        H[c, k0 + 4 * j + 1] = u20
+                        H[c, k0 + 4 * j + 2] = u11
+                        H[c, k0 + 4 * j + 3] = u21
+                    dx *= 0.5
+                H[c, b + V.R_DX] = dx
+        # cells in contact: qa = a / dx and qo = a_old / dx give the cell counts and the cut cell
+        qa = a / dx
+        qo = a_old / dx
+        m = max(V.cells_q(a, qa, n), V.cells_q(a_old, qo, n))
+        full = min(int(min(qa, qo)), m)
+        if adaptive and a < a_old:
+            # mdr.shrink_edge: the cell cut by the new edge (i = int(a / dx), the first partial cell)
+            i = int(qa)
+            if i < n:
+                f = V.shrink_factor(i * dx, dx, a, a_old)
+                if f != 1.0:
+                    H[c, k0 + 2 * i] *= f
+                    H[c, k0 + 2 * i + 1] *= f
+        # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
+        GM = 4.0 * G
+        kt = 1.0
+        if nid == THORNTON:
+            kt = M.truncation(profile, p_y, s1, Np, a, E, R)
+        umax_per_w = M.coulomb_per_w(mu, E, G, R, Np, a, kt)
+        a2 = a * a
+        da = a - a_old
+        dx2 = dx * dx / 3.0
+        S1 = 0.0
+        S2 = 0.0
+        Q0 = 0.0      # truncated profile: the integral of the line load up to the cell's lower edge
         if kt < 1.0:
-            Q1 = M.truncated_integral((i + 1) * dx, a, kt)
-            umax = umax_per_w * (Q1 - Q0) / dx
-            Q0 = Q1
+            for i in range(full):
+                k = k0 + 2 * i
+                Q1 = _truncated_integral((i + 1) * dx, a, kt)
+                umax = umax_per_w * (Q1 - Q0) / dx
+                Q0 = Q1
+                u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
+                H[c, k] = u1
+                H[c, k + 1] = u2
+                S1 += u1
+                S2 += u2
         else:
-            umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1))
-        u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
-        H[c, k] = u1
-        H[c, k + 1] = u2
-        S1 += u1
-        S2 += u2
-    T1 = S1 * dx
-    T2 = S2 * dx
-    for i in range(full, m):
-        k = k0 + 2 * i
-        x0 = i * dx
-        l_new = min(max(a - x0, 0.0), dx)
-        if l_new <= 0.0:
-            H[c, k] = 0.0
-            H[c, k + 1] = 0.0
-            continue
-        l_old = min(max(a_old - x0, 0.0), dx)
-        u1 = H[c, k] + d1
-        u2 = H[c, k + 1] + d2
-        if l_new > l_old:
-            # the part entering during the step takes the increment after its entry (mdr._advance)
-            xm = x0 + 0.5 * (l_old + l_new)
-            f = (a - xm) / da * (l_new - l_old)
-            u1 = (u1 * l_old + d1 * f) / l_new
-            u2 = (u2 * l_old + d2 * f) / l_new
-        x1 = x0 + l_new
-        if kt < 1.0:
-            Q1 = M.truncated_integral(x1, a, kt)
-            wbar = (Q1 - Q0) / l_new
-            Q0 = Q1
-        else:
-            wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
-        u1, u2 = V.radial(u1, u2, umax_per_w * wbar)
-        H[c, k] = u1
-        H[c, k + 1] = u2
-        T1 += u1 * l_new
-        T2 += u2 * l_new
-    T1 *= 2.0 * GM
-    T2 *= 2.0 * GM
-    H[c, b + W_WORK] += 0.5 * ((H[c, b + V.R_T1] + T1) * d1 + (H[c, b + V.R_T2] + T2) * d2)
-    H[c, b + W_X] = ex
-    H[c, b + W_Y] = ey
-    H[c, b + W_Z] = ez
-    H[c, b + V.R_T1] = T1
-    H[c, b + V.R_T2] = T2
-    tx = T1 * ex + T2 * fx
-    ty = T1 * ey + T2 * fy
-    tz = T1 * ez + T2 * fz
+            # cells sticking (the common case) in a loop without square roots: u += d, and a flag for any
+            # cell near or beyond its circle; if flagged, the cells before the first such cell keep their
+            # values and the radial return acts from it on. The mean of a^2 - x^2 over cell i is
+            # a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
+            w3 = 1.0
+            step = 6.0
+            near = False
+            for i in range(full):
+                k = k0 + 2 * i
+                umax = umax_per_w * (a2 - dx2 * w3)
+                w3 += step
+                step += 6.0
+                u1 = H[c, k] + d1
+                u2 = H[c, k + 1] + d2
+                H[c, k] = u1
+                H[c, k + 1] = u2
+                S1 += u1
+                S2 += u2
+                near |= u1 * u1 + u2 * u2 > V.NEAR * (umax * umax)
+            if near:
+                S1 = 0.0
+                S2 = 0.0
+                w3 = 1.0
+                step = 6.0
+                i0 = 0
+                while i0 < full:
+                    k = k0 + 2 * i0
+                    u1 = H[c, k]
+                    u2 = H[c, k + 1]
+                    umax = umax_per_w * (a2 - dx2 * w3)
+                    if u1 * u1 + u2 * u2 > V.NEAR * (umax * umax):
+                        break
+                    w3 += step
+                    step += 6.0
+                    S1 += u1
+                    S2 += u2
+                    i0 += 1
+                for i in range(i0, full):
+                    k = k0 + 2 * i
+                    umax = umax_per_w * (a2 - dx2 * w3)
+                    w3 += step
+                    step += 6.0
+                    u1, u2 = V.radial(H[c, k], H[c, k + 1], umax)
+                    H[c, k] = u1
+                    H[c, k + 1] = u2
+                    S1 += u1
+                    S2 += u2
+        T1 = S1 * dx
+        T2 = S2 * dx
+        for i in range(full, m):
+            k = k0 + 2 * i
+            x0 = i * dx
+            l_new = min(max(a - x0, 0.0), dx)
+            if l_new <= 0.0:
+                H[c, k] = 0.0
+                H[c, k + 1] = 0.0
+                continue
+            l_old = min(max(a_old - x0, 0.0), dx)
+            u1 = H[c, k] + d1
+            u2 = H[c, k + 1] + d2
+            if l_new > l_old:
+                # the part entering during the step takes the increment after its entry (mdr._advance)
+                xm = x0 + 0.5 * (l_old + l_new)
+                f = (a - xm) / da * (l_new - l_old)
+                u1 = (u1 * l_old + d1 * f) / l_new
+                u2 = (u2 * l_old + d2 * f) / l_new
+            x1 = x0 + l_new
+            if kt < 1.0:
+                Q1 = _truncated_integral(x1, a, kt)
+                wbar = (Q1 - Q0) / l_new
+                Q0 = Q1
+            else:
+                wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
+            u1, u2 = V.radial(u1, u2, umax_per_w * wbar)
+            H[c, k] = u1
+            H[c, k + 1] = u2
+            T1 += u1 * l_new
+            T2 += u2 * l_new
+        T1 *= 2.0 * GM
+        T2 *= 2.0 * GM
+        H[c, b + W_WORK] += 0.5 * ((H[c, b + V.R_T1] + T1) * d1 + (H[c, b + V.R_T2] + T2) * d2)
+        H[c, b + W_X] = ex
+        H[c, b + W_Y] = ey
+        H[c, b + W_Z] = ez
+        H[c, b + V.R_T1] = T1
+        H[c, b + V.R_T2] = T2
+        tx = T1 * ex + T2 * fx
+        ty = T1 * ey + T2 * fy
+        tz = T1 * ez + T2 * fz
+    H[c, V_N] = Np
+    H[c, V_A] = a
     return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
 
 

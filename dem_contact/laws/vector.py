@@ -368,6 +368,41 @@ def cells(r, dx, n):
 
 
 @njit(inline="always", **JIT)
+def cells_q(r, q, n):
+    """``cells`` given q = r / dx."""
+    if r <= 0.0:
+        return 0
+    m = int(q) + 1
+    return m if m < n else n
+
+
+@njit(inline="always", **JIT)
+def shrink_factor(x0, dx, a, a_old):
+    """The factor of ``mdr.shrink_edge`` for the cell [x0, x0 + dx] that the new edge a < a_old cuts
+    (x0 = int(a / dx) dx), the same arithmetic; 1 where the cell keeps its value."""
+    l_new = a - x0
+    l_old = min(a_old - x0, dx)
+    if l_new > 0.0 and l_old > l_new:
+        w_old = a_old * a_old - (x0 * x0 + x0 * (x0 + l_old) + (x0 + l_old) * (x0 + l_old)) / 3.0
+        if w_old > 0.0:
+            return (a_old * a_old - (x0 * x0 + x0 * a + a * a) / 3.0) / w_old
+    return 1.0
+
+
+@njit(inline="always", **JIT)
+def initial_width(a, n, R):
+    """``mdr.initial_width`` (R* times the power of 2 with n dx / 2 <= a < n dx) by ``ldexp``: the same value,
+    without numba's integer power (a call that could raise, which would keep the array reference counts
+    of the 3D kernels)."""
+    L = R if R > 0.0 else 1.0
+    return math.ldexp(L, int(math.floor(math.log2(2.0 * a / (n * L)))))
+
+
+#: a cell with |u|^2 > NEAR umax^2 may be beyond its Coulomb circle (the margin covers the rounding of |u|^2)
+NEAR = 1.0 - 1e-9
+
+
+@njit(inline="always", **JIT)
 def radial(u1, u2, umax):
     """Local Coulomb circle |u| <= umax of an MDR cell: radial return (direction kept)."""
     m2 = u1 * u1 + u2 * u2
@@ -377,7 +412,7 @@ def radial(u1, u2, umax):
     return u1, u2
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def new_frame(nx, ny, nz, ddx, ddy, ddz):
     """First axis of a new frame of the tangent plane: along the slip, or any axis of the plane."""
     ex, ey, ez = carry_unit(ddx, ddy, ddz, nx, ny, nz, 1.0, 0.0)

@@ -70,6 +70,7 @@ enum {P_ESTAR = 0, P_GSTAR = 1, P_RSTAR = 2, P_MU = 4, P_NSPRING = 11};
 enum {V_N = 0, V_A = 1, B = 2};
 enum {W_WORK = 0, W_X = 1, W_Y = 2, W_Z = 3, M_T = 4, M_TS = 5, M_TSS = 6, M_REGIME = 7, M_SIGN = 8, N_MD = 9,
       R_T1 = 4, R_T2 = 5, R_DX = 6, R_CELLS = 7};
+#define NEAR (1.0 - 1e-9)
 
 static inline void carry_unit(double *x, double *y, double *z, double nx, double ny, double nz,
                               double cs, double sn) {
@@ -161,6 +162,12 @@ static inline int ncells(double r, double dx, int n) {
     return m < n ? m : n;
 }
 
+static inline int ncells_q(double r, double q, int n) {
+    if (r <= 0.0) return 0;
+    int m = (int)q + 1;
+    return m < n ? m : n;
+}
+
 static inline void radial(double *u1, double *u2, double umax) {
     double m2 = *u1 * *u1 + *u2 * *u2;
     if (m2 > umax * umax) { double s = umax / sqrt(m2); *u1 *= s; *u2 *= s; }
@@ -172,18 +179,38 @@ static void mdr_cells(const double *p, double *h, int k0, int n, double dx, doub
     double cc = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a);
     double umax_per_w = p[P_MU] * p[P_ESTAR] * cc / GM;
     double a2 = a * a, da = a - a_old;
-    int m1 = ncells(a, dx, n), m2 = ncells(a_old, dx, n);
+    double qa = a / dx, qo = a_old / dx;
+    int m1 = ncells_q(a, qa, n), m2 = ncells_q(a_old, qo, n);
     int m = m1 > m2 ? m1 : m2;
-    int full = (int)(fmin(a, a_old) / dx);
+    int full = (int)fmin(qa, qo);
     if (full > m) full = m;
     double dx2 = dx * dx / 3.0, S1 = 0.0, S2 = 0.0;
-    for (int i = 0; i < full; i++) {
+    int near = 0;
+    for (int i = 0; i < full; i++) {     /* u += d; flag a cell near or beyond its circle */
         int k = k0 + 2 * i;
         double umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1));
         double u1 = h[k] + d1, u2 = h[k + 1] + d2;
-        radial(&u1, &u2, umax);
         h[k] = u1; h[k + 1] = u2;
         S1 += u1; S2 += u2;
+        near |= u1 * u1 + u2 * u2 > NEAR * (umax * umax);
+    }
+    if (near) {                           /* cells before the first flagged one keep their values */
+        S1 = 0.0; S2 = 0.0;
+        int i0 = 0;
+        for (; i0 < full; i0++) {
+            int k = k0 + 2 * i0;
+            double umax = umax_per_w * (a2 - dx2 * (3 * i0 * (i0 + 1) + 1));
+            if (h[k] * h[k] + h[k + 1] * h[k + 1] > NEAR * (umax * umax)) break;
+            S1 += h[k]; S2 += h[k + 1];
+        }
+        for (int i = i0; i < full; i++) {  /* radial return from there on */
+            int k = k0 + 2 * i;
+            double umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1));
+            double u1 = h[k], u2 = h[k + 1];
+            radial(&u1, &u2, umax);
+            h[k] = u1; h[k + 1] = u2;
+            S1 += u1; S2 += u2;
+        }
     }
     double T1 = S1 * dx, T2 = S2 * dx;
     for (int i = full; i < m; i++) {
@@ -248,7 +275,7 @@ static void mdr_split(double *h, int k0, int n, double dx, double r) {
 }
 
 static void mdr_shrink_edge(double *h, int k0, int n, double dx, double a, double a_old) {
-    int i = (int)(a / dx);
+    int i = (int)(a / dx);   /* (the numba kernel reuses a / dx of the cell counts) */
     if (i >= n) return;
     double x0 = i * dx, l_new = a - x0, l_old = fmin(a_old - x0, dx);
     if (l_new > 0.0 && l_old > l_new) {
