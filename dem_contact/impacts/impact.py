@@ -18,7 +18,7 @@ from ..errors import InputError, NumericalError
 from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_PN, O_PT, O_SLID,
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
                          S_T, S_TANG, S_VN, S_VSLIP, SLIDE_IMPULSE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK,
-                         B_INV_I1, B_INV_I2, B_INV_M, B_NORMAL, B_R1, B_R2, B_TANGENTIAL, N_BODY, impact_kernel)
+                         B_INV_I1, B_INV_I2, B_INV_M, B_R1, B_R2, N_BODY, integrator_for)
 from ..laws.slots import H_A, P_GAMMA
 from ..laws import closed_forms as cf
 from ..laws.closed_forms import HERTZ_TC_FACTOR
@@ -266,9 +266,8 @@ def body_inertia(scene: Scene):
 
 
 def body_row(scene: Scene) -> np.ndarray:
-    """The scene's row of ``integrator.impact_kernel``: the law ids and ``body_inertia`` (slots B_*)."""
+    """The scene's body row of ``integrator.integrator_for``: ``body_inertia`` (slots B_*)."""
     row = np.zeros(N_BODY)
-    row[B_NORMAL], row[B_TANGENTIAL] = scene.normal_id, scene.tangential_id
     row[B_INV_M], row[B_R1], row[B_R2], row[B_INV_I1], row[B_INV_I2] = body_inertia(scene)
     return row
 
@@ -319,7 +318,7 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     out = np.empty(N_OUT)
     h = np.empty(c.history_size)
     try:
-        impact_kernel(c.bodies, c.params, h, vn, vt, spin, spin2, dt, n_max, scheme == "located", out, ser)
+        c.integrate(c.params, h, c.bodies, vn, vt, spin, spin2, dt, n_max, scheme == "located", out, ser)
     except ArithmeticError as e:      # e.g. a division by zero inside a law: never a bare traceback
         raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
                              f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
@@ -399,8 +398,8 @@ _NO_SERIES = np.zeros((0, N_SERIES))
 
 class SceneConstants:
     """What every impact of one scene shares, computed once per scene (``scene_constants``): the inertia,
-    the bounds of ``check_scales``, the default steps per contact, the scene's ``describe()`` (shared by
-    its results: read only)."""
+    the bounds of ``check_scales``, the default steps per contact, the kernel of its laws, the scene's
+    ``describe()`` (shared by its results: read only)."""
 
     def __init__(self, scene: Scene):
         self.inertia = inv_m, _, _, inv_I1, inv_I2 = body_inertia(scene)
@@ -411,6 +410,7 @@ class SceneConstants:
         self.R_star = scene.pair.R_star
         self.params = scene.params
         self.bodies = body_row(scene)
+        self.integrate = integrator_for(scene.normal_id, scene.tangential_id)
         self.history_size = scene.history_size
         self.sphere2 = isinstance(scene.body2, Sphere)
         self.mdr = scene.tangential == "mdr"

@@ -49,15 +49,6 @@ O_STATUS = 14   # 0 ended, 1 step limit reached, 2 non-finite state
 O_MINWT = 15    # minimum over time of the running tangential work [J]
 N_OUT = 16
 
-# slots of the body row of impact_kernel (impact.body_row)
-B_NORMAL = 0        # normal law id
-B_TANGENTIAL = 1    # tangential law id
-B_INV_M = 2         # 1/m* [1/kg]
-B_R1 = 3            # radius of body 1 [m]
-B_R2 = 4            # radius of body 2 [m] (0: a wall)
-B_INV_I1 = 5        # 1/I1 [1/(kg m^2)]
-B_INV_I2 = 6        # 1/I2 [1/(kg m^2)] (0: a wall)
-N_BODY = 7
 
 # columns of the optional time series
 S_T, S_DELTA, S_N, S_TANG, S_A, S_VN, S_VSLIP = range(7)
@@ -100,10 +91,11 @@ def borrowed(typingctx, arr):
     return arr(arr), codegen
 
 
-@njit(cache=True)
-def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2,
-                     dt, max_steps, locate, out, series):
-    """Integrate one impact from first touch (delta = 0) to separation.
+@njit(inline="always", cache=True)
+def integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out,
+               series):
+    """Integrate one impact from first touch (delta = 0) to separation. Inlined into its callers: a caller
+    whose law ids are constants (``integrator_for``) compiles those laws only.
 
     nid, tid: normal and tangential law ids; p: parameter row; h: history row (zeroed by the caller);
     vn0 > 0: incident normal approach speed [m/s]; vt0: incident tangential velocity of the centres
@@ -225,10 +217,44 @@ def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, 
 
 
 @njit(cache=True)
-def impact_kernel(body, p, h, vn0, vt0, w10, w20, dt, max_steps, locate, out, series):
-    """One impact from a clean history: zeroes the history row h, then ``integrate_impact`` with the law ids
-    and inertia of the body row ``body`` (slots B_*; ``impact.body_row``). Fewer arguments than
-    ``integrate_impact``: a call from Python costs less."""
-    h[:] = 0.0
-    integrate_impact(int(body[B_NORMAL]), int(body[B_TANGENTIAL]), p, h, vn0, vt0, w10, w20, body[B_INV_M],
-                     body[B_R1], body[B_R2], body[B_INV_I1], body[B_INV_I2], dt, max_steps, locate, out, series)
+def integrate_impact(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out,
+                     series):
+    """``integrate_inlined`` with the law ids chosen at run time (every law is compiled into it)."""
+    integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out, series)
+
+
+# slots of the body row of ``integrator_for`` (impact.body_row)
+B_INV_M = 0         # 1/m* [1/kg]
+B_R1 = 1            # radius of body 1 [m]
+B_R2 = 2            # radius of body 2 [m] (0: a wall)
+B_INV_I1 = 3        # 1/I1 [1/(kg m^2)]
+B_INV_I2 = 4        # 1/I2 [1/(kg m^2)] (0: a wall)
+N_BODY = 5
+
+#: Signature of the integrator of one law pair (``integrator_for``): (p, h, body, vn0, vt0, w10, w20, dt,
+#: max_steps, locate, out, series), as ``integrate_impact`` with the inertia in the body row (slots B_*).
+INTEGRATOR = types.void(types.float64[::1], types.float64[::1], types.float64[::1], *[types.float64] * 5,
+                        types.int64, types.boolean, types.float64[::1], types.float64[:, ::1])
+
+_INTEGRATORS = {}
+
+
+def integrator_for(nid: int, tid: int):
+    """The integrator of the law pair (nid, tid): ``integrate_impact`` without the law ids (signature
+    INTEGRATOR), from a clean history (it zeroes h first), compiled for that pair alone (its law ids are constants, so the other laws are never
+    compiled; each pair has its own entry in numba's cache). Callable from Python and, as a first-class
+    function, from other kernels (``sweep.sweep_kernel``)."""
+    key = (int(nid), int(tid))
+    integ = _INTEGRATORS.get(key)
+    if integ is None:
+        integ = _INTEGRATORS[key] = _integrator(*key)
+    return integ
+
+
+def _integrator(nid, tid):
+    @njit(INTEGRATOR, cache=True)
+    def integrate(p, h, body, vn0, vt0, w10, w20, dt, max_steps, locate, out, series):
+        h[:] = 0.0
+        integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, body[B_INV_M], body[B_R1], body[B_R2], body[B_INV_I1],
+                          body[B_INV_I2], dt, max_steps, locate, out, series)
+    return integrate

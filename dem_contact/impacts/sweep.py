@@ -20,12 +20,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit, prange
+from numba import njit, prange, types
 
 from ..errors import InputError, NumericalError
-from .impact import (MAX_CONTACT_TIMES, SCALE_RANGE, SCHEMES, body_inertia, build_result, check_incident,
+from .impact import (MAX_CONTACT_TIMES, SCALE_RANGE, SCHEMES, body_row, build_result, check_incident,
                      check_mdr_grid, check_mdr_reach, check_scales, derived_arrays, impact, speed_range, time_step)
-from .integrator import N_OUT, N_SERIES, integrate_impact
+from .integrator import INTEGRATOR, N_OUT, N_SERIES, borrowed, integrator_for
 from ..materials import Material, Sphere, Wall, check_finite
 from ..laws.model import Scene
 from ..laws.slots import H_A
@@ -37,18 +37,40 @@ MAX_SWEEP_STEPS = 1e10
 PROGRESS_UPDATES = 20
 
 
-@njit(parallel=True, cache=True)
-def sweep_kernel(nid, tid, p, hist, vn, vt, w1, w2, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out):
-    """Integrate independent impacts in parallel (prange over impacts, numba.get_num_threads() threads).
+_SWEEP = []
+_LAWS_LOADED = set()
 
-    p: parameter row (shared, read only); hist: float64[n, n_hist], zeroed rows, one per impact (written);
+
+def sweep_kernel():
+    """The sweep kernel (compiled on first use): ``kernel(integrate, p, hist, body, vn, vt, w1, w2, dt,
+    max_steps, locate, out)`` integrates independent impacts in parallel (prange over
+    impacts, numba.get_num_threads() threads) with ``integrate``, the integrator of the scene's laws
+    (``integrator.integrator_for``, a first-class function: one kernel serves every law pair).
+
+    p: parameter row, body: ``impact.body_row`` (shared, read only); hist: float64[n, n_hist], one row per
+    impact (written);
     vn, vt, w1, w2, dt: float64[n] incident normal speed [m/s], tangential velocity [m/s], spins [rad/s],
     time step [s]; max_steps: int64[n]; out: float64[n, N_OUT] (written, slots ``integrator.O_*``).
     """
-    series = np.zeros((0, N_SERIES))
-    for i in prange(vn.shape[0]):
-        integrate_impact(nid, tid, p, hist[i], vn[i], vt[i], w1[i], w2[i], inv_m, R1, R2, inv_I1, inv_I2,
-                         dt[i], max_steps[i], locate, out[i], series)
+    if not _SWEEP:
+        _SWEEP.append(_sweep_kernel())
+    return _SWEEP[0]
+
+
+def _sweep_kernel():
+    vec = types.float64[::1]
+    mat = types.float64[:, ::1]
+    sig = types.void(types.FunctionType(INTEGRATOR), vec, mat, vec, vec, vec, vec, vec, vec, types.int64[::1],
+                     types.boolean, mat)
+
+    @njit(sig, parallel=True, cache=True)
+    def kernel(integrate, p, hist, body, vn, vt, w1, w2, dt, max_steps, locate, out):
+        # uncounted views: the threads do not share atomic reference counts at every impact
+        series = np.zeros((0, N_SERIES))
+        p_, body_, hist_, out_, series_ = borrowed(p), borrowed(body), borrowed(hist), borrowed(out), borrowed(series)
+        for i in prange(vn.shape[0]):
+            integrate(p_, hist_[i], body_, vn[i], vt[i], w1[i], w2[i], dt[i], max_steps[i], locate, out_[i], series_)
+    return kernel
 
 
 class _Points(Sequence):
@@ -168,29 +190,28 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
                          f"the limit is {MAX_SWEEP_STEPS:.3g}: use fewer impacts or fewer steps per contact")
     check_mdr_reach(scene, float(vn.max()))
     max_steps = np.ceil(MAX_CONTACT_TIMES * spcs).astype(np.int64) + 10
-    inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     out = np.zeros((n, N_OUT))
     hist = np.zeros((n, scene.history_size))
     w2 = np.zeros(n)
     locate = scheme == "located"
     chunk = n if not progress else max(1, -(-n // PROGRESS_UPDATES))
-    args = (scene.normal_id, scene.tangential_id, scene.params)
-    body = (inv_m, R1, R2, inv_I1, inv_I2)
+    if progress and (not _SWEEP or (scene.normal_id, scene.tangential_id) not in _LAWS_LOADED):
+        # the first use loads the kernels from numba's cache or compiles them (seconds)
+        print("compiling kernels (first run only) ...", file=sys.stderr, flush=True)
+    kernel = sweep_kernel()
+    args = (integrator_for(scene.normal_id, scene.tangential_id), scene.params)
+    _LAWS_LOADED.add((scene.normal_id, scene.tangential_id))
+    body = body_row(scene)
     bar = None
     if progress:
         from tqdm import tqdm
-        if not sweep_kernel.signatures:
-            # the first call loads the kernels from numba's cache or compiles them (seconds)
-            print("compiling kernels (first run only) ...", file=sys.stderr, flush=True)
-            sweep_kernel(*args, hist[:1].copy(), vn[:1], vt[:1], spin[:1], w2[:1], *body, dts[:1], max_steps[:1],
-                         locate, np.zeros((1, N_OUT)))
         bar = tqdm(total=n, unit="impact", desc=f"sweep {scene.tangential}", leave=False)
     try:
         for s in range(0, n, chunk):
             e = min(n, s + chunk)
             try:
-                sweep_kernel(*args, hist[s:e], vn[s:e], vt[s:e], spin[s:e], w2[s:e], *body, dts[s:e],
-                             max_steps[s:e], locate, out[s:e])
+                kernel(*args, hist[s:e], body, vn[s:e], vt[s:e], spin[s:e], w2[s:e], dts[s:e], max_steps[s:e],
+                       locate, out[s:e])
             except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
                 raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
                                      f"{e - 1} ({type(err).__name__}: {err})") from None
