@@ -158,6 +158,15 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
     return pairs[:m], hits[:kw]
 
 
+@njit(inline="always", cache=True)
+def _separation(x, radius, i, j):
+    """(dx, dy, dz) = x_j - x_i, its squared length and r_i + r_j."""
+    dx = x[j, 0] - x[i, 0]
+    dy = x[j, 1] - x[i, 1]
+    dz = x[j, 2] - x[i, 2]
+    return dx, dy, dz, dx * dx + dy * dy + dz * dz, radius[i] + radius[j]
+
+
 @njit(cache=True)
 def overlapping(x, radius, walls, cand, cand_walls):
     """The candidates in contact now: (pairs, deltas, wall_hits, wall_deltas), deltas > 0 the overlaps."""
@@ -167,11 +176,7 @@ def overlapping(x, radius, walls, cand, cand_walls):
     for c in range(cand.shape[0]):
         i = cand[c, 0]
         j = cand[c, 1]
-        dx = x[j, 0] - x[i, 0]
-        dy = x[j, 1] - x[i, 1]
-        dz = x[j, 2] - x[i, 2]
-        rs = radius[i] + radius[j]
-        r2 = dx * dx + dy * dy + dz * dz
+        _, _, _, r2, rs = _separation(x, radius, i, j)
         if r2 < rs * rs:
             keep[m] = c
             deltas[m] = rs - math.sqrt(r2)
@@ -344,11 +349,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         if c < npc:
             i = cand[c, 0]
             j = cand[c, 1]
-            dx = x[j, 0] - x[i, 0]
-            dy = x[j, 1] - x[i, 1]
-            dz = x[j, 2] - x[i, 2]
-            rs = radius[i] + radius[j]
-            r2 = dx * dx + dy * dy + dz * dz
+            dx, dy, dz, r2, rs = _separation(x, radius, i, j)
             touch = r2 < rs * rs
             local_j = j < nlocal
         else:
