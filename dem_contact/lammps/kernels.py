@@ -20,8 +20,9 @@ A contact between atoms on two ranks is therefore evaluated twice, once by each 
 copy of the history. Both evaluations are made in one canonical order, the atom with the lower id as
 body 1, from the same inputs (ghost positions, velocities and spins are exact copies of the owner's),
 so the two copies of the history stay bitwise equal and the two forces are exact opposites. A contact
-between two local atoms is evaluated once and its history row is copied into both atoms' rows, so that
-either atom can later move to another rank with it. (Across a periodic boundary the ghost position is
+between two local atoms is evaluated once; each atom has a row for it: the lower atom id's is the current
+one, and the other is rewritten with it at every step while either atom is near a subdomain face it can
+cross (``near_boundary``), so that an atom that moves to another rank takes a current copy along. (Across a periodic boundary the ghost position is
 x + L, rounded: there the two sides agree to rounding error only.)
 
 Kinematics follow LAMMPS's granular models (``pair granular``, ``fix wall/gran``): the slip velocity
