@@ -9,7 +9,7 @@ import pytest
 import dem_contact as dc
 from dem_contact.cli import main
 from dem_contact.impacts.impact import MAX_STEPS_PER_CONTACT, build_result
-from dem_contact.impacts.integrator import N_OUT, O_PN, O_STATUS, O_TC, O_VN
+from dem_contact.impacts.integrator import N_OUT, O_PN, O_STATUS, O_TC, O_VN, integrator_for
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import sweep
 
@@ -143,3 +143,10 @@ def test_undefined_quantities_are_said_so(capsys):
     assert rc == 0
     assert "nan" not in out.lower() and "inf" not in out.lower()
     assert "undefined (vt = 0)" in out and "undefined (mu = 0)" in out
+
+
+@pytest.mark.parametrize("ids", [(0, 99), (9, 8), (-1, 8), (True, 8), (0.5, 8)])
+def test_integrator_of_unknown_laws_is_refused(ids):
+    """The per-law-pair integrator is built for known law ids only (no kernel compiled for anything else)."""
+    with pytest.raises(dc.InputError, match="not law ids"):
+        integrator_for(*ids)

@@ -26,9 +26,11 @@ from numba import njit
 from numba.core import cgutils, types
 from numba.extending import intrinsic
 
+from ..errors import InputError
 from ..laws.contact import contact_step, normal_force, normal_gap
 from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
 from ..laws.slots import H_N, P_MU
+from ..laws.vector import NORMAL_IDS, TANGENTIAL_IDS
 
 # slots of the output row
 O_VN = 0        # final normal approach velocity, V_nr (negative: moving away) [m/s]
@@ -243,11 +245,15 @@ def integrator_for(nid: int, tid: int):
     """The integrator of the law pair (nid, tid): ``integrate_impact`` without the law ids (signature
     INTEGRATOR), from a clean history (it zeroes h first), compiled for that pair alone (its law ids are constants, so the other laws are never
     compiled; each pair has its own entry in numba's cache). Callable from Python and, as a first-class
-    function, from other kernels (``sweep.sweep_kernel``)."""
-    key = (int(nid), int(tid))
+    function, from other kernels (``sweep.sweep_kernel``). The kernel does not check its arguments:
+    ``impact.impact`` is the checked entry."""
+    key = (nid, tid)
     integ = _INTEGRATORS.get(key)
     if integ is None:
-        integ = _INTEGRATORS[key] = _integrator(*key)
+        if isinstance(nid, bool) or nid not in NORMAL_IDS or isinstance(tid, bool) or tid not in TANGENTIAL_IDS:
+            raise InputError(f"(nid, tid) = ({nid!r}, {tid!r}) are not law ids (laws.model.NORMAL_LAWS, "
+                             f"TANGENTIAL_LAWS)")
+        integ = _INTEGRATORS[key] = _integrator(int(nid), int(tid))
     return integ
 
 
