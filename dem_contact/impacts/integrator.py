@@ -247,13 +247,12 @@ def integrator_for(nid: int, tid: int):
     compiled; each pair has its own entry in numba's cache). Callable from Python and, as a first-class
     function, from other kernels (``sweep.sweep_kernel``). The kernel does not check its arguments:
     ``impact.impact`` is the checked entry."""
-    key = (nid, tid)
+    if isinstance(nid, bool) or nid not in NORMAL_IDS or isinstance(tid, bool) or tid not in TANGENTIAL_IDS:
+        raise InputError(f"(nid, tid) = ({nid!r}, {tid!r}) are not law ids (laws.model.NORMAL_LAWS, TANGENTIAL_LAWS)")
+    key = (int(nid), int(tid))
     integ = _INTEGRATORS.get(key)
     if integ is None:
-        if isinstance(nid, bool) or nid not in NORMAL_IDS or isinstance(tid, bool) or tid not in TANGENTIAL_IDS:
-            raise InputError(f"(nid, tid) = ({nid!r}, {tid!r}) are not law ids (laws.model.NORMAL_LAWS, "
-                             f"TANGENTIAL_LAWS)")
-        integ = _INTEGRATORS[key] = _integrator(int(nid), int(tid))
+        integ = _INTEGRATORS[key] = _integrator(*key)
     return integ
 
 
