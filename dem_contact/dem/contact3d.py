@@ -497,36 +497,56 @@ def _family(tid):
     return 1
 
 
-_LOOPS = {}
+@njit(**JIT)
+def _serial_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-def _loop(family, parallel):
-    """The batch loop of one law family (``_family``), serial or parallel (prange), compiled on first use:
-    the family is a constant of the loop, so its step alone is compiled, inlined in the loop."""
-    loop = _LOOPS.get((family, parallel))
-    if loop is None:
-        loop = _LOOPS[family, parallel] = _make_loop(family, parallel)
-    return loop
+@njit(**JIT)
+def _serial_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-def _make_loop(family, parallel):
-    @njit(parallel=parallel, **JIT)
-    def loop(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-        for c in prange(overlaps.shape[0]):
-            forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _family_step(
-                family, nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2],
-                overlaps[c], velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-    return loop
+@njit(**JIT)
+def _serial_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in range(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-@njit(inline="always", **JIT)
-def _family_step(family, nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """The step of law family ``family`` (``_family``), inlined."""
-    if family == 0:
-        return _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if family == 1:
-        return _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    return _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+@njit(parallel=True, **JIT)
+def _batch_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+    for c in prange(overlaps.shape[0]):
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+_SERIAL = (_serial_md, _serial_spring, _serial_mdr)
+_BATCH = (_batch_md, _batch_spring, _batch_mdr)
 
 
 def _valid_ids(nid, tid):
@@ -542,13 +562,13 @@ def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velo
     (updated); normals, velocities: float64[n, 3]; overlaps, wn: float64[n]; dt [s]; forces, tforces:
     float64[n, 3] receive the force on body 1 and its tangential part."""
     nid, tid = _valid_ids(nid, tid)
-    _loop(_family(tid), True)(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    _BATCH[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
 
 
 def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
     """``contact_forces_batch`` on one thread."""
     nid, tid = _valid_ids(nid, tid)
-    _loop(_family(tid), False)(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    _SERIAL[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
 
 
 def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
