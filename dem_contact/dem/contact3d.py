@@ -41,7 +41,10 @@ import math
 import os
 
 import numpy as np
-from numba import njit, prange
+from llvmlite import ir
+from numba import njit, prange, types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from ..errors import InputError, NumericalError
 from ..laws import mdr as M
@@ -497,56 +500,121 @@ def _family(tid):
     return 1
 
 
+@intrinsic
+def _prefetch(typingctx, arr, row, col):
+    """Ask the CPU to bring the cache line of arr[row, col] (a 2D C array) into its caches, for writing
+    (``llvm.prefetch``); a hint only, it never faults."""
+    if not (isinstance(arr, types.Array) and arr.ndim == 2 and isinstance(row, types.Integer)
+            and isinstance(col, types.Integer)):
+        return None
+
+    def codegen(context, builder, signature, args):
+        aryty = signature.args[0]
+        ary = context.make_array(aryty)(context, builder, args[0])
+        idx = [context.cast(builder, v, t, types.intp) for v, t in zip(args[1:], signature.args[1:])]
+        ptr = cgutils.get_item_pointer(context, builder, aryty, ary, idx, wraparound=False)
+        i8p = ir.IntType(8).as_pointer()
+        i32 = ir.IntType(32)
+        fnty = ir.FunctionType(ir.VoidType(), [i8p, i32, i32, i32])
+        fn = cgutils.get_or_insert_function(builder.module, fnty, "llvm.prefetch.p0")
+        builder.call(fn, [builder.bitcast(ptr, i8p), i32(1), i32(3), i32(1)])   # write, keep, data
+        return context.get_dummy_value()
+
+    return types.void(arr, row, col), codegen
+
+
+#: contacts ahead whose history rows the batch loops prefetch
+AHEAD = 4
+
+
+@njit(inline="always", **JIT)
+def _prefetch_row(H, r):
+    """Prefetch every cache line of row r of H."""
+    for k in range(0, H.shape[1], 8):
+        _prefetch(H, r, k)
+    _prefetch(H, r, H.shape[1] - 1)
+
+
+# The batch loops of each law family, the family's step inlined: contact c has history row rows[c] of H,
+# prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
+# contact).
+
 @njit(**JIT)
-def _serial_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    for c in range(overlaps.shape[0]):
+def _serial_md(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    n = overlaps.shape[0]
+    for c in range(n):
+        if c + AHEAD < n:
+            _prefetch_row(H, rows[c + AHEAD])
         forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
-            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-
-
-@njit(**JIT)
-def _serial_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    for c in range(overlaps.shape[0]):
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
-            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-
-
-@njit(**JIT)
-def _serial_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    for c in range(overlaps.shape[0]):
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
-            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
             velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
 @njit(parallel=True, **JIT)
-def _batch_md(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    for c in prange(overlaps.shape[0]):
+def _batch_md(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    n = overlaps.shape[0]
+    for c in prange(n):
+        if c + AHEAD < n:
+            _prefetch_row(H, rows[c + AHEAD])
         forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
-            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
             velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-@njit(parallel=True, **JIT)
-def _batch_spring(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    for c in prange(overlaps.shape[0]):
+@njit(**JIT)
+def _serial_spring(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    n = overlaps.shape[0]
+    for c in range(n):
+        if c + AHEAD < n:
+            _prefetch_row(H, rows[c + AHEAD])
         forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
-            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
             velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
 @njit(parallel=True, **JIT)
-def _batch_mdr(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
-    for c in prange(overlaps.shape[0]):
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
-            nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+def _batch_spring(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    n = overlaps.shape[0]
+    for c in prange(n):
+        if c + AHEAD < n:
+            _prefetch_row(H, rows[c + AHEAD])
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
+            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
             velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-_SERIAL = (_serial_md, _serial_spring, _serial_mdr)
-_BATCH = (_batch_md, _batch_spring, _batch_mdr)
+@njit(**JIT)
+def _serial_mdr(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    n = overlaps.shape[0]
+    for c in range(n):
+        if c + AHEAD < n:
+            _prefetch_row(H, rows[c + AHEAD])
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+@njit(parallel=True, **JIT)
+def _batch_mdr(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    n = overlaps.shape[0]
+    for c in prange(n):
+        if c + AHEAD < n:
+            _prefetch_row(H, rows[c + AHEAD])
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
+            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+
+
+#: the loops of each law family (``_family``): (serial, parallel)
+_LOOPS = ((_serial_md, _batch_md), (_serial_spring, _batch_spring), (_serial_mdr, _batch_mdr))
+_IDENTITY = [np.arange(0)]
+
+
+def _identity_rows(n):
+    """int64[n] 0 ... n - 1 (one array kept and grown: a view of it, never written)."""
+    if len(_IDENTITY[0]) < n:
+        _IDENTITY[0] = np.arange(max(n, 2 * len(_IDENTITY[0])), dtype=np.int64)
+    return _IDENTITY[0][:n]
 
 
 def _valid_ids(nid, tid):
@@ -554,21 +622,33 @@ def _valid_ids(nid, tid):
     return nid, _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
 
 
-def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+def _run(parallel, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+         history_rows):
+    nid, tid = _valid_ids(nid, tid)
+    rows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
+    _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities,
+                                               wn, dt, forces, tforces)
+
+
+def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+                         history_rows=None):
     """Advance every contact by one step, in parallel (numba prange over contacts), with the loop compiled
     for the law family of ``tid`` only. The law ids are checked, nothing else (``check_contacts``).
 
     params: float64[n_rows, N_PARAMS]; pair_rows: int64[n] row of each contact; H: float64[n, history_size]
     (updated); normals, velocities: float64[n, 3]; overlaps, wn: float64[n]; dt [s]; forces, tforces:
-    float64[n, 3] receive the force on body 1 and its tangential part."""
-    nid, tid = _valid_ids(nid, tid)
-    _BATCH[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    float64[n, 3] receive the force on body 1 and its tangential part. history_rows: int64[n], distinct,
+    the row of H that holds each contact's history (H then has any number of rows: a DEM code's own
+    per-particle storage, advanced in place); default: row c for contact c."""
+    _run(True, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+         history_rows)
 
 
-def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces):
+def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+                          history_rows=None):
     """``contact_forces_batch`` on one thread."""
-    nid, tid = _valid_ids(nid, tid)
-    _SERIAL[_family(tid)](nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    _run(False, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+         history_rows)
 
 
 def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
@@ -618,10 +698,11 @@ def _first_bad(name, bad, what):
 
 
 def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
-                   tforces=None):
+                   tforces=None, history_rows=None):
     """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
     ``contact_force`` call that uses the same arrays): law ids, dtypes, shapes, C-contiguity, row indices
-    in range, history rows long enough for the laws, unit normals (within 1e-6), dt > 0 and finite inputs.
+    in range (``history_rows`` distinct rows of H), history rows long enough for the laws, unit normals
+    (within 1e-6), dt > 0 and finite inputs.
     Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
     again when they are reallocated); the jitted kernels themselves do not check."""
     nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
@@ -633,7 +714,16 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     _array("overlaps", overlaps, 1, np.float64)
     n = overlaps.shape[0]
     _array("pair_rows", pair_rows, 1, np.int64, (n,))
-    _array("H", H, 2, np.float64, (n, None))
+    if history_rows is None:
+        _array("H", H, 2, np.float64, (n, None))
+    else:
+        _array("H", H, 2, np.float64, (None, None))
+        _array("history_rows", history_rows, 1, np.int64, (n,))
+        nh = H.shape[0]
+        _first_bad("history_rows", (history_rows < 0) | (history_rows >= nh),
+                   lambda c: f"= {history_rows[c]} is not a row of H (valid: 0 to {nh - 1})")
+        if len(np.unique(history_rows)) != n:
+            raise InputError("history_rows must be distinct: two contacts cannot share one history row")
     _array("normals", normals, 2, np.float64, (n, 3))
     _array("velocities", velocities, 2, np.float64, (n, 3))
     _array("wn", wn, 1, np.float64, (n,))
@@ -666,7 +756,9 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     if H.shape[1] < need:
         raise InputError(f"H has rows of length {H.shape[1]}; these laws and params need {need} "
                          f"(PairTable.history_size, contact3d.history_size)")
-    _first_bad("H", ~np.all(np.isfinite(H), axis=1), lambda c: "(the history of the contact) is not finite")
+    hist = H if history_rows is None else H[history_rows]
+    _first_bad("H" if history_rows is None else "H[history_rows]", ~np.all(np.isfinite(hist), axis=1),
+               lambda c: "(the history of the contact) is not finite")
     _first_bad("normals", ~np.all(np.isfinite(normals), axis=1), lambda c: "is not finite")
     length = np.sqrt(np.einsum("ij,ij->i", normals, normals))
     _first_bad("normals", np.abs(length - 1.0) > UNIT_TOL,
@@ -677,7 +769,8 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
 
 
 @njit(boundscheck=True, **JIT)
-def _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, need):
+def _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn, dt, forces, tforces,
+                  need):
     """``contact_forces_serial`` with bounds checks and per-contact checks of what the kernel relies on;
     returns (-1, 0) or (first bad contact, reason: 1 row, 2 history row length, 3 normal, 4 non-finite
     input, 5 non-finite force)."""
@@ -696,8 +789,8 @@ def _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
         if not math.isfinite(s):
             return c, 4
         forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = contact_force(
-            nid, tid, params, row, H, c, nx, ny, nz, overlaps[c], velocities[c, 0], velocities[c, 1],
-            velocities[c, 2], wn[c], dt)
+            nid, tid, params, row, H, hrows[c], nx, ny, nz, overlaps[c],
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
         if not math.isfinite(forces[c, 0] + forces[c, 1] + forces[c, 2]):
             return c, 5
     return -1, 0
@@ -708,12 +801,14 @@ _DEBUG_REASONS = {1: "pair_rows[{c}] is not a row of params", 2: "H rows are too
 
 
 def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, *,
-                   parallel=True, debug=None):
+                   history_rows=None, parallel=True, debug=None):
     """Checked batch step: ``check_contacts``, then ``contact_forces_batch`` (``parallel``) or
-    ``contact_forces_serial``. ``debug`` (default: the environment variable DEM_CONTACT_DEBUG set to
-    1): run a serial loop compiled with numba's bounds checks that also checks every contact's inputs and
-    force, and raises ``InputError`` / ``NumericalError`` naming the first bad contact."""
-    check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces)
+    ``contact_forces_serial`` (``history_rows``: see ``contact_forces_batch``). ``debug`` (default: the
+    environment variable DEM_CONTACT_DEBUG set to 1): run a serial loop compiled with numba's bounds
+    checks that also checks every contact's inputs and force, and raises ``InputError`` /
+    ``NumericalError`` naming the first bad contact."""
+    check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+                   history_rows)
     if debug is None:
         debug = os.environ.get("DEM_CONTACT_DEBUG", "") not in ("", "0")
     if debug:
@@ -722,8 +817,9 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
             need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
         elif tid not in (MDR, MDR_ADAPTIVE):
             need = history_size(nid, tid)
-        c, reason = _serial_debug(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
-                                  forces, tforces, need)
+        hrows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
+        c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn,
+                                  float(dt), forces, tforces, need)
         if reason == 5:
             raise NumericalError(f"contact {c}: the force is not finite (overlap {overlaps[c]:.6g} m"
                                  f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
@@ -731,7 +827,7 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
             raise InputError(_DEBUG_REASONS[reason].format(c=c))
     elif parallel:
         contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt), forces,
-                             tforces)
+                             tforces, history_rows)
     else:
         contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
-                              forces, tforces)
+                              forces, tforces, history_rows)

@@ -433,21 +433,27 @@ class LammpsContacts:
             self.list_builds += 1
             self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
-            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.hs)
+            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
             self._acc = np.empty((2 * nlocal + 16, 7))
-        _, body, src, dst, rows, normals, overlaps, vel, wn, Hc, forces, tforces = self._buffers
+        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = self._buffers
         t = self.table
         m = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt, self.frame_spin, stat,
             self._used, self._near, *self._buffers[:10])
-        contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], Hc[:m], normals[:m], overlaps[:m],
-                              vel[:m], wn[:m], self.dt, forces[:m], tforces[:m])
+        if setup:
+            # nothing advances: the law works on copies of the histories
+            Hl, hl_rows = K.read_histories(H, hrow, m), None
+        else:
+            # the law advances the histories in their per-atom rows
+            Hl, hl_rows = H, src[:m]
+        contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], Hl, normals[:m], overlaps[:m],
+                              vel[:m], wn[:m], self.dt, forces[:m], tforces[:m], hl_rows)
         if not setup:
             self._rebuilt = False
-        summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H, forces, tforces,
+        summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      not setup, fext, torque, stat, saved, ntimestep, self._acc)
         if not setup:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises

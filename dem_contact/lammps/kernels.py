@@ -10,9 +10,9 @@ the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. The Verle
 numbers found for each candidate pair, so a continuing contact finds its rows without a search.
 
 One step: ``gather_contacts`` finds the contacts among the Verlet candidates, their history rows and the
-inputs of the law, with the histories copied into one contiguous array; the batch law kernel of the law
-family (``dem.contact3d.contact_forces_serial``, the law inlined in its loop) advances them; and
-``scatter_contacts`` writes the histories back and the forces and torques into LAMMPS's arrays.
+inputs of the law; the batch law kernel of the law family (``dem.contact3d.contact_forces_serial``, the
+law inlined in its loop) advances the histories in place, in the per-atom rows; and ``scatter_contacts``
+writes the second copies of the histories and the forces and torques into LAMMPS's arrays.
 
 Newton's third law between ranks, without reverse communication: each rank computes the contacts of its
 own (local) atoms, including those with ghost atoms, and writes forces and torques on local atoms only.
@@ -303,9 +303,9 @@ def _release(keys, H, i, r):
 @njit(cache=True)
 def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
                     keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near, work,
-                    body, src, dst, pair_rows, normals, overlaps, velocities, wn, Hc):
+                    body, src, dst, hrow, pair_rows, normals, overlaps, velocities, wn):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
-    (``dem.contact3d.contact_forces_serial``), with their history rows gathered.
+    (``dem.contact3d.contact_forces_serial``), with the H rows of their histories.
 
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
     atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
@@ -323,12 +323,15 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     (``near_boundary``).
 
     Fills the first m rows of the buffers (``contact_buffers``, at least as long as the candidates): body
-    int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w; body 1
-    = -1: a contact left out, no free history row); src int64[:] the H row the law's history is written back
-    to (-1: none) and dst int64[:] the row of a second copy (-1: none), see ``_copies``; pair_rows int64[:],
-    normals float64[:, 3], overlaps float64[:], velocities float64[:, 3], wn float64[:]: the inputs of the
-    law; Hc float64[:, history_size] the gathered histories (zero for a new contact); work int64[:, 3]
-    scratch. Returns m. A contact left out is counted in ST_NEED."""
+    int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w); src
+    int64[:] the H row that keeps the law's history (-1: none) and dst int64[:] the row of a second copy
+    (-1: none), see ``_copies``; hrow int64[:] the H row the law reads (-1: none, a new contact: zeros);
+    pair_rows int64[:], normals float64[:, 3], overlaps float64[:], velocities float64[:, 3], wn float64[:]:
+    the inputs of the law; work int64[:, 3] scratch. When ``advance``, every contact has its rows, hrow ==
+    src, and the history to advance is in row src (copied there from the other copy when that was the
+    one found): the law advances H in place (``history_rows=src``). Returns m. A contact for which an atom
+    has no free history row is left out (no force; counted in ST_NEED, so the run stops at the next check).
+    """
     hs = H.shape[1]
     slots = keys.shape[1]
     npc = cand.shape[0]
@@ -343,6 +346,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 used[i, r] = False
     n = 0
     late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
+    left_out = 0        # contacts with no free history row
     ended = 0           # candidates whose contact ended (work[:ended, 2])
     for c in range(npc + nwc):
         dx = dy = dz = r2 = rs = delta = nx = ny = nz = 0.0
@@ -383,8 +387,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             s, d = _copies(i, j, ri, rj, tag, slots, local_j, near)
             src[n] = s
             dst[n] = d
-            for q in range(hs):
-                Hc[n, q] = H[s, q]
+            hrow[n] = s
         if j >= 0:
             # canonical order: the lower id is body 1
             if tag[i] < tag[j]:
@@ -483,16 +486,17 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         ri = cand_rows[c, 0]
         rj = cand_rows[c, 1] if local_j else -1
         # the history read: the current copy (``_copies``), else the other, else none (a new contact)
-        hrow = -1
+        h_read = -1
         if ri >= 0 and (rj < 0 or tag[i] < tag[j]):
-            hrow = i * slots + ri
+            h_read = i * slots + ri
         elif rj >= 0:
-            hrow = j * slots + rj
+            h_read = j * slots + rj
         if advance:
             fi = ri if ri >= 0 else _free_row(keys, i)
             fj = (rj if rj >= 0 else _free_row(keys, j)) if local_j else -1
             if fi < 0 or (local_j and fj < 0):
                 body[n_, 0] = -1
+                left_out += 1
                 continue
             keys[i, fi] = key_i
             cand_rows[c, 0] = ri = fi
@@ -503,17 +507,38 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             src[n_], dst[n_] = _copies(i, j, ri, rj, tag, slots, local_j, near)
         else:
             src[n_] = dst[n_] = -1         # set-up call, a new contact: evaluated, nothing kept
-        for q in range(hs):
-            Hc[n_, q] = H[hrow, q] if hrow >= 0 else 0.0
+        if advance and h_read != src[n_]:
+            # the law advances row src in place: it starts from the copy found, or from zeros
+            s = src[n_]
+            for q in range(hs):
+                H[s, q] = H[h_read, q] if h_read >= 0 else 0.0
+            h_read = s
+        hrow[n_] = h_read
+    if left_out:
+        # drop the contacts left out
+        k = 0
+        for q in range(n):
+            if body[q, 0] >= 0:
+                body[k, 0] = body[q, 0]
+                body[k, 1] = body[q, 1]
+                src[k] = src[q]
+                dst[k] = dst[q]
+                hrow[k] = hrow[q]
+                pair_rows[k] = pair_rows[q]
+                overlaps[k] = overlaps[q]
+                wn[k] = wn[q]
+                for d in range(3):
+                    normals[k, d] = normals[q, d]
+                    velocities[k, d] = velocities[q, d]
+                k += 1
+        n = k
     if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(n):
             a = body[k, 0]
             b = body[k, 1]
-            if a < 0:
-                continue
             inv_m = 1.0 / rmass[a] + 1.0 / rmass[b] if b >= 0 else 1.0 / rmass[a]
-            kick = 0.5 * dt * Hc[k, V_N] * inv_m
+            kick = 0.5 * dt * (H[hrow[k], V_N] if hrow[k] >= 0 else 0.0) * inv_m
             for d in range(3):
                 velocities[k, d] -= kick * normals[k, d]
     return n
@@ -534,39 +559,47 @@ def near_boundary(nlocal, x, sublo, subhi, open_lo, open_hi, reach, near):
         near[i] = f
 
 
-def contact_buffers(n, history_size):
-    """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, pair_rows, normals,
-    overlaps, velocities, wn, Hc, forces, tforces)."""
+def contact_buffers(n):
+    """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, hrow, pair_rows, normals,
+    overlaps, velocities, wn, forces, tforces)."""
     return (np.empty((n, 3), dtype=np.int64), np.empty((n, 2), dtype=np.int64), np.empty(n, dtype=np.int64),
-            np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty((n, 3)), np.empty(n),
-            np.empty((n, 3)), np.empty(n), np.empty((n, history_size)), np.empty((n, 3)), np.empty((n, 3)))
+            np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64),
+            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty((n, 3)))
 
 
 @njit(cache=True)
-def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, Hc, H, forces, tforces, advance, fext,
+def read_histories(H, hrow, m):
+    """float64[m, history_size]: the rows hrow[:m] of H (zeros for -1), for a law that must not advance
+    them (LAMMPS's set-up call)."""
+    out = np.zeros((m, H.shape[1]))
+    for k in range(m):
+        if hrow[k] >= 0:
+            for q in range(H.shape[1]):
+                out[k, q] = H[hrow[k], q]
+    return out
+
+
+@njit(cache=True)
+def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, fext,
                      torque, stat, saved, step, acc):
-    """Write back the m contacts of ``gather_contacts`` after the law: the histories into both rows
-    (advance only) and the forces and torques of the local atoms. forces, tforces: float64[m, 3] force on
+    """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
+    their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
+    atoms. forces, tforces: float64[m, 3] force on
     body 1 and its tangential part; fext: float64[nlocal, 3] receives the contact forces; torque:
     float64[nall, 3], contact torques are added to the local rows; saved: float64[nmax, N_SAVED] receives
     the force and torque of each local atom with step + 1; acc: float64[>= nlocal, 7] scratch. A local atom
     whose force or torque is not finite gets none, and ST_NEED = inf marks it. Returns float64[N_SUMMARY]."""
-    hs = Hc.shape[1]
+    hs = H.shape[1]
     summary = np.zeros(N_SUMMARY)
     for i in range(nlocal):
         for d in range(7):
             acc[i, d] = 0.0
     for n in range(m):
         a = body[n, 0]
-        if a < 0:
-            continue                # left out: no free history row
-        if advance:
-            if src[n] >= 0:
-                for q in range(hs):
-                    H[src[n], q] = Hc[n, q]
-            if dst[n] >= 0:
-                for q in range(hs):
-                    H[dst[n], q] = Hc[n, q]
+        if advance and dst[n] >= 0:
+            s = src[n]
+            for q in range(hs):
+                H[dst[n], q] = H[s, q]
         b = body[n, 1]
         nx = normals[n, 0]
         ny = normals[n, 1]
