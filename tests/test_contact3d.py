@@ -460,6 +460,59 @@ def test_checked_entry_refuses_what_would_corrupt_memory_or_results(debug):
             assert np.array_equal(H, H0)          # nothing was advanced
 
 
+@pytest.mark.parametrize("tangential", ["md", "mindlin_total", "mdr_adaptive"])
+def test_history_rows_advance_a_larger_table_in_place(tangential):
+    """history_rows: the contacts' histories live at scattered rows of a larger table (a DEM code's
+    per-particle storage); serial and parallel loops give the contiguous layout's forces and histories bit
+    for bit, and leave every other row untouched."""
+    spheres = [Sphere(2e-3, STEEL), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))]
+    tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, tangential=tangential, v_ref=1.0)
+    n = 200
+    nrm, delta, vel, wn, H = _random_contacts(n, tab.history_size, seed=3)
+    rng = np.random.default_rng(4)
+    pair = rng.integers(0, tab.params.shape[0], size=n)
+    rows = rng.permutation(5 * n)[:n].astype(np.int64)
+    big_s = rng.normal(size=(5 * n, tab.history_size))     # rows no contact owns hold other data
+    big_s[rows] = 0.0
+    big_b = big_s.copy()
+    others = np.setdiff1d(np.arange(5 * n), rows)
+    before = big_s[others].copy()
+    f, t, fs, ts, fb, tb = (np.zeros((n, 3)) for _ in range(6))
+    for step in range(6):
+        v = vel * (1.0 + 0.5 * math.sin(step))
+        d = delta + step * 2e-7
+        contact_forces_serial(tab.normal_id, tab.tangential_id, tab.params, pair, H, nrm, d, v, wn, 1e-7, f, t)
+        contact_forces_serial(tab.normal_id, tab.tangential_id, tab.params, pair, big_s, nrm, d, v, wn, 1e-7, fs, ts,
+                              rows)
+        contact_forces(tab.normal_id, tab.tangential_id, tab.params, pair, big_b, nrm, d, v, wn, 1e-7, fb, tb,
+                       history_rows=rows)
+        assert np.array_equal(f, fs) and np.array_equal(t, ts) and np.array_equal(f, fb) and np.array_equal(t, tb)
+        assert np.array_equal(big_s[rows], H) and np.array_equal(big_b[rows], H)
+    assert np.array_equal(big_s[others], before) and np.array_equal(big_b[others], before)
+    assert np.abs(t).max() > 0.0
+
+
+@pytest.mark.parametrize("debug", [False, True])
+def test_checked_entry_refuses_bad_history_rows(debug):
+    tab, args = _checked_setup(n=3)
+    big = new_histories(10, tab.history_size)
+    good = np.array([7, 2, 9])
+    contact_forces(**_bad(args, H=big), history_rows=good, debug=debug)
+    assert np.abs(big[good]).max() > 0.0 and not big[np.setdiff1d(np.arange(10), good)].any()
+    cases = [
+        (np.array([7, 10, 0]), r"^history_rows\[1\] = 10 is not a row of H \(valid: 0 to 9\)"),
+        (np.array([-1, 2, 3]), r"^history_rows\[0\] = -1 is not a row of H"),
+        (np.array([4, 2, 4]), r"^history_rows must be distinct"),
+        (np.array([1, 2]), r"^history_rows must have shape"),
+        (np.array([1, 2, 3], dtype=np.int32), r"^history_rows must have dtype int64"),
+    ]
+    for rows, message in cases:
+        H = new_histories(10, tab.history_size)
+        with pytest.raises(InputError, match=message):
+            contact_forces(**_bad(args, H=H), history_rows=rows, debug=debug)
+        assert not H.any()                           # nothing was advanced
+
+
 def test_unknown_law_ids_are_errors_in_the_jitted_kernel():
     tab, a = _checked_setup()
     for nid, tid in ((42, tab.tangential_id), (tab.normal_id, 42), (7, 0), (0, -1)):
