@@ -159,6 +159,18 @@ def test_pour_is_lammps_step_for_step(mu):
     assert ours["contacts"] == native["contacts"]
 
 
+def test_a_run_in_pieces_is_one_run():
+    """A pour run as 12 LAMMPS runs of 50 steps equals one run of 600 steps (default law, spin of the
+    contact frame on): the contact forces of each run's last step are reapplied at the next run's set-up,
+    and the histories and the Verlet lists carry over."""
+    args = ["--n", "150", "--steps", "600", "--speed", "0.6"]
+    pieces = _pour(*args, "--every", "50")
+    whole = _pour(*args, "--every", "600")
+    assert whole["contacts"] >= 8
+    assert _rel(pieces["kinetic_energy"], whole["kinetic_energy"]) < 1e-12
+    assert pieces["contacts"] == whole["contacts"]
+
+
 # ------------------------------------------------------------------------------------------ MPI ranks
 
 @pytest.mark.skipif(MPIRUN is None, reason="needs mpirun")

@@ -41,3 +41,82 @@ def test_near_boundary_marks_atoms_within_reach_of_open_faces_only():
     open_hi = np.array([True, True, False])
     K.near_boundary(len(x), x, lo, hi, open_lo, open_hi, 0.5, near)
     assert near.tolist() == [True, False, False, True, False]
+
+
+def _bridge_step(S, g, step, all_atoms, save):
+    """One step of the bridge's kernels (gather, law in place, scatter) on the state S of one rank."""
+    from dem_contact.dem.contact3d import contact_forces_serial
+    t = g["table"]
+    buf = S["buf"]
+    m, nt = K.gather_contacts(
+        g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["tag"], g["typ"], g["walls"],
+        g["wall_mat"], *g["cand"], S["cand_rows"], S["keys"], S["H"], t.normal_id, t.sphere_row, t.wall_row,
+        g["dt"], True, S["rebuilt"], True, S["stat"], S["used"], g["near"], all_atoms, S["prev"], S["n_prev"],
+        S["touched"], *buf[:10])
+    _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = buf
+    contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], S["H"], normals[:m], overlaps[:m],
+                          vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m])
+    S["torque"][:] = 0.0                                  # LAMMPS clears the torques every step
+    K.scatter_contacts(g["n"], g["radius"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
+                       S["fext"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["prev"],
+                       S["n_prev"], S["touched"], nt, S["mark"], save)
+    S["prev"], S["touched"], S["n_prev"], S["rebuilt"] = S["touched"], S["prev"], nt, False
+    return m
+
+
+def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_atom():
+    """The bridge writes forces, torques and statistics only for the atoms with a contact now or at the
+    last step: along a run in which contacts form and end (spheres moving through each other and onto a
+    floor), fext, torque and the statistics equal those of a pass over every local atom, bit for bit, the
+    accumulators are left zero, and the forces saved at the last step of a run are those applied."""
+    from dem_contact.dem.pairs import pair_table
+    from dem_contact.materials import Material, Sphere, Wall
+
+    n, slots = 40, 8
+    mat = Material(5e7, 0.3, 2500.0)
+    table = pair_table([Sphere(1e-3, mat)], [Wall(mat)], mu=0.3)
+    rng = np.random.default_rng(3)
+    x = rng.uniform(0.0, 0.008, (n, 3))
+    x[:, 2] += 0.5e-3
+    v = rng.normal(0.0, 1.0, (n, 3))
+    g = dict(table=table, n=n, x=x, v=v, omega=rng.normal(0.0, 50.0, (n, 3)), radius=np.full(n, 1e-3),
+             rmass=np.full(n, mat.rho * 4.0 / 3.0 * np.pi * 1e-9), tag=np.arange(1, n + 1, dtype=np.int64),
+             typ=np.ones(n, dtype=np.int64), walls=np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]),
+             wall_mat=np.zeros(1, dtype=np.int64), dt=2e-6, near=np.zeros(n, dtype=np.bool_))
+
+    def state():
+        return dict(keys=np.zeros((n, slots)), H=np.zeros((n * slots, table.history_size)),
+                    stat=np.zeros((n, K.N_STAT)), saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
+                    acc=np.zeros((n, 7)), mark=np.zeros(n, dtype=np.bool_), prev=np.zeros(n, dtype=np.int64),
+                    touched=np.zeros(n, dtype=np.int64), n_prev=0, fext=np.zeros((n, 3)), torque=np.zeros((n, 3)),
+                    rebuilt=True, buf=None, cand_rows=None)
+
+    every, few = state(), state()            # a pass over every atom at every step; the bridge's
+    skin, counts = 2e-4, []
+    x_ref = None
+    for step in range(400):
+        rebuild = x_ref is None or np.abs(x - x_ref).max() > 0.25 * skin
+        if rebuild:
+            g["cand"] = K.candidates(n, n, x, g["radius"], g["tag"], g["walls"], 1e-3, skin)
+            x_ref = x.copy()
+            rows = np.full((len(g["cand"][0]) + len(g["cand"][1]), 2), -1, dtype=np.int64)
+            for S in (every, few):
+                S["cand_rows"], S["rebuilt"] = rows.copy(), True
+                S["buf"] = K.contact_buffers(2 * len(rows) + 16)
+        save = step % 100 == 99
+        counts.append(_bridge_step(every, g, step, True, save))
+        _bridge_step(few, g, step, rebuild or save, save)
+        for key in ("fext", "torque", "stat", "H", "keys"):
+            assert np.array_equal(every[key], few[key]), (step, key)
+        assert not few["acc"].any() and not few["mark"].any()
+        if save:
+            assert np.array_equal(few["saved"][:, :3], few["fext"])
+            assert np.array_equal(few["saved"][:, 3:6], few["torque"])
+            fext, torque = np.zeros((n, 3)), np.zeros((n, 3))
+            assert K.reapply_saved(n, fext, torque, few["saved"], step)
+            assert np.array_equal(fext, few["fext"]) and np.array_equal(torque, few["torque"])
+            assert not K.reapply_saved(n, fext, torque, few["saved"], step + 1)
+        x += v * g["dt"] * 5.0                   # (positions moved by hand: contacts form and end)
+        v[:, 2] -= 0.02
+    counts = np.array(counts)
+    assert counts.max() >= 5 and (np.diff(counts) < 0).any() and (np.diff(counts) > 0).any()

@@ -205,8 +205,10 @@ class LammpsContacts:
     the next check); huge_pages: back the history arrays with transparent huge pages (Linux; see
     ``_huge_pages``); prefix: of the LAMMPS ids this object creates.
 
-    Use ``run(n)`` (not ``lmp.command("run n")``) so that the checks are made; ``stats()`` gives global
-    contact counts and the largest overlap.
+    Use ``run(n)`` (not ``lmp.command("run n")``) so that the checks are made and the contact forces of
+    the run's last step are saved: the next run's set-up reapplies them (so that runs of n and m steps
+    give one run of n + m steps), where a run started otherwise has them recomputed at its set-up from
+    the velocities of the full step. ``stats()`` gives global contact counts and the largest overlap.
     """
 
     def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
@@ -285,8 +287,13 @@ class LammpsContacts:
         self._view = None
         self._buffers = None           # work arrays of the contacts of a step (kernels.contact_buffers)
         self._used = None
+        self._atoms = None             # per-atom scratch: (acc, mark, touched, prev), see _atom_scratch
+        self._n_prev = 0               # local atoms with a contact at the last evaluated step (prev)
+        self._eval = None              # (time step, natoms) of the last evaluation
+        self._end_step = None          # last time step of the run under way (run()), whose forces are saved
+        self._advised = set()          # (address, bytes) of the arrays backed by huge pages
         self.dt = None
-        self._x_ref = self._tag_ref = None
+        self._x_ref = self._tag_ref = self._r_ref = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
@@ -355,7 +362,11 @@ class LammpsContacts:
             raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
         nlocal = self.lmp.extract_setting("nlocal")
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
-        self.lmp.command(f"run {int(nsteps)}")
+        self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
+        try:
+            self.lmp.command(f"run {int(nsteps)}")
+        finally:
+            self._end_step = None
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
         if not math.isfinite(need):
             raise NumericalError("a contact law returned a non-finite force or torque during the run (a contact "
@@ -385,15 +396,28 @@ class LammpsContacts:
             H = ex(f"d2_{self.prefix}h", nelem=nmax, dim=self.slots * self.hs).view()
             H.shape = (nmax * self.slots, self.hs)       # a view of LAMMPS's memory (never a copy)
             if self.huge_pages:
-                _huge_pages(H)
-                _huge_pages(data)
+                for a in (H, data):
+                    if (a.ctypes.data, a.nbytes) not in self._advised:
+                        _huge_pages(a)
+                        self._advised.add((a.ctypes.data, a.nbytes))
             self._view = (ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
                           ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
                           ex("type", nelem=nall), ex("torque", nelem=nall, dim=3), data[:, :self.slots], H,
                           data[:, self.col_stat:self.col_stat + K.N_STAT],
                           data[:, self.col_saved:self.col_saved + K.N_SAVED])
             self._view_key = (nmax, nall)
+            self._n_prev = -1          # new views: every local atom's force is written at the next step
         return self._view
+
+    def _atom_scratch(self, nlocal):
+        """Per-atom scratch of the kernels, kept between steps: acc float64[:, 7] and mark bool[:] (zero
+        between steps), touched and prev int64[:] (the atoms with contacts now and at the last step)."""
+        if self._atoms is None or len(self._atoms[1]) < nlocal + 1:
+            n = 2 * nlocal + 16
+            self._atoms = (np.zeros((n, 7)), np.zeros(n, dtype=np.bool_), np.empty(n, dtype=np.int64),
+                           np.empty(n, dtype=np.int64))
+            self._n_prev = -1
+        return self._atoms
 
     def _near_boundary(self, nlocal, x):
         """The local atoms that may change rank before the next rebuild of the lists (all of them in a
@@ -415,34 +439,45 @@ class LammpsContacts:
         setup = self._last_step is None or ntimestep == self._last_step
         self._last_step = ntimestep
         if setup:
-            # a new run: arrays may have been reallocated, atoms changed between runs
+            # a new run: arrays may have been reallocated, atoms changed between runs (the Verlet lists are
+            # kept if no atom moved, changed index or radius)
             self._view_key = None
-            self._cand = None
             self.dt = self.lmp.extract_global("dt")
         nall = self.lmp.extract_setting("nall")
+        natoms = self.lmp.extract_global("natoms")
         xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
-        if setup and K.reapply_saved(nlocal, fext, torque, saved, ntimestep):
+        if (setup and self._eval == (ntimestep, natoms)
+                and K.reapply_saved(nlocal, fext, torque, saved, ntimestep)):
             self.callback_s += time.perf_counter() - t0
             return
-        if self._cand is None or K.moved(nlocal, nall, xa, ids, self._x_ref, self._tag_ref, 0.5 * self.skin):
+        if self._cand is None or K.moved(nlocal, nall, xa, ids, radius, self._x_ref, self._tag_ref, self._r_ref,
+                                         0.5 * self.skin):
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._x_ref = xa[:nall].copy()
             self._tag_ref = ids[:nall].copy()
+            self._r_ref = radius[:nall].copy()
             self._rebuilt = True
+            self._n_prev = -1
             self.list_builds += 1
             self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
             self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
-            self._acc = np.empty((2 * nlocal + 16, 7))
+        acc, mark, touched, prev = self._atom_scratch(nlocal)
+        # every local atom is written at a set-up, after a rebuild or new views (its index may have
+        # changed) and at the last step of a run (its forces are saved for the next run's set-up);
+        # otherwise only the atoms with contacts now or at the last step
+        save = setup or ntimestep == self._end_step
+        all_atoms = save or self._n_prev < 0
+        n_prev = max(self._n_prev, 0)
         _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = self._buffers
         t = self.table
-        m = K.gather_contacts(
+        m, n_touched = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt, self.frame_spin, stat,
-            self._used, self._near, *self._buffers[:10])
+            self._used, self._near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
         if setup:
             # nothing advances: the law works on copies of the histories
             Hl, hl_rows = K.read_histories(H, hrow, m), None
@@ -454,7 +489,12 @@ class LammpsContacts:
         if not setup:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
-                                     not setup, fext, torque, stat, saved, ntimestep, self._acc)
+                                     not setup, fext, torque, stat, saved, ntimestep, acc, all_atoms, prev, n_prev,
+                                     touched, n_touched, mark, save)
+        # the atoms with contacts now are the next step's prev
+        self._atoms = (acc, mark, prev, touched)
+        self._n_prev = n_touched
+        self._eval = (ntimestep, natoms)
         if not setup:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])

@@ -214,14 +214,14 @@ def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
 
 
 @njit(cache=True)
-def moved(nlocal, nall, x, tag, x_ref, tag_ref, half_skin):
-    """True when the Verlet lists built at x_ref, tag_ref must be rebuilt: other atoms or indices (LAMMPS
-    exchanged, sorted or rebuilt its ghosts), or an atom moved more than skin / 2."""
-    if x_ref.shape[0] != nall or tag_ref.shape[0] != nall:
+def moved(nlocal, nall, x, tag, radius, x_ref, tag_ref, r_ref, half_skin):
+    """True when the Verlet lists built at x_ref, tag_ref, r_ref must be rebuilt: other atoms or indices
+    (LAMMPS exchanged, sorted or rebuilt its ghosts), another radius, or an atom moved more than skin / 2."""
+    if x_ref.shape[0] != nall or tag_ref.shape[0] != nall or r_ref.shape[0] != nall:
         return True
     lim = half_skin * half_skin
     for i in range(nall):
-        if tag[i] != tag_ref[i]:
+        if tag[i] != tag_ref[i] or radius[i] != r_ref[i]:
             return True
         dx = x[i, 0] - x_ref[i, 0]
         dy = x[i, 1] - x_ref[i, 1]
@@ -300,10 +300,19 @@ def _release(keys, H, i, r):
         H[row, q] = 0.0
 
 
+@njit(inline="always", cache=True)
+def _clear_stat(stat, i):
+    """Zero the statistics of atom i that describe one step (all but ST_NEED)."""
+    for d in range(N_STAT):
+        if d != ST_NEED:
+            stat[i, d] = 0.0
+
+
 @njit(cache=True)
 def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
-                    keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near, work,
-                    body, src, dst, hrow, pair_rows, normals, overlaps, velocities, wn):
+                    keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near,
+                    all_atoms, prev, n_prev, touched, work, body, src, dst, hrow, pair_rows, normals, overlaps,
+                    velocities, wn):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
     (``dem.contact3d.contact_forces_serial``), with the H rows of their histories.
 
@@ -322,6 +331,12 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     scratch; near: bool[>= nlocal] the local atoms that may change rank before the lists are rebuilt
     (``near_boundary``).
 
+    Per-atom work in proportion to the contacts: the statistics columns ST_PAIRS, ST_WALLS, ST_OVERLAP are
+    zero for every local atom that had no contact at the last step, so only the atoms prev[:n_prev] (those
+    that had one, with the same local indices: no rebuild since) are zeroed; all_atoms: zero every local
+    atom's instead (a rebuild, a new run, reallocated arrays). The local atoms with a contact now are
+    listed in touched int64[>= nlocal] (each once), for ``scatter_contacts``.
+
     Fills the first m rows of the buffers (``contact_buffers``, at least as long as the candidates): body
     int64[:, 2] bodies 1 and 2 of each contact (the lower atom id first; body 2 = -(w + 1) for wall w); src
     int64[:] the H row that keeps the law's history (-1: none) and dst int64[:] the row of a second copy
@@ -329,7 +344,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     pair_rows int64[:], normals float64[:, 3], overlaps float64[:], velocities float64[:, 3], wn float64[:]:
     the inputs of the law; work int64[:, 3] scratch. When ``advance``, every contact has its rows, hrow ==
     src, and the history to advance is in row src (copied there from the other copy when that was the
-    one found): the law advances H in place (``history_rows=src``). Returns m. A contact for which an atom
+    one found): the law advances H in place (``history_rows=src``). Returns (m, the number of
+    atoms in touched). A contact for which an atom
     has no free history row is left out (no force; counted in ST_NEED, so the run stops at the next check).
     """
     hs = H.shape[1]
@@ -337,13 +353,17 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     npc = cand.shape[0]
     nwc = cand_walls.shape[0]
     full = advance and rebuilt
-    for i in range(nlocal):
-        for d in range(N_STAT):
-            if d != ST_NEED:
-                stat[i, d] = 0.0
-        if full:
+    if all_atoms:
+        for i in range(nlocal):
+            _clear_stat(stat, i)
+    else:
+        for k in range(n_prev):
+            _clear_stat(stat, prev[k])
+    if full:
+        for i in range(nlocal):
             for r in range(slots):
                 used[i, r] = False
+    nt = 0              # atoms listed in touched
     n = 0
     late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
     left_out = 0        # contacts with no free history row
@@ -375,8 +395,14 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 work[ended, 2] = c
                 ended += 1
             continue
+        if stat[i, ST_PAIRS] + stat[i, ST_WALLS] == 0.0:
+            touched[nt] = i
+            nt += 1
         stat[i, ST_PAIRS if j >= 0 else ST_WALLS] += 1.0
         if local_j:
+            if stat[j, ST_PAIRS] + stat[j, ST_WALLS] == 0.0:
+                touched[nt] = j
+                nt += 1
             stat[j, ST_PAIRS] += 1.0
         if ri < 0 or (local_j and rj < 0):
             work[late, 0] = n
@@ -443,7 +469,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         velocities[n, 1] = vy
         velocities[n, 2] = vz
         n += 1
-    for i in range(nlocal):
+    for k in range(nt):
+        i = touched[k]
         stat[i, ST_NEED] = max(stat[i, ST_NEED], stat[i, ST_PAIRS] + stat[i, ST_WALLS])
     for k in range(ended):
         # contacts that ended free their rows (reset)
@@ -541,7 +568,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             kick = 0.5 * dt * (H[hrow[k], V_N] if hrow[k] >= 0 else 0.0) * inv_m
             for d in range(3):
                 velocities[k, d] -= kick * normals[k, d]
-    return n
+    return n, nt
 
 
 @njit(cache=True)
@@ -581,19 +608,27 @@ def read_histories(H, hrow, m):
 
 @njit(cache=True)
 def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, fext,
-                     torque, stat, saved, step, acc):
+                     torque, stat, saved, step, acc, all_atoms, prev, n_prev, touched, n_touched, mark, save):
     """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
     their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
     atoms. forces, tforces: float64[m, 3] force on
     body 1 and its tangential part; fext: float64[nlocal, 3] receives the contact forces; torque:
     float64[nall, 3], contact torques are added to the local rows; saved: float64[nmax, N_SAVED] receives
-    the force and torque of each local atom with step + 1; acc: float64[>= nlocal, 7] scratch. A local atom
-    whose force or torque is not finite gets none, and ST_NEED = inf marks it. Returns float64[N_SUMMARY]."""
+    the force and torque of every local atom with step + 1 when ``save`` (then all_atoms must be set: the
+    last step of a run, whose forces the next run's set-up reapplies); acc: float64[>= nlocal, 7] scratch, zero on entry
+    and on return (all_atoms: zeroed here first). A local atom whose force or torque is not finite gets
+    none, and ST_NEED = inf marks it. Returns float64[N_SUMMARY].
+
+    Per-atom work in proportion to the contacts (see ``gather_contacts``): fext is written for the atoms
+    with a contact now (touched[:n_touched]) or at the last step (prev[:n_prev]: their force is now
+    zero); every other local atom's is zero already (all_atoms: every local atom is written).
+    mark: bool[>= nlocal] scratch, False on entry and on return."""
     hs = H.shape[1]
     summary = np.zeros(N_SUMMARY)
-    for i in range(nlocal):
-        for d in range(7):
-            acc[i, d] = 0.0
+    if all_atoms:
+        for i in range(nlocal):
+            for d in range(7):
+                acc[i, d] = 0.0
     for n in range(m):
         a = body[n, 0]
         if advance and dst[n] >= 0:
@@ -639,24 +674,50 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
         else:
             summary[R_WALLS] += 1.0
         summary[R_OVERLAP] = max(summary[R_OVERLAP], delta)
-    for i in range(nlocal):
-        ok = True
-        for d in range(6):
-            ok = ok and math.isfinite(acc[i, d])
-        if not ok:
-            for d in range(6):
+    if all_atoms:
+        for i in range(nlocal):
+            _write_atom(i, acc, advance, fext, torque, stat, summary)
+            if save:
+                for d in range(6):
+                    saved[i, d] = acc[i, d]
+                saved[i, SF_STEP] = step + 1.0
+            for d in range(7):
                 acc[i, d] = 0.0
-            if advance:
-                stat[i, ST_NEED] = math.inf
-            summary[R_BAD] += 1.0
-        for d in range(3):
-            fext[i, d] = acc[i, d]
-            torque[i, d] += acc[i, 3 + d]
-        for d in range(6):
-            saved[i, d] = acc[i, d]
-        saved[i, SF_STEP] = step + 1.0
-        stat[i, ST_OVERLAP] = acc[i, 6]
+    else:
+        for k in range(n_prev):
+            i = prev[k]
+            mark[i] = True
+            _write_atom(i, acc, advance, fext, torque, stat, summary)
+            for d in range(7):
+                acc[i, d] = 0.0
+        for k in range(n_touched):
+            i = touched[k]
+            if not mark[i]:
+                _write_atom(i, acc, advance, fext, torque, stat, summary)
+                for d in range(7):
+                    acc[i, d] = 0.0
+        for k in range(n_prev):
+            mark[prev[k]] = False
     return summary
+
+
+@njit(inline="always", cache=True)
+def _write_atom(i, acc, advance, fext, torque, stat, summary):
+    """Contact force and torque of local atom i (accumulated in acc[i]) into LAMMPS's arrays, and its
+    largest overlap; none if not finite (acc zeroed, ST_NEED = inf marks it)."""
+    ok = True
+    for d in range(6):
+        ok = ok and math.isfinite(acc[i, d])
+    if not ok:
+        for d in range(6):
+            acc[i, d] = 0.0
+        if advance:
+            stat[i, ST_NEED] = math.inf
+        summary[R_BAD] += 1.0
+    for d in range(3):
+        fext[i, d] = acc[i, d]
+        torque[i, d] += acc[i, 3 + d]
+    stat[i, ST_OVERLAP] = acc[i, 6]
 
 
 @njit(cache=True)
