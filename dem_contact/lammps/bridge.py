@@ -287,7 +287,7 @@ class LammpsContacts:
         self._view = None
         self._buffers = None           # work arrays of the contacts of a step (kernels.contact_buffers)
         self._used = None
-        self._atoms = None             # per-atom scratch: (acc, mark, touched, prev), see _atom_scratch
+        self._atoms = None             # per-atom scratch: (acc, touched, prev), see _atom_scratch
         self._n_prev = 0               # local atoms with a contact at the last evaluated step (prev)
         self._eval = None              # (time step, natoms) of the last evaluation
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
@@ -410,12 +410,11 @@ class LammpsContacts:
         return self._view
 
     def _atom_scratch(self, nlocal):
-        """Per-atom scratch of the kernels, kept between steps: acc float64[:, 7] and mark bool[:] (zero
-        between steps), touched and prev int64[:] (the atoms with contacts now and at the last step)."""
+        """Per-atom scratch of the kernels, kept between steps: acc float64[:, 7], touched and prev
+        int64[:] (the atoms with contacts now and at the last step)."""
         if self._atoms is None or len(self._atoms[1]) < nlocal + 1:
             n = 2 * nlocal + 16
-            self._atoms = (np.zeros((n, 7)), np.zeros(n, dtype=np.bool_), np.empty(n, dtype=np.int64),
-                           np.empty(n, dtype=np.int64))
+            self._atoms = (np.zeros((n, 7)), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64))
             self._n_prev = -1
         return self._atoms
 
@@ -465,7 +464,7 @@ class LammpsContacts:
             self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
-        acc, mark, touched, prev = self._atom_scratch(nlocal)
+        acc, touched, prev = self._atom_scratch(nlocal)
         # every local atom is written at a set-up, after a rebuild or new views (its index may have
         # changed) and at the last step of a run (its forces are saved for the next run's set-up);
         # otherwise only the atoms with contacts now or at the last step
@@ -490,9 +489,9 @@ class LammpsContacts:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      not setup, fext, torque, stat, saved, ntimestep, acc, all_atoms, prev, n_prev,
-                                     touched, n_touched, mark, save)
+                                     touched, n_touched, save)
         # the atoms with contacts now are the next step's prev
-        self._atoms = (acc, mark, prev, touched)
+        self._atoms = (acc, prev, touched)
         self._n_prev = n_touched
         self._eval = (ntimestep, natoms)
         if not setup:
