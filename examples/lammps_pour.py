@@ -244,7 +244,7 @@ def run(a):
            "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
                     {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
     lmp.close()
-    if log is not None and me == 0:
+    if log is not None:
         os.remove(log)
     if me == 0:
         if a.json:

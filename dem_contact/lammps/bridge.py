@@ -291,7 +291,6 @@ class LammpsContacts:
         self._n_prev = 0               # local atoms with a contact at the last evaluated step (prev)
         self._eval = None              # (time step, natoms) of the last evaluation
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
-        self._advised = set()          # (address, bytes) of the arrays backed by huge pages
         self.dt = None
         self._x_ref = self._tag_ref = self._r_ref = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
@@ -396,10 +395,8 @@ class LammpsContacts:
             H = ex(f"d2_{self.prefix}h", nelem=nmax, dim=self.slots * self.hs).view()
             H.shape = (nmax * self.slots, self.hs)       # a view of LAMMPS's memory (never a copy)
             if self.huge_pages:
-                for a in (H, data):
-                    if (a.ctypes.data, a.nbytes) not in self._advised:
-                        _huge_pages(a)
-                        self._advised.add((a.ctypes.data, a.nbytes))
+                _huge_pages(H)
+                _huge_pages(data)
             self._view = (ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
                           ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
                           ex("type", nelem=nall), ex("torque", nelem=nall, dim=3), data[:, :self.slots], H,

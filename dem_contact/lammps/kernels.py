@@ -615,30 +615,22 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
     receives the contact forces; torque: float64[nall, 3], contact torques are added to the local rows;
     stat[:, ST_OVERLAP] receives each local atom's largest overlap; saved: float64[nmax, N_SAVED] receives
     the force and torque of every local atom with step + 1 when ``save`` (then all_atoms must be set: the
-    last step of a run, whose forces the next run's set-up reapplies). A local atom whose force or torque
-    is not finite gets none (nor any other torque), and ST_NEED = inf marks it. Returns
-    float64[N_SUMMARY].
+    last step of a run, whose forces the next run's set-up reapplies); acc: float64[>= nlocal, 7] scratch,
+    zero on entry and on return. A local atom whose force or torque is not finite gets none, and
+    ST_NEED = inf marks it. Returns float64[N_SUMMARY].
 
-    Per-atom work in proportion to the contacts (see ``gather_contacts``): the forces are added into fext
-    and torque directly, after zeroing fext for the atoms that had a contact at the last step
-    (prev[:n_prev]); every other local atom's is zero already. all_atoms: every local atom's force is
-    summed in acc float64[>= nlocal, 7] (scratch) and written."""
+    Per-atom work in proportion to the contacts (see ``gather_contacts``): fext is written for the atoms
+    with a contact now (touched[:n_touched]) or at the last step (prev[:n_prev]: their force is now
+    zero); every other local atom's is zero already. all_atoms, or where most atoms have contacts: every
+    local atom's is written, in the order of the atoms."""
     hs = H.shape[1]
     summary = np.zeros(N_SUMMARY)
-    if all_atoms:
+    dense = all_atoms or 2 * (n_prev + n_touched) > nlocal
+    if dense:
+        # (acc is zero: this sweep brings it into the cache before the scattered sums)
         for i in range(nlocal):
             for d in range(7):
                 acc[i, d] = 0.0
-        F = acc[:, 0:3]
-        Tq = acc[:, 3:6]
-        O = acc[:, 6]
-    else:
-        for k in range(n_prev):
-            for d in range(3):
-                fext[prev[k], d] = 0.0
-        F = fext[:, 0:3]
-        Tq = torque[:, 0:3]
-        O = stat[:, ST_OVERLAP]
     for n in range(m):
         a = body[n, 0]
         if advance and dst[n] >= 0:
@@ -663,23 +655,30 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
         # -Ft); R n x Ft against a wall
         arm = radius[a] - 0.5 * delta if b >= 0 else radius[a]
         if a < nlocal:
-            _add(F, Tq, O, a, fx, fy, fz, arm * cx, arm * cy, arm * cz, delta)
+            acc[a, 0] += fx
+            acc[a, 1] += fy
+            acc[a, 2] += fz
+            acc[a, 3] += arm * cx
+            acc[a, 4] += arm * cy
+            acc[a, 5] += arm * cz
+            acc[a, 6] = max(acc[a, 6], delta)
         if b >= 0:
             summary[R_PAIRS] += 1.0
             if b < nlocal:
                 arm = radius[b] - 0.5 * delta
-                _add(F, Tq, O, b, -fx, -fy, -fz, arm * cx, arm * cy, arm * cz, delta)
+                acc[b, 0] -= fx
+                acc[b, 1] -= fy
+                acc[b, 2] -= fz
+                acc[b, 3] += arm * cx
+                acc[b, 4] += arm * cy
+                acc[b, 5] += arm * cz
+                acc[b, 6] = max(acc[b, 6], delta)
         else:
             summary[R_WALLS] += 1.0
         summary[R_OVERLAP] = max(summary[R_OVERLAP], delta)
-    if all_atoms:
+    if dense:
         for i in range(nlocal):
-            if not _finite_row(acc, i, 6):
-                _given_none(i, F, Tq, advance, stat, summary)
-            for d in range(3):
-                fext[i, d] = acc[i, d]
-                torque[i, d] += acc[i, 3 + d]
-            stat[i, ST_OVERLAP] = acc[i, 6]
+            summary[R_BAD] += _write_atom(i, acc, advance, fext, torque, stat)
             if save:
                 for d in range(6):
                     saved[i, d] = acc[i, d]
@@ -687,43 +686,35 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
             for d in range(7):
                 acc[i, d] = 0.0
     else:
+        for k in range(n_prev):
+            # (an atom with a contact now is written next)
+            for d in range(3):
+                fext[prev[k], d] = 0.0
         for k in range(n_touched):
             i = touched[k]
-            if not (_finite_row(fext, i, 3) and _finite_row(torque, i, 3)):
-                _given_none(i, fext, torque, advance, stat, summary)
+            summary[R_BAD] += _write_atom(i, acc, advance, fext, torque, stat)
+            for d in range(7):
+                acc[i, d] = 0.0
     return summary
 
 
 @njit(inline="always", cache=True)
-def _add(F, Tq, O, i, fx, fy, fz, tx, ty, tz, delta):
-    """Add a contact's force and torque on atom i to F[i] and Tq[i], and its overlap to the largest O[i]."""
-    F[i, 0] += fx
-    F[i, 1] += fy
-    F[i, 2] += fz
-    Tq[i, 0] += tx
-    Tq[i, 1] += ty
-    Tq[i, 2] += tz
-    O[i] = max(O[i], delta)
-
-
-@njit(inline="always", cache=True)
-def _finite_row(a, i, k):
+def _write_atom(i, acc, advance, fext, torque, stat):
+    """Contact force and torque of local atom i (accumulated in acc[i]) into LAMMPS's arrays, and its
+    largest overlap; none if not finite (acc zeroed, ST_NEED = inf marks it; returns 1.0, else 0.0)."""
     ok = True
-    for d in range(k):
-        ok = ok and math.isfinite(a[i, d])
-    return ok
-
-
-@njit(inline="always", cache=True)
-def _given_none(i, F, Tq, advance, stat, summary):
-    """Atom i, whose contact force or torque is not finite, gets none: F[i, :3] and Tq[i, :3] zeroed;
-    ST_NEED = inf marks it (the run stops at the next check)."""
+    for d in range(6):
+        ok = ok and math.isfinite(acc[i, d])
+    if not ok:
+        for d in range(6):
+            acc[i, d] = 0.0
+        if advance:
+            stat[i, ST_NEED] = math.inf
     for d in range(3):
-        F[i, d] = 0.0
-        Tq[i, d] = 0.0
-    if advance:
-        stat[i, ST_NEED] = math.inf
-    summary[R_BAD] += 1.0
+        fext[i, d] = acc[i, d]
+        torque[i, d] += acc[i, 3 + d]
+    stat[i, ST_OVERLAP] = acc[i, 6]
+    return 0.0 if ok else 1.0
 
 
 @njit(cache=True)
