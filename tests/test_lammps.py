@@ -324,3 +324,29 @@ def test_a_failing_law_is_reported_not_integrated():
                        env=dict(os.environ, PYTHONPATH=str(ROOT)))
     assert r.returncode == 3, r.stdout[-2000:] + r.stderr[-2000:]
     assert "non-finite force" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
+    """An exception while computing the contact forces (here: injected into the contact search after 30
+    steps) is not swallowed by LAMMPS's callback wrapper: the run stops at the next check, with no contact
+    forces applied in between, and run() raises it."""
+    from dem_contact.lammps import kernels as K
+
+    lmp = _box(n=3, dt=1e-8)
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0, check_every=10)
+    calls, gather = [0], K.gather_contacts
+
+    def failing(*args):
+        calls[0] += 1
+        if calls[0] > 30:
+            raise MemoryError("injected")
+        return gather(*args)
+
+    monkeypatch.setattr(K, "gather_contacts", failing)
+    with pytest.raises(MemoryError, match="injected"):
+        bridge.run(1000)
+    assert 30 <= lmp.extract_global("ntimestep") <= 40          # stopped at the next check
+    monkeypatch.setattr(K, "gather_contacts", gather)
+    bridge.run(10)                                               # a later run starts afresh
+    assert lmp.extract_global("ntimestep") >= 40
+    lmp.close()

@@ -291,6 +291,7 @@ class LammpsContacts:
         self._n_prev = 0               # local atoms with a contact at the last evaluated step (prev)
         self._eval = None              # (time step, natoms) of the last evaluation
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
+        self._error = None             # an exception raised in the callback during the run under way
         self.dt = None
         self._x_ref = self._tag_ref = self._r_ref = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
@@ -354,7 +355,11 @@ class LammpsContacts:
     # -- running -------------------------------------------------------------------------------------
     def run(self, nsteps: int):
         """``run nsteps`` in LAMMPS after the checks; raises InputError (on every rank) if an atom needed
-        more history rows than ``slots``."""
+        more history rows than ``slots``, NumericalError if a contact force was not finite. An exception
+        raised while computing the contact forces stops the run at the next check (every ``check_every``
+        steps; no contact forces are applied from then on) and is raised here on its rank (NumericalError
+        on the others). After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a
+        later run starts afresh."""
         if not self._checked:
             self.check()
         if self.lmp.extract_setting("ghost_velocity") != 1:
@@ -362,15 +367,24 @@ class LammpsContacts:
         nlocal = self.lmp.extract_setting("nlocal")
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
         self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
+        self._error = None
         try:
             self.lmp.command(f"run {int(nsteps)}")
         finally:
             self._end_step = None
+        error, self._error = self._error, None
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
+        if error is not None or not need <= self.slots:
+            # the checks stopped the run through LAMMPS's timer timeout (fix halt ... error soft), which
+            # would stop every later run at once
+            self.lmp.command("timer timeout off")
+        if error is not None:
+            raise error
         if not math.isfinite(need):
-            raise NumericalError("a contact law returned a non-finite force or torque during the run (a contact "
-                                 "outgrew the springs of the mdr law: raise v_max; or the time step is too long "
-                                 "for the contact): the run is not valid")
+            raise NumericalError("the contact forces failed during the run: a contact law returned a non-finite "
+                                 "force or torque (a contact outgrew the springs of the mdr law: raise v_max; or the "
+                                 "time step is too long for the contact), or the callback raised an error on "
+                                 "another rank: the run is not valid")
         if need > self.slots:
             raise InputError(f"too few history slots: an atom had {int(need)} contacts at once but slots = "
                              f"{self.slots}; attach with slots >= {int(need)} (the run stopped there)")
@@ -430,6 +444,20 @@ class LammpsContacts:
     @staticmethod
     def _callback(self, ntimestep, nlocal, tag, x, fext):
         t0 = time.perf_counter()
+        try:
+            if self._error is None:
+                self._step(ntimestep, nlocal, fext)
+        except BaseException as e:        # (LAMMPS's wrapper would print it and run on without contact forces)
+            self._error = e
+        if self._error is not None:
+            # no contact forces from here on: the run stops at the next check and run() raises
+            self._last_step = ntimestep
+            fext[:nlocal] = 0.0
+            self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
+        self.callback_s += time.perf_counter() - t0
+
+    def _step(self, ntimestep, nlocal, fext):
+        """The contact forces and torques of one step (or a run's set-up) into fext and LAMMPS's torques."""
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
         # at the first step): forces are needed, but nothing may advance
         setup = self._last_step is None or ntimestep == self._last_step
@@ -444,7 +472,6 @@ class LammpsContacts:
         xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
         if (setup and self._eval == (ntimestep, natoms)
                 and K.reapply_saved(nlocal, fext, torque, saved, ntimestep)):
-            self.callback_s += time.perf_counter() - t0
             return
         if self._cand is None or K.moved(nlocal, nall, xa, ids, radius, self._x_ref, self._tag_ref, self._r_ref,
                                          0.5 * self.skin):
@@ -495,4 +522,3 @@ class LammpsContacts:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])
             self.max_overlap = max(self.max_overlap, summary[K.R_OVERLAP])
-        self.callback_s += time.perf_counter() - t0
