@@ -57,7 +57,7 @@ from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, 
                            tangential_base)
 
 __all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
-           "contact_forces_batch", "contact_forces_serial", "contact_forces", "check_contacts",
+           "contact_forces_batch", "contact_forces_serial", "batch_loop", "contact_forces", "check_contacts",
            "new_histories", "history_size"]
 
 
@@ -622,12 +622,20 @@ def _valid_ids(nid, tid):
     return nid, _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
 
 
+def batch_loop(nid, tid, parallel=False):
+    """The jitted batch loop of the law family of ``tid`` (ids checked here, once):
+    loop(nid, tid, params, pair_rows, H, history_rows, normals, overlaps, velocities, wn, dt, forces,
+    tforces), the arguments of ``contact_forces_batch`` with history_rows required, none checked. For a
+    caller that steps the same laws many times and checked its arrays once (``check_contacts``)."""
+    nid, tid = _valid_ids(nid, tid)
+    return _LOOPS[_family(tid)][1 if parallel else 0]
+
+
 def _run(parallel, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
          history_rows):
-    nid, tid = _valid_ids(nid, tid)
     rows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
-    _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities,
-                                               wn, dt, forces, tforces)
+    batch_loop(nid, tid, parallel)(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt,
+                                   forces, tforces)
 
 
 def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError, NumericalError
-from ..dem.contact3d import contact_forces_serial
+from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from . import kernels as K
 
@@ -258,6 +258,7 @@ class LammpsContacts:
             raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         self.hs = table.history_size
+        self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
         self.col_stat = K.atom_columns(self.slots)
         self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
         self.col_saved = self.col_stat + K.N_STAT
@@ -290,6 +291,7 @@ class LammpsContacts:
         self._atoms = None             # per-atom scratch: (acc, touched, prev), see _atom_scratch
         self._n_prev = 0               # local atoms with a contact at the last evaluated step (prev)
         self._eval = None              # (time step, natoms) of the last evaluation
+        self._natoms = None            # natoms at the set-up of the run under way
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
         self._error = None             # an exception raised in the callback during the run under way
         self.dt = None
@@ -468,9 +470,10 @@ class LammpsContacts:
             self._view_key = None
             self.dt = self.lmp.extract_global("dt")
         nall = self.lmp.extract_setting("nall")
-        natoms = self.lmp.extract_global("natoms")
+        if setup:
+            self._natoms = self.lmp.extract_global("natoms")
         xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
-        if (setup and self._eval == (ntimestep, natoms)
+        if (setup and self._eval == (ntimestep, self._natoms)
                 and K.reapply_saved(nlocal, fext, torque, saved, ntimestep)):
             return
         if self._cand is None or K.moved(nlocal, nall, xa, ids, radius, self._x_ref, self._tag_ref, self._r_ref,
@@ -503,12 +506,12 @@ class LammpsContacts:
             self._used, self._near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
         if setup:
             # nothing advances: the law works on copies of the histories
-            Hl, hl_rows = K.read_histories(H, hrow, m), None
+            Hl, hl_rows = K.read_histories(H, hrow, m), np.arange(m)
         else:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
-        contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], Hl, normals[:m], overlaps[:m],
-                              vel[:m], wn[:m], self.dt, forces[:m], tforces[:m], hl_rows)
+        self._law(t.normal_id, t.tangential_id, t.params, rows[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
+                  wn[:m], self.dt, forces[:m], tforces[:m])
         if not setup:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
@@ -517,7 +520,7 @@ class LammpsContacts:
         # the atoms with contacts now are the next step's prev
         self._atoms = (acc, prev, touched)
         self._n_prev = n_touched
-        self._eval = (ntimestep, natoms)
+        self._eval = (ntimestep, self._natoms)
         if not setup:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])

@@ -10,7 +10,7 @@ the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. The Verle
 numbers found for each candidate pair, so a continuing contact finds its rows without a search.
 
 One step: ``gather_contacts`` finds the contacts among the Verlet candidates, their history rows and the
-inputs of the law; the batch law kernel of the law family (``dem.contact3d.contact_forces_serial``, the
+inputs of the law; the batch law kernel of the law family (``dem.contact3d.batch_loop``, the
 law inlined in its loop) advances the histories in place, in the per-atom rows; and ``scatter_contacts``
 writes the second copies of the histories and the forces and torques into LAMMPS's arrays.
 
@@ -314,7 +314,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                     all_atoms, prev, n_prev, touched, work, body, src, dst, hrow, pair_rows, normals, overlaps,
                     velocities, wn):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
-    (``dem.contact3d.contact_forces_serial``), with the H rows of their histories.
+    (``dem.contact3d.batch_loop``), with the H rows of their histories.
 
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
     atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
