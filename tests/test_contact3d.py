@@ -11,7 +11,7 @@ import pytest
 from numba import njit
 
 from dem_contact.laws import closed_forms as cf
-from dem_contact.dem.contact3d import (contact_force, contact_forces, contact_forces_batch,
+from dem_contact.dem.contact3d import (batch_loop, contact_force, contact_forces, contact_forces_batch,
                                        contact_forces_serial, history_size, new_histories, peek_force,
                                        reset_contact, rotate_history, swap_bodies, tangential_work)
 from dem_contact.errors import InputError, NumericalError
@@ -463,8 +463,9 @@ def test_checked_entry_refuses_what_would_corrupt_memory_or_results(debug):
 @pytest.mark.parametrize("tangential", ["md", "mindlin_total", "mdr_adaptive"])
 def test_history_rows_advance_a_larger_table_in_place(tangential):
     """history_rows: the contacts' histories live at scattered rows of a larger table (a DEM code's
-    per-particle storage); serial and parallel loops give the contiguous layout's forces and histories bit
-    for bit, and leave every other row untouched."""
+    per-particle storage); serial and parallel loops, and the loop of ``batch_loop`` called directly, give
+    the contiguous layout's forces and histories bit for bit, and leave every other row untouched;
+    ``batch_loop`` refuses an unknown law id."""
     spheres = [Sphere(2e-3, STEEL), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))]
     tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, tangential=tangential, v_ref=1.0)
     n = 200
@@ -475,9 +476,11 @@ def test_history_rows_advance_a_larger_table_in_place(tangential):
     big_s = rng.normal(size=(5 * n, tab.history_size))     # rows no contact owns hold other data
     big_s[rows] = 0.0
     big_b = big_s.copy()
+    big_l = big_s.copy()
+    loop = batch_loop(tab.normal_id, tab.tangential_id)
     others = np.setdiff1d(np.arange(5 * n), rows)
     before = big_s[others].copy()
-    f, t, fs, ts, fb, tb = (np.zeros((n, 3)) for _ in range(6))
+    f, t, fs, ts, fb, tb, fl, tl = (np.zeros((n, 3)) for _ in range(8))
     for step in range(6):
         v = vel * (1.0 + 0.5 * math.sin(step))
         d = delta + step * 2e-7
@@ -486,9 +489,14 @@ def test_history_rows_advance_a_larger_table_in_place(tangential):
                               rows)
         contact_forces(tab.normal_id, tab.tangential_id, tab.params, pair, big_b, nrm, d, v, wn, 1e-7, fb, tb,
                        history_rows=rows)
+        loop(tab.normal_id, tab.tangential_id, tab.params, pair, big_l, rows, nrm, d, v, wn, 1e-7, fl, tl)
         assert np.array_equal(f, fs) and np.array_equal(t, ts) and np.array_equal(f, fb) and np.array_equal(t, tb)
-        assert np.array_equal(big_s[rows], H) and np.array_equal(big_b[rows], H)
+        assert np.array_equal(f, fl) and np.array_equal(t, tl)
+        assert np.array_equal(big_s[rows], H) and np.array_equal(big_b[rows], H) and np.array_equal(big_l[rows], H)
     assert np.array_equal(big_s[others], before) and np.array_equal(big_b[others], before)
+    assert np.array_equal(big_l[others], before)
+    with pytest.raises(InputError, match="tid"):
+        batch_loop(tab.normal_id, 99)
     assert np.abs(t).max() > 0.0
 
 
