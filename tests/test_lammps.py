@@ -350,3 +350,39 @@ def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
     bridge.run(10)                                               # a later run starts afresh
     assert lmp.extract_global("ntimestep") >= 40
     lmp.close()
+
+
+def _pair_in_pieces(between=None, evaporate=False):
+    """A spinning sphere pressed onto another (and a third far away, removed by fix evaporate during the
+    first run if asked), run as run(10), [command], run(10): the velocities at the end."""
+    lmp = _box(n=2, dt=1e-7)
+    lmp.command("create_atoms 1 single 0.008 0.008 0.008")
+    lmp.command(f"set type 1 diameter 2e-3")
+    lmp.command(f"set type 1 density {GLASS.rho!r}")
+    lmp.numpy.extract_atom("v")[0] = (0.01, 0.0, 0.05)
+    lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
+    if evaporate:
+        lmp.command("region far block 0.007 0.009 0.007 0.009 0.007 0.009")
+        lmp.command("fix ev all evaporate 5 1 far 1")
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    bridge.run(10)
+    if evaporate:
+        lmp.command("unfix ev")
+    if between:
+        lmp.command(between)
+    bridge.run(10)
+    out = np.array(lmp.numpy.extract_atom("v")[:2]).copy(), lmp.get_natoms()
+    lmp.close()
+    return out
+
+
+def test_runs_in_pieces_survive_reset_timestep_and_removed_atoms():
+    """The forces saved at a run's last step are reapplied at the next set-up after a reset_timestep (the
+    trajectory does not change), and recomputed when atoms were removed during the run (the forces of
+    the step could have changed): in both cases the histories advance once per step."""
+    v, n = _pair_in_pieces()
+    v_reset, _ = _pair_in_pieces("reset_timestep 0")
+    v_evap, n_evap = _pair_in_pieces(evaporate=True)
+    assert n == 3 and n_evap == 2 and np.abs(v).max() > 0
+    assert np.array_equal(v_reset, v)
+    assert np.abs(v_evap - v).max() < 1e-6 * np.abs(v).max()         # the recomputed set-up forces only

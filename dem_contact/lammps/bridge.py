@@ -290,10 +290,13 @@ class LammpsContacts:
         self._used = None
         self._atoms = None             # per-atom scratch: (acc, touched, prev), see _atom_scratch
         self._n_prev = 0               # local atoms with a contact at the last evaluated step (prev)
-        self._eval = None              # (time step, natoms) of the last evaluation
-        self._natoms = None            # natoms at the set-up of the run under way
+        self._evals = 0                # calls of the callback (the mark of forces saved at a step)
+        self._saved = None             # (mark, natoms) of the forces saved last
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
         self._error = None             # an exception raised in the callback during the run under way
+        self._setup_pending = False    # run() started a run: its first call is the set-up
+        self._nlocal_ref = -1          # local atoms when the Verlet lists were built
+        self._near = None              # local atoms that may change rank before the next rebuild
         self.dt = None
         self._x_ref = self._tag_ref = self._r_ref = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
@@ -370,6 +373,7 @@ class LammpsContacts:
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
         self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
         self._error = None
+        self._setup_pending = True
         try:
             self.lmp.command(f"run {int(nsteps)}")
         finally:
@@ -446,6 +450,7 @@ class LammpsContacts:
     @staticmethod
     def _callback(self, ntimestep, nlocal, tag, x, fext):
         t0 = time.perf_counter()
+        self._evals += 1               # (every rank counts every call: the marks of saved forces agree)
         try:
             if self._error is None:
                 self._step(ntimestep, nlocal, fext)
@@ -462,7 +467,9 @@ class LammpsContacts:
         """The contact forces and torques of one step (or a run's set-up) into fext and LAMMPS's torques."""
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
         # at the first step): forces are needed, but nothing may advance
-        setup = self._last_step is None or ntimestep == self._last_step
+        # (a call that does not follow the last step is a set-up: after a reset_timestep too)
+        setup = self._setup_pending or self._last_step is None or ntimestep != self._last_step + 1
+        self._setup_pending = False
         self._last_step = ntimestep
         if setup:
             # a new run: arrays may have been reallocated, atoms changed between runs (the Verlet lists are
@@ -470,22 +477,26 @@ class LammpsContacts:
             self._view_key = None
             self.dt = self.lmp.extract_global("dt")
         nall = self.lmp.extract_setting("nall")
-        if setup:
-            self._natoms = self.lmp.extract_global("natoms")
         xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
-        if (setup and self._eval == (ntimestep, self._natoms)
-                and K.reapply_saved(nlocal, fext, torque, saved, ntimestep)):
+        # the forces saved at the last call are reapplied (the same positions: a reset_timestep between
+        # the runs changes nothing), unless atoms were added or removed since
+        if (setup and self._saved == (self._evals - 1, self.lmp.extract_global("natoms"))
+                and K.reapply_saved(nlocal, fext, torque, saved, self._evals - 1)):
             return
-        if self._cand is None or K.moved(nlocal, nall, xa, ids, radius, self._x_ref, self._tag_ref, self._r_ref,
-                                         0.5 * self.skin):
+        if (self._cand is None or nlocal != self._nlocal_ref
+                or K.moved(nall, xa, ids, radius, self._x_ref, self._tag_ref, self._r_ref, 0.5 * self.skin)):
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._x_ref = xa[:nall].copy()
             self._tag_ref = ids[:nall].copy()
             self._r_ref = radius[:nall].copy()
+            self._nlocal_ref = nlocal
             self._rebuilt = True
             self._n_prev = -1
             self.list_builds += 1
+            self._near = None
+        if self._near is None or setup:
+            # (at a set-up too: the subdomains may have changed between runs)
             self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
             self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16)
@@ -515,12 +526,13 @@ class LammpsContacts:
         if not setup:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
-                                     not setup, fext, torque, stat, saved, ntimestep, acc, all_atoms, prev, n_prev,
+                                     not setup, fext, torque, stat, saved, self._evals, acc, all_atoms, prev, n_prev,
                                      touched, n_touched, save)
         # the atoms with contacts now are the next step's prev
         self._atoms = (acc, prev, touched)
         self._n_prev = n_touched
-        self._eval = (ntimestep, self._natoms)
+        if save:
+            self._saved = (self._evals, self.lmp.extract_global("natoms"))
         if not setup:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])

@@ -45,7 +45,7 @@ ST_OVERLAP = 3   # largest overlap of its contacts [m]
 N_STAT = 4
 
 # columns of the per-atom stored contact force (d2 property): reapplied at LAMMPS's run set-up
-SF_STEP = 6      # 1 + the time step at which the stored force and torque were computed (0: none)
+SF_MARK = 6      # 1 + the mark (evaluation number) of the step the force and torque were saved at (0: none)
 N_SAVED = 7
 
 # per-rank summary returned by scatter_contacts
@@ -214,9 +214,10 @@ def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
 
 
 @njit(cache=True)
-def moved(nlocal, nall, x, tag, radius, x_ref, tag_ref, r_ref, half_skin):
+def moved(nall, x, tag, radius, x_ref, tag_ref, r_ref, half_skin):
     """True when the Verlet lists built at x_ref, tag_ref, r_ref must be rebuilt: other atoms or indices
-    (LAMMPS exchanged, sorted or rebuilt its ghosts), another radius, or an atom moved more than skin / 2."""
+    (LAMMPS exchanged, sorted or rebuilt its ghosts), another radius, or an atom moved more than skin / 2
+    (the caller compares the number of local atoms)."""
     if x_ref.shape[0] != nall or tag_ref.shape[0] != nall or r_ref.shape[0] != nall:
         return True
     lim = half_skin * half_skin
@@ -608,14 +609,15 @@ def read_histories(H, hrow, m):
 
 @njit(cache=True)
 def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, fext,
-                     torque, stat, saved, step, acc, all_atoms, prev, n_prev, touched, n_touched, save):
+                     torque, stat, saved, mark, acc, all_atoms, prev, n_prev, touched, n_touched, save):
     """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
     their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
     atoms. forces, tforces: float64[m, 3] force on body 1 and its tangential part; fext: float64[nlocal, 3]
     receives the contact forces; torque: float64[nall, 3], contact torques are added to the local rows;
     stat[:, ST_OVERLAP] receives each local atom's largest overlap; saved: float64[nmax, N_SAVED] receives
-    the force and torque of every local atom with step + 1 when ``save`` (then all_atoms must be set: the
-    last step of a run, whose forces the next run's set-up reapplies); acc: float64[>= nlocal, 7] scratch,
+    the force and torque of every local atom with mark + 1 when ``save`` (then all_atoms must be set: the
+    last step of a run, whose forces the next run's set-up reapplies; mark: the number of the evaluation,
+    the same on every rank); acc: float64[>= nlocal, 7] scratch,
     zero on entry and on return. A local atom whose force or torque is not finite gets none, and
     ST_NEED = inf marks it. Returns float64[N_SUMMARY].
 
@@ -682,7 +684,7 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
             if save:
                 for d in range(6):
                     saved[i, d] = acc[i, d]
-                saved[i, SF_STEP] = step + 1.0
+                saved[i, SF_MARK] = mark + 1.0
             for d in range(7):
                 acc[i, d] = 0.0
     else:
@@ -718,12 +720,13 @@ def _write_atom(i, acc, advance, fext, torque, stat):
 
 
 @njit(cache=True)
-def reapply_saved(nlocal, fext, torque, saved, step):
-    """Reapply the contact forces and torques saved at ``step`` (LAMMPS's set-up call at the start of a
-    run, at the step where the previous run ended: the positions are those the forces were computed
-    at). Returns False, adding nothing, if a local atom has no force saved at this step."""
+def reapply_saved(nlocal, fext, torque, saved, mark):
+    """Reapply the contact forces and torques saved with ``mark`` (``scatter_contacts``) at LAMMPS's set-up
+    call at the start of a run, when no step was evaluated since they were saved (the positions are
+    those the forces were computed at). Returns False, adding nothing, if a local atom has no force
+    saved with this mark."""
     for i in range(nlocal):
-        if saved[i, SF_STEP] != step + 1.0:
+        if saved[i, SF_MARK] != mark + 1.0:
             return False
     for i in range(nlocal):
         for d in range(3):
