@@ -617,8 +617,8 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
     stat[:, ST_OVERLAP] receives each local atom's largest overlap; saved: float64[nmax, N_SAVED] receives
     the force and torque of every local atom with mark + 1 when ``save`` (then all_atoms must be set: the
     last step of a run, whose forces the next run's set-up reapplies; mark: the number of the evaluation,
-    the same on every rank); acc: float64[>= nlocal, 7] scratch,
-    zero on entry and on return. A local atom whose force or torque is not finite gets none, and
+    the same on every rank); acc: float64[>= nlocal, 7] scratch, zero on entry and left zero (every row
+    summed into is cleared after it is written). A local atom whose force or torque is not finite gets none, and
     ST_NEED = inf marks it. Returns float64[N_SUMMARY].
 
     Per-atom work in proportion to the contacts (see ``gather_contacts``): fext is written for the atoms
@@ -628,11 +628,6 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
     hs = H.shape[1]
     summary = np.zeros(N_SUMMARY)
     dense = all_atoms or 2 * (n_prev + n_touched) > nlocal
-    if dense:
-        # (acc is zero: this sweep brings it into the cache before the scattered sums)
-        for i in range(nlocal):
-            for d in range(7):
-                acc[i, d] = 0.0
     for n in range(m):
         a = body[n, 0]
         if advance and dst[n] >= 0:
