@@ -352,15 +352,21 @@ def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
     lmp.close()
 
 
-def _pair_in_pieces(between=None, evaporate=False):
-    """A spinning sphere pressed onto another (and a third far away, removed by fix evaporate during the
-    first run if asked), run as run(10), [command], run(10): the velocities at the end."""
+def _spinning_pair():
+    """A spinning sphere pressed onto another, and a third far away."""
     lmp = _box(n=2, dt=1e-7)
     lmp.command("create_atoms 1 single 0.008 0.008 0.008")
     lmp.command(f"set type 1 diameter 2e-3")
     lmp.command(f"set type 1 density {GLASS.rho!r}")
     lmp.numpy.extract_atom("v")[0] = (0.01, 0.0, 0.05)
     lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
+    return lmp
+
+
+def _pair_in_pieces(between=None, evaporate=False):
+    """The spinning pair (the third atom removed by fix evaporate during the first run if asked), run as
+    run(10), [command], run(10): the velocities at the end."""
+    lmp = _spinning_pair()
     if evaporate:
         lmp.command("region far block 0.007 0.009 0.007 0.009 0.007 0.009")
         lmp.command("fix ev all evaporate 5 1 far 1")
@@ -386,3 +392,29 @@ def test_runs_in_pieces_survive_reset_timestep_and_removed_atoms():
     assert n == 3 and n_evap == 2 and np.abs(v).max() > 0
     assert np.array_equal(v_reset, v)
     assert np.abs(v_evap - v).max() < 1e-6 * np.abs(v).max()         # the recomputed set-up forces only
+
+
+def test_a_restart_keeps_the_contact_histories(tmp_path):
+    """The histories are per-atom arrays of fix property/atom, which LAMMPS writes to restart files: a
+    run continued from write_restart / read_restart with the bridge attached again (same prefix) follows
+    the run that did not stop, up to its set-up forces, which are recomputed. A bridge that starts from
+    rebuilt Verlet lists at a set-up keeps them too."""
+    lmp = _spinning_pair()
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    bridge.run(10)
+    lmp.command(f"write_restart {tmp_path / 'pair.restart'}")
+    bridge.run(10)
+    v = np.array(lmp.numpy.extract_atom("v")[:2]).copy()
+    lmp.close()
+    out = {}
+    for prefix in ("dc", "fresh"):           # the histories restored, or not (a new prefix: new arrays)
+        lmp = new_lammps()
+        for c in (f"read_restart {tmp_path / 'pair.restart'}", "timestep 1e-7", "fix nve all nve/sphere"):
+            lmp.command(c)
+        bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0, prefix=prefix)
+        bridge.run(10)
+        out[prefix] = np.array(lmp.numpy.extract_atom("v")[:2]).copy()
+        lmp.close()
+    scale = np.abs(v).max()
+    assert np.abs(out["dc"] - v).max() < 1e-5 * scale
+    assert np.abs(out["fresh"] - v).max() > 1e-4 * scale         # (what losing them costs here)

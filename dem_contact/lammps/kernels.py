@@ -542,6 +542,13 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 H[s, q] = H[h_read, q] if h_read >= 0 else 0.0
             h_read = s
         hrow[n_] = h_read
+    if not advance:
+        # a set-up keeps nothing, the rows it found either: they stay uncached, so that the first step
+        # after a rebuild finds every continuing contact's rows by key and marks them used
+        for k in range(late):
+            c = work[k, 1]
+            cand_rows[c, 0] = -1
+            cand_rows[c, 1] = -1
     if left_out:
         # drop the contacts left out
         k = 0
