@@ -352,6 +352,19 @@ def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
     lmp.close()
 
 
+@pytest.mark.skipif(MPIRUN is None, reason="needs mpirun")
+def test_an_error_on_a_rank_without_atoms_is_raised_on_every_rank(tmp_path):
+    """An exception in the callback of a rank that owns no atom (so that no per-atom flag can stop the
+    run) makes run() raise on every rank: the original there, NumericalError on the others."""
+    r = subprocess.run([MPIRUN, "-np", "2", sys.executable, "tests/lammps_rank_error.py", str(tmp_path)],
+                       capture_output=True, text=True, cwd=ROOT, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    out = [json.loads((tmp_path / f"rank{k}.json").read_text()) for k in (0, 1)]
+    assert out[0]["nlocal"] == 2 and out[1]["nlocal"] == 0
+    assert out[1]["raised"] == "MemoryError" and out[0]["raised"] == "NumericalError"
+
+
 def _spinning_pair():
     """A spinning sphere pressed onto another, and a third far away."""
     lmp = _box(n=2, dt=1e-7)

