@@ -259,6 +259,17 @@ def test_refuses_ghosts_without_velocities():
         bridge.run(1)
 
 
+@pytest.mark.parametrize("setting", ["every 10", "delay 5", "check no"])
+def test_refuses_neighbour_lists_not_checked_every_step(setting):
+    """The bridge rebuilds its Verlet lists when LAMMPS rebuilds its own, which must then happen as soon
+    as an atom has moved skin/2."""
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    lmp.command(f"neigh_modify {setting}")
+    with pytest.raises(InputError, match="neigh_modify delay 0 every 1 check yes"):
+        bridge.run(1)
+
+
 def test_refuses_a_time_step_that_cannot_resolve_the_stiffest_contact():
     bridge = LammpsContacts(_box(dt=1e-4), _table(), v_max=1.0)
     with pytest.raises(InputError, match="timestep"):

@@ -14,7 +14,9 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
 - ghost atoms within ``2 r_max + skin`` of every subdomain, with their velocities and spins
   (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
   skin/2 (``neighbor skin bin``, ``neigh_modify delay 0 every 1 check yes``, issued here): a smaller
-  ghost cutoff is refused;
+  ghost cutoff is refused, and so is a run with other ``neigh_modify`` settings; the bridge's Verlet
+  lists are rebuilt when LAMMPS rebuilds its own, so the ``neighbor`` skin must stay the bridge's
+  (``skin``: do not issue ``neighbor`` after attaching);
 - ``slots`` history rows per atom (one per contact the atom has at once, walls included); an atom that
   needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
   InputError that says how many are needed;
@@ -338,7 +340,6 @@ class LammpsContacts:
         self._nlocal_ref = -1          # local atoms when the Verlet lists were built
         self._near = None              # local atoms that may change rank before the next rebuild
         self.dt = None
-        self._x_ref = self._tag_ref = self._r_ref = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
@@ -411,6 +412,11 @@ class LammpsContacts:
             self.check()
         if self.lmp.extract_setting("ghost_velocity") != 1:
             raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
+        settings = tuple(self.lmp.extract_setting(k) for k in ("neigh_every", "neigh_delay", "neigh_dist_check"))
+        if settings != (1, 0, 1):
+            raise InputError(f"LAMMPS must check its neighbour lists at every step: keep `neigh_modify delay 0 "
+                             f"every 1 check yes` (now every {settings[0]}, delay {settings[1]}, check "
+                             f"{'yes' if settings[2] else 'no'})")
         nlocal = self.lmp.extract_setting("nlocal")
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
         self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
@@ -537,7 +543,7 @@ class LammpsContacts:
         try:
             if self._error is None:
                 self._step(ntimestep, nlocal, fext)
-        except BaseException as e:        # (LAMMPS's wrapper would print it and run on without contact forces)
+        except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
             self._error = e
         if self._error is not None:
             # no contact forces from here on: the run stops at the next check and run() raises
@@ -555,29 +561,30 @@ class LammpsContacts:
         self._setup_pending = False
         self._last_step = ntimestep
         if setup:
-            # a new run: arrays may have been reallocated, atoms changed between runs (the Verlet lists are
-            # kept if no atom moved, changed index or radius)
+            # a new run: arrays may have been reallocated, atoms changed between runs
             self._view_key = None
             self.dt = self.lmp.extract_global("dt")
         nall = self.lmp.extract_setting("nall")
+        ago = self.lmp.extract_setting("neigh_ago")       # steps since LAMMPS rebuilt its lists
         xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
-        # the forces saved at the last call are reapplied (the same positions: a reset_timestep between
-        # the runs changes nothing), unless atoms were added or removed since
-        if (setup and self._saved == (self._evals - 1, self.lmp.extract_global("natoms"))
-                and K.reapply_saved(nlocal, fext, torque, saved, self._evals - 1)):
-            return
-        if (self._cand is None or nlocal != self._nlocal_ref
-                or K.moved(nall, xa, ids, radius, self._x_ref, self._tag_ref, self._r_ref, 0.5 * self.skin)):
+        # Our Verlet lists are rebuilt exactly when LAMMPS rebuilds its own (neigh_ago 0: at a run's set-up,
+        # and when an atom has moved skin/2, with our skin and `neigh_modify delay 0 every 1 check yes`,
+        # which run() checks): only then does LAMMPS re-index atoms (exchange, sort, new ghosts), and
+        # between its rebuilds no atom moves skin/2, so the lists stay valid. (Radii changed between runs
+        # are taken at the set-up.)
+        if self._cand is None or ago == 0 or nlocal != self._nlocal_ref:
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
-            self._x_ref = xa[:nall].copy()
-            self._tag_ref = ids[:nall].copy()
-            self._r_ref = radius[:nall].copy()
             self._nlocal_ref = nlocal
             self._rebuilt = True
             self._n_prev = -1
             self.list_builds += 1
             self._near = None
+        # the forces saved at the last call are reapplied (the same positions: a reset_timestep between
+        # the runs changes nothing), unless atoms were added or removed since
+        if (setup and self._saved == (self._evals - 1, self.lmp.extract_global("natoms"))
+                and K.reapply_saved(nlocal, fext, torque, saved, self._evals - 1)):
+            return
         if self._near is None or setup:
             # (at a set-up too: the subdomains may have changed between runs)
             self._near = self._near_boundary(nlocal, xa)

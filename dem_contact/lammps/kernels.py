@@ -214,25 +214,6 @@ def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
 
 
 @njit(cache=True)
-def moved(nall, x, tag, radius, x_ref, tag_ref, r_ref, half_skin):
-    """True when the Verlet lists built at x_ref, tag_ref, r_ref must be rebuilt: other atoms or indices
-    (LAMMPS exchanged, sorted or rebuilt its ghosts), another radius, or an atom moved more than skin / 2
-    (the caller compares the number of local atoms)."""
-    if x_ref.shape[0] != nall or tag_ref.shape[0] != nall or r_ref.shape[0] != nall:
-        return True
-    lim = half_skin * half_skin
-    for i in range(nall):
-        if tag[i] != tag_ref[i] or radius[i] != r_ref[i]:
-            return True
-        dx = x[i, 0] - x_ref[i, 0]
-        dy = x[i, 1] - x_ref[i, 1]
-        dz = x[i, 2] - x_ref[i, 2]
-        if dx * dx + dy * dy + dz * dz > lim:
-            return True
-    return False
-
-
-@njit(cache=True)
 def _grow2(a):
     b = np.empty((2 * a.shape[0], a.shape[1]), dtype=a.dtype)
     b[:a.shape[0]] = a
