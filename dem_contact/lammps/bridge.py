@@ -31,6 +31,7 @@ itself needs ``export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib:$LD_LIBRARY_PATH``. MPI r
 """
 from __future__ import annotations
 
+import functools
 import math
 import os
 import sys
@@ -76,6 +77,7 @@ _MPICH_INT = 0x4C000405
 _MPICH_MAX = 0x58000001
 
 
+@functools.cache
 def _mpich():
     """MPICH's libmpi (ctypes) when LAMMPS runs on it, else None."""
     import ctypes
