@@ -62,8 +62,9 @@ def atom_columns(slots: int) -> int:
 
 
 @njit(cache=True)
-def _cells(x, n, cell):
-    """Counting-sort cell list of the first n points: (lo, dims, cell size, start, order, cell of each)."""
+def _grid(x, n, cell):
+    """Cell grid over the bounding box of the first n points: (lo, dims, cell size); cells coarser than
+    ``cell`` where the points are sparse (memory O(n))."""
     lo = np.empty(3)
     hi = np.empty(3)
     for d in range(3):
@@ -80,28 +81,44 @@ def _cells(x, n, cell):
         total = 1.0
         for d in range(3):
             total *= (hi[d] - lo[d]) / cell + 1.0
-        if total > 4.0 * n + 1000.0:           # sparse points: coarser cells keep memory O(n)
+        if total > 4.0 * n + 1000.0:
             cell *= (total / (4.0 * n + 1000.0)) ** (1.0 / 3.0)
         for d in range(3):
             dims[d] = int((hi[d] - lo[d]) / cell) + 1
-    ncell = dims[0] * dims[1] * dims[2]
-    which = np.empty(n, dtype=np.int64)
-    start = np.zeros(ncell + 1, dtype=np.int64)
-    for i in range(n):
+    return lo, dims, cell
+
+
+@njit(cache=True)
+def _cell_lists(x, radius, first, last, lo, dims, cell, which):
+    """Counting-sort cell list of points first..last-1 on the grid: (start int64[ncell + 1], order
+    int64[n], xs float64[n, 4] the coordinates and radius in cell order); which[i] gets the cell of i."""
+    n = last - first
+    start = np.zeros(dims[0] * dims[1] * dims[2] + 1, dtype=np.int64)
+    for i in range(first, last):
         cx = min(int((x[i, 0] - lo[0]) / cell), dims[0] - 1)
         cy = min(int((x[i, 1] - lo[1]) / cell), dims[1] - 1)
         cz = min(int((x[i, 2] - lo[2]) / cell), dims[2] - 1)
         k = (cx * dims[1] + cy) * dims[2] + cz
         which[i] = k
         start[k + 1] += 1
-    for k in range(ncell):
+    for k in range(start.shape[0] - 1):
         start[k + 1] += start[k]
     fill = start[:-1].copy()
     order = np.empty(n, dtype=np.int64)
-    for i in range(n):
-        order[fill[which[i]]] = i
+    xs = np.empty((n, 4))
+    for i in range(first, last):
+        q = fill[which[i]]
         fill[which[i]] += 1
-    return lo, dims, cell, start, order, which
+        order[q] = i
+        xs[q, 0] = x[i, 0]
+        xs[q, 1] = x[i, 1]
+        xs[q, 2] = x[i, 2]
+        xs[q, 3] = radius[i]
+    return start, order, xs
+
+
+#: the (x, y) cell columns ahead of a cell (half of its eight neighbour columns)
+_AHEAD = np.array([[1, -1], [1, 0], [1, 1], [0, 1]], dtype=np.int64)
 
 
 @njit(cache=True)
@@ -110,41 +127,94 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
     than r_i + r_j + skin, in the order of i, and wall pairs (i, w) closer than r_i + skin. walls:
     float64[n_walls, 6], a point and the unit normal pointing into the domain. Valid while no atom has moved
     more than skin / 2 and the local and ghost atoms keep their indices. Returns (pairs int64[m, 2],
-    wall_pairs int64[k, 2])."""
-    lo, dims, cell, start, order, which = _cells(x, nall, 2.0 * rmax + skin)
+    wall_pairs int64[k, 2]).
+
+    Cell lists of side 2 r_max + skin (Allen & Tildesley, Computer Simulation of Liquids, 1987, sec. 5.3.2),
+    local atoms and ghosts in separate lists on one grid: a pair of local atoms is found once, from the
+    cell of the first in cell order, in the half of the 27-cell stencil ahead of it (the rest of its cell
+    and the next along z, and the four (x, y) columns ahead, three cells each); a local atom's ghost
+    partners in the whole stencil. The pairs are then put in the order of i (counting sort)."""
+    lo, dims, cell = _grid(x, nall, 2.0 * rmax + skin)
     d0 = dims[0]
     d1 = dims[1]
     d2 = dims[2]
+    which = np.empty(nall, dtype=np.int64)
+    start, order, xs = _cell_lists(x, radius, 0, nlocal, lo, dims, cell, which)
+    gstart, gorder, gs = _cell_lists(x, radius, nlocal, nall, lo, dims, cell, which)
+    ng = nall - nlocal
     cap = 8 * nlocal + 16
-    pairs = np.empty((cap, 2), dtype=np.int64)
-    m = 0
-    for i in range(nlocal):
-        k = which[i]
-        cz = k % d2
-        cy = (k // d2) % d1
-        cx = k // (d1 * d2)
-        xi = x[i, 0]
-        yi = x[i, 1]
-        zi = x[i, 2]
-        ri = radius[i] + skin
-        for ax in range(max(cx - 1, 0), min(cx + 2, d0)):
-            for ay in range(max(cy - 1, 0), min(cy + 2, d1)):
-                # the three cells along z are consecutive in the cell order
-                k0 = (ax * d1 + ay) * d2
-                for q in range(start[k0 + max(cz - 1, 0)], start[k0 + min(cz + 2, d2)]):
-                    j = order[q]
-                    if j == i or tag[j] == tag[i] or (j < nlocal and tag[j] < tag[i]):
+    while True:
+        first = np.empty(cap, dtype=np.int64)
+        second = np.empty(cap, dtype=np.int64)
+        m = 0
+        for p in range(nlocal):
+            i = order[p]
+            k = which[i]
+            cz = k % d2
+            cy = (k // d2) % d1
+            cx = k // (d1 * d2)
+            xi = xs[p, 0]
+            yi = xs[p, 1]
+            zi = xs[p, 2]
+            ri = xs[p, 3]
+            ti = tag[i]
+            for col in range(5):
+                if col == 0:
+                    # the atoms after p in its cell, and the next cell along z (consecutive in the order)
+                    q0 = p + 1
+                    q1 = start[k - cz + min(cz + 2, d2)]
+                else:
+                    ax = cx + _AHEAD[col - 1, 0]
+                    ay = cy + _AHEAD[col - 1, 1]
+                    if ax >= d0 or ay < 0 or ay >= d1:
                         continue
-                    dx = x[j, 0] - xi
-                    dy = x[j, 1] - yi
-                    dz = x[j, 2] - zi
-                    rs = ri + radius[j]
+                    k0 = (ax * d1 + ay) * d2
+                    q0 = start[k0 + max(cz - 1, 0)]
+                    q1 = start[k0 + min(cz + 2, d2)]
+                for q in range(q0, q1):
+                    dx = xs[q, 0] - xi
+                    dy = xs[q, 1] - yi
+                    dz = xs[q, 2] - zi
+                    rs = (ri + xs[q, 3]) + skin
                     if dx * dx + dy * dy + dz * dz < rs * rs:
-                        if m == pairs.shape[0]:
-                            pairs = _grow2(pairs)
-                        pairs[m, 0] = i
-                        pairs[m, 1] = j
+                        if m < cap:
+                            j = order[q]
+                            # the lower atom id first
+                            lower = tag[j] < ti
+                            first[m] = j if lower else i
+                            second[m] = i if lower else j
                         m += 1
+            if ng > 0:
+                for ax in range(max(cx - 1, 0), min(cx + 2, d0)):
+                    for ay in range(max(cy - 1, 0), min(cy + 2, d1)):
+                        k0 = (ax * d1 + ay) * d2
+                        for q in range(gstart[k0 + max(cz - 1, 0)], gstart[k0 + min(cz + 2, d2)]):
+                            dx = gs[q, 0] - xi
+                            dy = gs[q, 1] - yi
+                            dz = gs[q, 2] - zi
+                            rs = (ri + gs[q, 3]) + skin
+                            j = gorder[q]
+                            # (a ghost with the atom's own id is its periodic image)
+                            if dx * dx + dy * dy + dz * dz < rs * rs and tag[j] != ti:
+                                if m < cap:
+                                    first[m] = i
+                                    second[m] = j
+                                m += 1
+        if m <= cap:
+            break
+        cap = m
+    # in the order of i
+    fill = np.zeros(nlocal + 1, dtype=np.int64)
+    for c in range(m):
+        fill[first[c] + 1] += 1
+    for i in range(nlocal):
+        fill[i + 1] += fill[i]
+    pairs = np.empty((m, 2), dtype=np.int64)
+    for c in range(m):
+        q = fill[first[c]]
+        fill[first[c]] = q + 1
+        pairs[q, 0] = first[c]
+        pairs[q, 1] = second[c]
     nw = walls.shape[0]
     hits = np.empty((max(nlocal * nw, 1), 2), dtype=np.int64)
     kw = 0
@@ -156,7 +226,7 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
                 hits[kw, 0] = i
                 hits[kw, 1] = w
                 kw += 1
-    return pairs[:m], hits[:kw]
+    return pairs, hits[:kw]
 
 
 @njit(inline="always", cache=True)
@@ -211,20 +281,6 @@ def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
     """The contacts of the local atoms now (candidates with no skin, then their overlaps)."""
     cand, cand_walls = candidates(nlocal, nall, x, radius, tag, walls, rmax, 0.0)
     return overlapping(x, radius, walls, cand, cand_walls)
-
-
-@njit(cache=True)
-def _grow2(a):
-    b = np.empty((2 * a.shape[0], a.shape[1]), dtype=a.dtype)
-    b[:a.shape[0]] = a
-    return b
-
-
-@njit(cache=True)
-def _grow1(a):
-    b = np.empty(2 * a.shape[0], dtype=a.dtype)
-    b[:a.shape[0]] = a
-    return b
 
 
 @njit(cache=True)
