@@ -421,8 +421,7 @@ def test_runs_in_pieces_survive_reset_timestep_and_removed_atoms():
 def test_a_restart_keeps_the_contact_histories(tmp_path):
     """The histories are per-atom arrays of fix property/atom, which LAMMPS writes to restart files: a
     run continued from write_restart / read_restart with the bridge attached again (same prefix) follows
-    the run that did not stop, up to its set-up forces, which are recomputed. A bridge that starts from
-    rebuilt Verlet lists at a set-up keeps them too."""
+    the run that did not stop, up to its set-up forces, which are recomputed."""
     lmp = _spinning_pair()
     bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
     bridge.run(10)
