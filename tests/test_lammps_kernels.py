@@ -56,10 +56,10 @@ def _bridge_step(S, g, step, all_atoms, save):
     _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = buf
     contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], S["H"], normals[:m], overlaps[:m],
                           vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m])
-    S["torque"][:] = 0.0                                  # LAMMPS clears the torques every step
+    S["f"][:] = 0.0                                       # LAMMPS clears forces and torques every step
+    S["torque"][:] = 0.0
     K.scatter_contacts(g["n"], g["radius"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
-                       S["fext"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["prev"],
-                       S["n_prev"], S["touched"], nt, save)
+                       S["f"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["touched"], nt, save)
     S["prev"], S["touched"], S["n_prev"], S["rebuilt"] = S["touched"], S["prev"], nt, False
     return m
 
@@ -67,7 +67,7 @@ def _bridge_step(S, g, step, all_atoms, save):
 def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_atom():
     """The bridge writes forces, torques and statistics only for the atoms with a contact now or at the
     last step: along a run in which contacts form and end (spheres moving through each other and onto a
-    floor), fext, torque and the statistics equal those of a pass over every local atom, bit for bit, and
+    floor), forces, torques and the statistics equal those of a pass over every local atom, bit for bit, and
     the forces saved at the last step of a run are those applied."""
     from dem_contact.dem.pairs import pair_table
     from dem_contact.materials import Material, Sphere, Wall
@@ -88,7 +88,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
         return dict(keys=np.zeros((n, slots)), H=np.zeros((n * slots, table.history_size)),
                     stat=np.zeros((n, K.N_STAT)), saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
                     acc=np.zeros((n, 7)), prev=np.zeros(n, dtype=np.int64),
-                    touched=np.zeros(n, dtype=np.int64), n_prev=0, fext=np.zeros((n, 3)), torque=np.zeros((n, 3)),
+                    touched=np.zeros(n, dtype=np.int64), n_prev=0, f=np.zeros((n, 3)), torque=np.zeros((n, 3)),
                     rebuilt=True, buf=None, cand_rows=None)
 
     every, few = state(), state()            # a pass over every atom at every step; the bridge's
@@ -106,16 +106,16 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
         save = step % 100 == 99
         counts.append(_bridge_step(every, g, step, True, save))
         _bridge_step(few, g, step, rebuild or save, save)
-        for key in ("fext", "torque", "stat", "H", "keys"):
+        for key in ("f", "torque", "stat", "H", "keys"):
             assert np.array_equal(every[key], few[key]), (step, key)
         assert not few["acc"].any()
         if save:
-            assert np.array_equal(few["saved"][:, :3], few["fext"])
+            assert np.array_equal(few["saved"][:, :3], few["f"])
             assert np.array_equal(few["saved"][:, 3:6], few["torque"])
-            fext, torque = np.zeros((n, 3)), np.zeros((n, 3))
-            assert K.reapply_saved(n, fext, torque, few["saved"], step)
-            assert np.array_equal(fext, few["fext"]) and np.array_equal(torque, few["torque"])
-            assert not K.reapply_saved(n, fext, torque, few["saved"], step + 1)
+            f, torque = np.zeros((n, 3)), np.zeros((n, 3))
+            assert K.reapply_saved(n, f, torque, few["saved"], step)
+            assert np.array_equal(f, few["f"]) and np.array_equal(torque, few["torque"])
+            assert not K.reapply_saved(n, f, torque, few["saved"], step + 1)
         x += v * g["dt"] * 5.0                   # (positions moved by hand: contacts form and end)
         v[:, 2] -= 0.02
     counts = np.array(counts)

@@ -45,6 +45,9 @@ from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from . import kernels as K
 
+#: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
+#: and the array is kept zero)
+_NEVER = 2**31 - 1
 #: The time step must give at least this many steps per elastic contact time of the stiffest pair.
 MIN_STEPS_PER_CONTACT = 10.0
 #: Relative tolerance on an atom's radius and mass against its type's Sphere.
@@ -317,11 +320,13 @@ class LammpsContacts:
         for cmd in (
             f"variable {p}_need equal c_{p}_max[{K.ST_NEED + 1}]",
             f"fix {p}_halt all halt {self.check_every} v_{p}_need > {self.slots} error soft message no",
-            f"fix {p}_ext all external pf/callback 1 1",
+            # the callback adds the contact forces to LAMMPS's own force array, for the atoms with contacts
+            # only; fix external's array, which it would add for every atom at every step, is kept zero and
+            # applied never (its period is the largest it takes)
+            f"fix {p}_ext all external pf/callback 1 {_NEVER}",
         ):
             lmp.command(cmd)
-        self._fext_key = None          # (address, nlocal) of the view self._fext of fix external's force array
-        self._fext = None
+        self._fext_key = None          # (address, nlocal) of fix external's force array when last zeroed
         self._set_callback(f"{p}_ext")
         self._last_step = None
         self._checked = False
@@ -459,7 +464,7 @@ class LammpsContacts:
         return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
 
     def _views(self, nall):
-        """numpy views of LAMMPS's per-atom arrays (x, v, omega, radius, rmass, id, type, torque, keys, H,
+        """numpy views of LAMMPS's per-atom arrays (x, v, omega, radius, rmass, id, type, f, torque, keys, H,
         stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
         whenever nmax (the allocated length) or nall changes."""
         lmp = self.lmp
@@ -474,11 +479,12 @@ class LammpsContacts:
                 _huge_pages(data)
             self._view = (ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
                           ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
-                          ex("type", nelem=nall), ex("torque", nelem=nall, dim=3), data[:, :self.slots], H,
+                          ex("type", nelem=nall), ex("f", nelem=nall, dim=3), ex("torque", nelem=nall, dim=3),
+                          data[:, :self.slots], H,
                           data[:, self.col_stat:self.col_stat + K.N_STAT],
                           data[:, self.col_saved:self.col_saved + K.N_SAVED])
             self._view_key = (nmax, nall)
-            self._n_prev = -1          # new views: every local atom's force is written at the next step
+            self._n_prev = -1          # new views: every local atom is visited at the next step
         return self._view
 
     def _atom_scratch(self, nlocal):
@@ -523,39 +529,36 @@ class LammpsContacts:
         with ExceptionCheck(lmp):
             setter(lmp.lmp, fix_id.encode(), func, self)
 
-    def _fext_view(self, address, nlocal):
-        """numpy view of fix external's force array (double **: address of the row pointers)."""
+    def _zero_fext(self, address, nlocal):
+        """Keep fix external's own force array zero (double **: address of the row pointers; LAMMPS does not
+        zero the rows it allocates): it is zeroed whenever it was reallocated or the local atoms changed."""
         import ctypes
 
         data = ctypes.c_void_p.from_address(address).value if address else None
         if self._fext_key != (data, nlocal):
-            if data is None or nlocal == 0:
-                self._fext = np.zeros((0, 3))
-            else:
-                self._fext = np.ctypeslib.as_array(ctypes.cast(data, ctypes.POINTER(ctypes.c_double)),
-                                                   shape=(nlocal, 3))
+            if data is not None and nlocal > 0:
+                ctypes.memset(data, 0, 3 * nlocal * ctypes.sizeof(ctypes.c_double))
             self._fext_key = (data, nlocal)
-        return self._fext
 
     @staticmethod
     def _callback(self, ntimestep, nlocal, tag_address, x_address, fext_address):
         t0 = time.perf_counter()
-        fext = self._fext_view(fext_address, nlocal)
         self._evals += 1               # (every rank counts every call: the marks of saved forces agree)
         try:
+            self._zero_fext(fext_address, nlocal)
             if self._error is None:
-                self._step(ntimestep, nlocal, fext)
+                self._step(ntimestep, nlocal)
         except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
             self._error = e
         if self._error is not None:
-            # no contact forces from here on: the run stops at the next check and run() raises
+            # no contact forces from here on (the forces are added by the last kernel of a step: none
+            # were): the run stops at the next check and run() raises
             self._last_step = ntimestep
-            fext[:nlocal] = 0.0
             self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
         self.callback_s += time.perf_counter() - t0
 
-    def _step(self, ntimestep, nlocal, fext):
-        """The contact forces and torques of one step (or a run's set-up) into fext and LAMMPS's torques."""
+    def _step(self, ntimestep, nlocal):
+        """The contact forces and torques of one step (or a run's set-up), added to LAMMPS's."""
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
         # at the first step): forces are needed, but nothing may advance
         # (a call that does not follow the last step is a set-up: after a reset_timestep too)
@@ -568,7 +571,7 @@ class LammpsContacts:
             self.dt = self.lmp.extract_global("dt")
         nall = self.lmp.extract_setting("nall")
         ago = self.lmp.extract_setting("neigh_ago")       # steps since LAMMPS rebuilt its lists
-        xa, v, omega, radius, rmass, ids, typ, torque, keys, H, stat, saved = self._views(nall)
+        xa, v, omega, radius, rmass, ids, typ, f, torque, keys, H, stat, saved = self._views(nall)
         # Our Verlet lists are rebuilt exactly when LAMMPS rebuilds its own (neigh_ago 0: at a run's set-up,
         # and when an atom has moved skin/2, with our skin and `neigh_modify delay 0 every 1 check yes`,
         # which run() checks): only then does LAMMPS re-index atoms (exchange, sort, new ghosts), and
@@ -585,7 +588,7 @@ class LammpsContacts:
         # the forces saved at the last call are reapplied (the same positions: a reset_timestep between
         # the runs changes nothing), unless atoms were added or removed since
         if (setup and self._saved == (self._evals - 1, self.lmp.extract_global("natoms"))
-                and K.reapply_saved(nlocal, fext, torque, saved, self._evals - 1)):
+                and K.reapply_saved(nlocal, f, torque, saved, self._evals - 1)):
             return
         if self._near is None or setup:
             # (at a set-up too: the subdomains may have changed between runs)
@@ -595,9 +598,9 @@ class LammpsContacts:
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
         acc, touched, prev = self._atom_scratch(nlocal)
-        # every local atom is written at a set-up, after a rebuild or new views (its index may have
-        # changed) and at the last step of a run (its forces are saved for the next run's set-up);
-        # otherwise only the atoms with contacts now or at the last step
+        # every local atom is visited at a set-up, after a rebuild or new views (its index may have
+        # changed: its statistics are cleared) and at the last step of a run (its forces are saved for the
+        # next run's set-up); otherwise only the atoms with contacts now or at the last step
         save = setup or ntimestep == self._end_step
         all_atoms = save or self._n_prev < 0
         n_prev = max(self._n_prev, 0)
@@ -618,8 +621,8 @@ class LammpsContacts:
         if not setup:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
-                                     not setup, fext, torque, stat, saved, self._evals, acc, all_atoms, prev, n_prev,
-                                     touched, n_touched, save)
+                                     not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
+                                     n_touched, save)
         # the atoms with contacts now are the next step's prev
         self._atoms = (acc, prev, touched)
         self._n_prev = n_touched

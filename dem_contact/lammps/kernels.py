@@ -652,26 +652,26 @@ def read_histories(H, hrow, m):
 
 
 @njit(cache=True)
-def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, fext,
-                     torque, stat, saved, mark, acc, all_atoms, prev, n_prev, touched, n_touched, save):
+def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, f,
+                     torque, stat, saved, mark, acc, all_atoms, touched, n_touched, save):
     """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
     their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
-    atoms. forces, tforces: float64[m, 3] force on body 1 and its tangential part; fext: float64[nlocal, 3]
-    receives the contact forces; torque: float64[nall, 3], contact torques are added to the local rows;
-    stat[:, ST_OVERLAP] receives each local atom's largest overlap; saved: float64[nmax, N_SAVED] receives
-    the force and torque of every local atom with mark + 1 when ``save`` (then all_atoms must be set: the
-    last step of a run, whose forces the next run's set-up reapplies; mark: the number of the evaluation,
-    the same on every rank); acc: float64[>= nlocal, 7] scratch, zero on entry and left zero (every row
-    summed into is cleared after it is written). A local atom whose force or torque is not finite gets none, and
-    ST_NEED = inf marks it. Returns float64[N_SUMMARY].
+    atoms. forces, tforces: float64[m, 3] force on body 1 and its tangential part; f, torque:
+    float64[>= nlocal, 3] LAMMPS's forces and torques (cleared by LAMMPS every step), the contact forces
+    and torques are added to the local rows; stat[:, ST_OVERLAP] receives each local atom's largest
+    overlap; saved: float64[nmax, N_SAVED] receives the contact force and torque of every local atom with
+    mark + 1 when ``save`` (then all_atoms must be set: the last step of a run, whose forces the next
+    run's set-up reapplies; mark: the number of the evaluation, the same on every rank); acc:
+    float64[>= nlocal, 7] scratch, zero on entry and left zero (every row summed into is cleared after it
+    is written). A local atom whose force or torque is not finite gets none, and ST_NEED = inf marks it.
+    Returns float64[N_SUMMARY].
 
-    Per-atom work in proportion to the contacts (see ``gather_contacts``): fext is written for the atoms
-    with a contact now (touched[:n_touched]) or at the last step (prev[:n_prev]: their force is now
-    zero); every other local atom's is zero already. all_atoms, or where most atoms have contacts: every
-    local atom's is written, in the order of the atoms."""
+    Per-atom work in proportion to the contacts (see ``gather_contacts``): only the atoms with a contact
+    now (touched[:n_touched]) are written, unless all_atoms, or most atoms have contacts: then every local
+    atom is, in the order of the atoms."""
     hs = H.shape[1]
     summary = np.zeros(N_SUMMARY)
-    dense = all_atoms or 2 * (n_prev + n_touched) > nlocal
+    dense = all_atoms or 2 * n_touched > nlocal
     for n in range(m):
         a = body[n, 0]
         if advance and dst[n] >= 0:
@@ -719,7 +719,7 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
         summary[R_OVERLAP] = max(summary[R_OVERLAP], delta)
     if dense:
         for i in range(nlocal):
-            summary[R_BAD] += _write_atom(i, acc, advance, fext, torque, stat)
+            summary[R_BAD] += _write_atom(i, acc, advance, f, torque, stat)
             if save:
                 for d in range(6):
                     saved[i, d] = acc[i, d]
@@ -727,21 +727,17 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
             for d in range(7):
                 acc[i, d] = 0.0
     else:
-        for k in range(n_prev):
-            # (an atom with a contact now is written next)
-            for d in range(3):
-                fext[prev[k], d] = 0.0
         for k in range(n_touched):
             i = touched[k]
-            summary[R_BAD] += _write_atom(i, acc, advance, fext, torque, stat)
+            summary[R_BAD] += _write_atom(i, acc, advance, f, torque, stat)
             for d in range(7):
                 acc[i, d] = 0.0
     return summary
 
 
 @njit(inline="always", cache=True)
-def _write_atom(i, acc, advance, fext, torque, stat):
-    """Contact force and torque of local atom i (accumulated in acc[i]) into LAMMPS's arrays, and its
+def _write_atom(i, acc, advance, f, torque, stat):
+    """Contact force and torque of local atom i (accumulated in acc[i]) added to LAMMPS's arrays, and its
     largest overlap; none if not finite (acc zeroed, ST_NEED = inf marks it; returns 1.0, else 0.0)."""
     ok = True
     for d in range(6):
@@ -752,14 +748,14 @@ def _write_atom(i, acc, advance, fext, torque, stat):
         if advance:
             stat[i, ST_NEED] = math.inf
     for d in range(3):
-        fext[i, d] = acc[i, d]
+        f[i, d] += acc[i, d]
         torque[i, d] += acc[i, 3 + d]
     stat[i, ST_OVERLAP] = acc[i, 6]
     return 0.0 if ok else 1.0
 
 
 @njit(cache=True)
-def reapply_saved(nlocal, fext, torque, saved, mark):
+def reapply_saved(nlocal, f, torque, saved, mark):
     """Reapply the contact forces and torques saved with ``mark`` (``scatter_contacts``) at LAMMPS's set-up
     call at the start of a run, when no step was evaluated since they were saved (the positions are
     those the forces were computed at). Returns False, adding nothing, if a local atom has no force
@@ -769,7 +765,7 @@ def reapply_saved(nlocal, fext, torque, saved, mark):
             return False
     for i in range(nlocal):
         for d in range(3):
-            fext[i, d] = saved[i, d]
+            f[i, d] += saved[i, d]
             torque[i, d] += saved[i, 3 + d]
     return True
 
