@@ -339,7 +339,7 @@ def test_a_failing_law_is_reported_not_integrated():
 
 def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
     """An exception while computing the contact forces (here: injected into the contact search after 30
-    steps) is not swallowed by LAMMPS's callback wrapper: the run stops at the next check, with no contact
+    steps) is not swallowed by the ctypes callback: the run stops at the next check, with no contact
     forces applied in between, and run() raises it."""
     from dem_contact.lammps import kernels as K
 
