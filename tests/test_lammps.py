@@ -270,6 +270,23 @@ def test_refuses_neighbour_lists_not_checked_every_step(setting):
         bridge.run(1)
 
 
+@pytest.mark.parametrize("command", ["neigh_modify once yes", "neighbor 0.01 bin"])
+def test_the_neighbour_skin_is_the_bridge_s_at_every_run(command):
+    """The Verlet lists follow LAMMPS's rebuilds, so run() sets the bridge's skin and `neigh_modify once
+    no` again before every run (LAMMPS's own cannot be read back to check them): a pair that approaches
+    from beyond the skin collides and rebounds even after a command that would have LAMMPS never rebuild
+    its lists, or rebuild them too late."""
+    lmp = _box(n=2)
+    lmp.numpy.extract_atom("x")[1] = (0.0, 0.0, 0.0025)
+    lmp.numpy.extract_atom("v")[:2] = ((0.0, 0.0, 1.0), (0.0, 0.0, -1.0))
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=2.0)        # skin 0.3 mm, the gap 0.5 mm
+    lmp.command(command)
+    bridge.run(5000)
+    v = np.array(lmp.numpy.extract_atom("v")[:2])
+    assert v[0, 2] < -0.99 and v[1, 2] > 0.99                          # (elastic: the speeds come back)
+    lmp.close()
+
+
 def test_refuses_a_time_step_that_cannot_resolve_the_stiffest_contact():
     bridge = LammpsContacts(_box(dt=1e-4), _table(), v_max=1.0)
     with pytest.raises(InputError, match="timestep"):
@@ -441,3 +458,17 @@ def test_a_restart_keeps_the_contact_histories(tmp_path):
     scale = np.abs(v).max()
     assert np.abs(out["dc"] - v).max() < 1e-5 * scale
     assert np.abs(out["fresh"] - v).max() > 1e-4 * scale         # (what losing them costs here)
+
+
+def test_saved_forces_are_not_reapplied_to_atoms_moved_between_runs():
+    """The contact forces saved at a run's last step are those of the atoms where they were: after
+    displace_atoms has separated the pair, the next run's first step applies no force."""
+    lmp = _spinning_pair()
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    bridge.run(10)
+    lmp.command("group a2 id 2")
+    lmp.command("displace_atoms a2 move 0 0 0.003")
+    v0 = np.array(lmp.numpy.extract_atom("v")[:2]).copy()
+    bridge.run(1)
+    assert np.array_equal(np.array(lmp.numpy.extract_atom("v")[:2]), v0)
+    lmp.close()

@@ -58,7 +58,7 @@ def _bridge_step(S, g, step, all_atoms, save):
                           vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m])
     S["f"][:] = 0.0                                       # LAMMPS clears forces and torques every step
     S["torque"][:] = 0.0
-    K.scatter_contacts(g["n"], g["radius"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
+    K.scatter_contacts(g["n"], g["x"], g["radius"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
                        S["f"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["touched"], nt, save)
     S["prev"], S["touched"], S["n_prev"], S["rebuilt"] = S["touched"], S["prev"], nt, False
     return m
@@ -113,9 +113,13 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
             assert np.array_equal(few["saved"][:, :3], few["f"])
             assert np.array_equal(few["saved"][:, 3:6], few["torque"])
             f, torque = np.zeros((n, 3)), np.zeros((n, 3))
-            assert K.reapply_saved(n, f, torque, few["saved"], step)
+            assert K.saved_match(n, x, g["radius"], few["saved"], step)
+            K.reapply_saved(n, f, torque, few["saved"])
             assert np.array_equal(f, few["f"]) and np.array_equal(torque, few["torque"])
-            assert not K.reapply_saved(n, f, torque, few["saved"], step + 1)
+            assert not K.saved_match(n, x, g["radius"], few["saved"], step + 1)      # another step's
+            moved = x.copy()
+            moved[n // 2, 2] += 1e-9
+            assert not K.saved_match(n, moved, g["radius"], few["saved"], step)      # an atom moved since
         x += v * g["dt"] * 5.0                   # (positions moved by hand: contacts form and end)
         v[:, 2] -= 0.02
     counts = np.array(counts)

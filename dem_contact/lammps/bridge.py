@@ -15,8 +15,8 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
   skin/2 (``neighbor skin bin``, ``neigh_modify delay 0 every 1 check yes``, issued here): a smaller
   ghost cutoff is refused, and so is a run with other ``neigh_modify`` settings; the bridge's Verlet
-  lists are rebuilt when LAMMPS rebuilds its own, so the ``neighbor`` skin must stay the bridge's
-  (``skin``: do not issue ``neighbor`` after attaching);
+  lists are rebuilt when LAMMPS rebuilds its own, so ``run`` sets the bridge's ``skin`` (``neighbor skin
+  bin``) and ``neigh_modify once no`` again before every run (LAMMPS's cannot be read back);
 - ``slots`` history rows per atom (one per contact the atom has at once, walls included); an atom that
   needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
   InputError that says how many are needed;
@@ -419,6 +419,10 @@ class LammpsContacts:
             self.check()
         if self.lmp.extract_setting("ghost_velocity") != 1:
             raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
+        # the lists follow LAMMPS's rebuilds: its skin must be the bridge's and it must rebuild (LAMMPS's skin
+        # and `once` cannot be read back: they are set again before every run)
+        self.lmp.command(f"neighbor {self.skin!r} bin")
+        self.lmp.command("neigh_modify once no")
         settings = tuple(self.lmp.extract_setting(k) for k in ("neigh_every", "neigh_delay", "neigh_dist_check"))
         if settings != (1, 0, 1):
             raise InputError(f"LAMMPS must check its neighbour lists at every step: keep `neigh_modify delay 0 "
@@ -544,31 +548,48 @@ class LammpsContacts:
     def _callback(self, ntimestep, nlocal, tag_address, x_address, fext_address):
         t0 = time.perf_counter()
         self._evals += 1               # (every rank counts every call: the marks of saved forces agree)
-        try:
-            self._zero_fext(fext_address, nlocal)
-            if self._error is None:
-                self._step(ntimestep, nlocal)
-        except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
-            self._error = e
-        if self._error is not None:
-            # no contact forces from here on (the forces are added by the last kernel of a step: none
-            # were): the run stops at the next check and run() raises
-            self._last_step = ntimestep
-            self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
-        self.callback_s += time.perf_counter() - t0
-
-    def _step(self, ntimestep, nlocal):
-        """The contact forces and torques of one step (or a run's set-up), added to LAMMPS's."""
         # LAMMPS calls the fix at the set-up of every run, at the step where the previous run ended (or
         # at the first step): forces are needed, but nothing may advance
         # (a call that does not follow the last step is a set-up: after a reset_timestep too)
         setup = self._setup_pending or self._last_step is None or ntimestep != self._last_step + 1
         self._setup_pending = False
         self._last_step = ntimestep
-        if setup:
-            # a new run: arrays may have been reallocated, atoms changed between runs
-            self._view_key = None
-            self.dt = self.lmp.extract_global("dt")
+        same = False
+        try:
+            self._zero_fext(fext_address, nlocal)
+            if setup:
+                # a new run: arrays may have been reallocated, atoms changed between runs
+                self._view_key = None
+                self.dt = self.lmp.extract_global("dt")
+                same = self._error is None and self._saved_match(nlocal)
+        except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
+            self._error = e
+        # The forces saved at the last call are reapplied at a set-up (a reset_timestep between the runs
+        # changes nothing) if every atom is where it was then, with its radius, on every rank; else they
+        # are recomputed (atoms added, removed, moved or resized since). Every rank makes the set-up call,
+        # and this reduction in it, whatever happened before (collective).
+        reapply = setup and any_rank(self.lmp, not same) is False
+        try:
+            if self._error is None:
+                self._step(ntimestep, nlocal, setup, reapply)
+        except BaseException as e:
+            self._error = e
+        if self._error is not None:
+            # no contact forces from here on (the forces are added by the last kernel of a step: none
+            # were): the run stops at the next check and run() raises
+            self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
+        self.callback_s += time.perf_counter() - t0
+
+    def _saved_match(self, nlocal):
+        """Whether the forces saved at the last call are those of the local atoms now (``K.saved_match``)."""
+        if self._saved != (self._evals - 1, self.lmp.extract_global("natoms")):
+            return False
+        xa, _, _, radius, *_, saved = self._views(self.lmp.extract_setting("nall"))
+        return K.saved_match(nlocal, xa, radius, saved, self._evals - 1)
+
+    def _step(self, ntimestep, nlocal, setup, reapply):
+        """The contact forces and torques of one step (or a run's set-up: ``setup``; ``reapply``: the
+        forces saved at the last call), added to LAMMPS's."""
         nall = self.lmp.extract_setting("nall")
         ago = self.lmp.extract_setting("neigh_ago")       # steps since LAMMPS rebuilt its lists
         xa, v, omega, radius, rmass, ids, typ, f, torque, keys, H, stat, saved = self._views(nall)
@@ -585,10 +606,8 @@ class LammpsContacts:
             self._n_prev = -1
             self.list_builds += 1
             self._near = None
-        # the forces saved at the last call are reapplied (the same positions: a reset_timestep between
-        # the runs changes nothing), unless atoms were added or removed since
-        if (setup and self._saved == (self._evals - 1, self.lmp.extract_global("natoms"))
-                and K.reapply_saved(nlocal, f, torque, saved, self._evals - 1)):
+        if reapply:
+            K.reapply_saved(nlocal, f, torque, saved)
             return
         if self._near is None or setup:
             # (at a set-up too: the subdomains may have changed between runs)
@@ -620,7 +639,7 @@ class LammpsContacts:
                   wn[:m], self.dt, forces[:m], tforces[:m])
         if not setup:
             self._rebuilt = False
-        summary = K.scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
+        summary = K.scatter_contacts(nlocal, xa, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)
         # the atoms with contacts now are the next step's prev

@@ -46,7 +46,9 @@ N_STAT = 4
 
 # columns of the per-atom stored contact force (d2 property): reapplied at LAMMPS's run set-up
 SF_MARK = 6      # 1 + the mark (evaluation number) of the step the force and torque were saved at (0: none)
-N_SAVED = 7
+SF_X = 7         # the atom's position (3 columns) and radius (SF_R) when they were saved
+SF_R = 10
+N_SAVED = 11
 
 # per-rank summary returned by scatter_contacts
 R_PAIRS = 0      # sphere-sphere contacts evaluated on this rank
@@ -652,7 +654,7 @@ def read_histories(H, hrow, m):
 
 
 @njit(cache=True)
-def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, f,
+def scatter_contacts(nlocal, x, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, f,
                      torque, stat, saved, mark, acc, all_atoms, touched, n_touched, save):
     """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
     their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
@@ -660,8 +662,9 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
     float64[>= nlocal, 3] LAMMPS's forces and torques (cleared by LAMMPS every step), the contact forces
     and torques are added to the local rows; stat[:, ST_OVERLAP] receives each local atom's largest
     overlap; saved: float64[nmax, N_SAVED] receives the contact force and torque of every local atom with
-    mark + 1 when ``save`` (then all_atoms must be set: the last step of a run, whose forces the next
-    run's set-up reapplies; mark: the number of the evaluation, the same on every rank); acc:
+    mark + 1, its position and radius when ``save`` (then all_atoms must be set: the last step of a run,
+    whose forces the next run's set-up reapplies; mark: the number of the evaluation, the same on every
+    rank); acc:
     float64[>= nlocal, 7] scratch, zero on entry and left zero (every row summed into is cleared after it
     is written). A local atom whose force or torque is not finite gets none, and ST_NEED = inf marks it.
     Returns float64[N_SUMMARY].
@@ -724,6 +727,9 @@ def scatter_contacts(nlocal, radius, m, body, src, dst, normals, overlaps, H, fo
                 for d in range(6):
                     saved[i, d] = acc[i, d]
                 saved[i, SF_MARK] = mark + 1.0
+                for d in range(3):
+                    saved[i, SF_X + d] = x[i, d]
+                saved[i, SF_R] = radius[i]
             for d in range(7):
                 acc[i, d] = 0.0
     else:
@@ -755,19 +761,24 @@ def _write_atom(i, acc, advance, f, torque, stat):
 
 
 @njit(cache=True)
-def reapply_saved(nlocal, f, torque, saved, mark):
-    """Reapply the contact forces and torques saved with ``mark`` (``scatter_contacts``) at LAMMPS's set-up
-    call at the start of a run, when no step was evaluated since they were saved (the positions are
-    those the forces were computed at). Returns False, adding nothing, if a local atom has no force
-    saved with this mark."""
+def saved_match(nlocal, x, radius, saved, mark):
+    """Whether every local atom has a contact force saved with ``mark`` (``scatter_contacts``) at its
+    present position and radius (the forces of that step are then those of the atoms now, on this rank)."""
     for i in range(nlocal):
-        if saved[i, SF_MARK] != mark + 1.0:
+        if (saved[i, SF_MARK] != mark + 1.0 or saved[i, SF_X] != x[i, 0] or saved[i, SF_X + 1] != x[i, 1]
+                or saved[i, SF_X + 2] != x[i, 2] or saved[i, SF_R] != radius[i]):
             return False
+    return True
+
+
+@njit(cache=True)
+def reapply_saved(nlocal, f, torque, saved):
+    """Add the saved contact forces and torques of the local atoms to LAMMPS's (at the set-up call of a
+    run, when ``saved_match`` holds on every rank)."""
     for i in range(nlocal):
         for d in range(3):
             f[i, d] += saved[i, d]
             torque[i, d] += saved[i, 3 + d]
-    return True
 
 
 @njit(cache=True)
