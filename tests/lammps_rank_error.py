@@ -6,6 +6,8 @@ import json
 import os
 import sys
 
+from lammps_injected import failing_after
+
 from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import LammpsContacts, kernels as K, new_lammps
 from dem_contact.materials import Material, Sphere
@@ -21,18 +23,8 @@ for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map ar
     lmp.command(c)
 me = lmp.extract_setting("world_rank")
 bridge = LammpsContacts(lmp, table, slots=4, v_max=1.0, check_every=10)
-calls, gather = [0], K.gather_contacts
-
-
-def failing(*args):
-    calls[0] += 1
-    if calls[0] > 5:
-        raise MemoryError("injected")
-    return gather(*args)
-
-
 if me == 1:
-    K.gather_contacts = failing
+    K.gather_contacts = failing_after(5, K.gather_contacts)
 raised = None
 try:
     bridge.run(50)

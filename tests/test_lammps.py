@@ -362,15 +362,10 @@ def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
 
     lmp = _box(n=3, dt=1e-8)
     bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0, check_every=10)
-    calls, gather = [0], K.gather_contacts
+    from lammps_injected import failing_after
 
-    def failing(*args):
-        calls[0] += 1
-        if calls[0] > 30:
-            raise MemoryError("injected")
-        return gather(*args)
-
-    monkeypatch.setattr(K, "gather_contacts", failing)
+    gather = K.gather_contacts
+    monkeypatch.setattr(K, "gather_contacts", failing_after(30, gather))
     with pytest.raises(MemoryError, match="injected"):
         bridge.run(1000)
     assert 30 <= lmp.extract_global("ntimestep") <= 40          # stopped at the next check

@@ -106,8 +106,7 @@ def any_rank(lmp, flag: bool) -> bool | None:
         return None
     import ctypes
 
-    lmp.lib.lammps_get_mpi_comm.restype = ctypes.c_int
-    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))     # (an int in MPICH)
+    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))     # (ints in MPICH)
     one, out = ctypes.c_int(int(bool(flag))), ctypes.c_int(0)
     if lib.MPI_Allreduce(ctypes.byref(one), ctypes.byref(out), 1, _MPICH_INT, _MPICH_MAX, comm) != 0:
         return None
@@ -515,9 +514,8 @@ class LammpsContacts:
     def _set_callback(self, fix_id):
         """Register ``_callback`` with fix external through LAMMPS's C interface (lammps_set_fix_external_callback),
         without the lammps module's wrapper, which makes numpy arrays of the ids, positions and forces at
-        every step: the view of the force array is made anew only when LAMMPS reallocates it. The
-        callback and this object are kept in ``lmp.callback`` (as the wrapper does), so they live as long
-        as the LAMMPS instance."""
+        every step (the bridge uses none of them: see ``_zero_fext``). The callback and this object are
+        kept in ``lmp.callback`` (as the wrapper does), so they live as long as the LAMMPS instance."""
         import ctypes
 
         lmp = self.lmp

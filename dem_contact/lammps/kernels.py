@@ -664,10 +664,9 @@ def scatter_contacts(nlocal, x, radius, m, body, src, dst, normals, overlaps, H,
     overlap; saved: float64[nmax, N_SAVED] receives the contact force and torque of every local atom with
     mark + 1, its position and radius when ``save`` (then all_atoms must be set: the last step of a run,
     whose forces the next run's set-up reapplies; mark: the number of the evaluation, the same on every
-    rank); acc:
-    float64[>= nlocal, 7] scratch, zero on entry and left zero (every row summed into is cleared after it
-    is written). A local atom whose force or torque is not finite gets none, and ST_NEED = inf marks it.
-    Returns float64[N_SUMMARY].
+    rank); acc: float64[>= nlocal, 7] scratch, zero on entry and left zero (every row summed into is
+    cleared after it is written). A local atom whose force or torque is not finite gets none, and
+    ST_NEED = inf marks it. Returns float64[N_SUMMARY].
 
     Per-atom work in proportion to the contacts (see ``gather_contacts``): only the atoms with a contact
     now (touched[:n_touched]) are written, unless all_atoms, or most atoms have contacts: then every local
