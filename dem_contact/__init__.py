@@ -1,5 +1,6 @@
 """dem_contact: validated, fast contact laws for spheres (Hertz, Thornton, Mindlin-Deresiewicz) and
 the oblique sphere-wall impact they govern."""
+from . import kernel_cache  # noqa: F401  (first: numba's cache locators for the package's kernels)
 from .errors import InputError, NumericalError
 from .impacts.impact import DEFAULT_STEPS_PER_CONTACT, EnergyBudget, ImpactResult, impact
 from .materials import STEEL, Material, PairProperties, Sphere, Wall, pair_properties

@@ -39,6 +39,7 @@ their arguments: call ``check_contacts`` once per set of arrays, or ``contact_fo
 """
 import math
 import os
+import types as pytypes
 
 import numpy as np
 from llvmlite import ir
@@ -68,8 +69,17 @@ __all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotat
 # compiled. ``contact_force`` calls one non-inlined leaf per family (``_leaf_*``), to keep the cold compile
 # of a user's loop short.
 
-#: mdr.truncated_integral inlined (the truncated profile of Thornton's plastic loading, in _step_mdr)
-_truncated_integral = njit(inline="always", **dict(JIT, cache=False))(M.truncated_integral.py_func)
+def _renamed(func, name):
+    """A copy of the Python function ``func`` under the name ``name``."""
+    copy = pytypes.FunctionType(func.__code__, func.__globals__, name, func.__defaults__, func.__closure__)
+    copy.__qualname__ = name
+    return copy
+
+
+#: mdr.truncated_integral inlined (the truncated profile of Thornton's plastic loading, in _step_mdr), compiled
+#: under a name of its own (numba names compiled code by the function's qualified name; this copy has other flags)
+_truncated_integral = njit(inline="always", **dict(JIT, cache=False))(
+    _renamed(M.truncated_integral.py_func, "_truncated_integral"))
 
 
 @njit(inline="always", **JIT)
@@ -427,19 +437,13 @@ def _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt
 
 
 @njit(inline="always", **JIT)
-def _check_ids(nid, tid):
-    if nid < HERTZ or nid > LINEAR_NORMAL:
-        raise InputError("unknown normal law id (valid: 0 hertz, 1 thornton, 2 hertz_damped, 3 linear)")
-    if tid < MD or tid > MDR_ADAPTIVE:
-        raise InputError("unknown tangential law id (valid: 0 to 8, see laws.contact)")
-
-
-@njit(inline="always", **JIT)
 def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     """One contact step in 3D (see the module docstring). Updates H[c, :] in place.
     Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
-    Unknown law ids raise InputError; nothing else is checked (``check_contacts``)."""
-    _check_ids(nid, tid)
+    Nothing is checked (``check_contacts``) and nothing raises, so that a user's ``prange`` loop around it
+    runs in parallel: unknown law ids give NaN forces and leave H unchanged."""
+    if nid < HERTZ or nid > LINEAR_NORMAL or tid < MD or tid > MDR_ADAPTIVE:
+        return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
     return _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
@@ -458,10 +462,11 @@ def reset_contact(H, c):
 
 
 @njit(**JIT)
-def swap_bodies(tid, H, c, nid=HERTZ):
+def swap_bodies(nid, tid, H, c):
     """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
-    tangential force change sign. Swapping twice is the identity. ``nid``: the normal law (its id matters
-    for ``thornton`` only, whose history row is longer)."""
+    tangential force change sign. Swapping twice is the identity. The law ids come first, (nid, tid), as in
+    every kernel: where the tangential slots start depends on the normal law (``thornton`` has a longer
+    normal state), and the MDR laws hold a frame and cells."""
     b = tangential_base(nid)
     for j in range(W_X, W_X + 3):
         H[c, b + j] = -H[c, b + j]
@@ -473,9 +478,10 @@ def swap_bodies(tid, H, c, nid=HERTZ):
 
 
 @njit(**JIT)
-def rotate_history(nid, H, c, Q):
+def rotate_history(nid, tid, H, c, Q):
     """Turn the tangential history of contact c rigidly by the rotation matrix Q (float64[3, 3], proper
-    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n."""
+    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n.
+    The law ids (nid, tid) come first, as in every kernel (the turned slots do not depend on tid)."""
     b = tangential_base(nid)
     x = H[c, b + W_X]
     y = H[c, b + W_X + 1]
@@ -485,9 +491,10 @@ def rotate_history(nid, H, c, Q):
 
 
 @njit(**JIT)
-def tangential_work(nid, H, c):
+def tangential_work(nid, tid, H, c):
     """Work absorbed by the tangential force of contact c since its history was zeroed [J]: the sum over
-    steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created."""
+    steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created.
+    The law ids (nid, tid) come first, as in every kernel (the slot does not depend on tid)."""
     return H[c, tangential_base(nid) + W_WORK]
 
 

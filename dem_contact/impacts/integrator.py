@@ -243,10 +243,10 @@ _INTEGRATORS = {}
 
 def integrator_for(nid: int, tid: int):
     """The integrator of the law pair (nid, tid): ``integrate_impact`` without the law ids (signature
-    INTEGRATOR), from a clean history (it zeroes h first), compiled for that pair alone (its law ids are constants, so the other laws are never
-    compiled; each pair has its own entry in numba's cache). Callable from Python and, as a first-class
-    function, from other kernels (``sweep.sweep_kernel``). The kernel does not check its arguments:
-    ``impact.impact`` is the checked entry."""
+    INTEGRATOR), from a clean history (it zeroes h first), compiled for that pair alone (its law ids are
+    constants, so the other laws are never compiled; each pair has its own entry in numba's cache). Callable
+    from Python and, as a first-class function, from other kernels (``sweep.sweep_kernel``). The kernel does
+    not check its arguments: ``impact.impact`` is the checked entry."""
     if isinstance(nid, bool) or nid not in NORMAL_IDS or isinstance(tid, bool) or tid not in TANGENTIAL_IDS:
         raise InputError(f"(nid, tid) = ({nid!r}, {tid!r}) are not law ids (laws.model.NORMAL_LAWS, TANGENTIAL_LAWS)")
     key = (int(nid), int(tid))
@@ -256,10 +256,18 @@ def integrator_for(nid: int, tid: int):
     return integ
 
 
+def integrator_name(nid: int, tid: int) -> str:
+    """The qualified name under which the integrator of (nid, tid) is compiled and cached: one per law pair.
+    numba names a compiled function by its qualified name and a counter of the process that compiles it, and
+    a kernel calling a first-class function finds it by that name: two law pairs under one name, compiled first
+    in two processes and loaded from the cache into a third, would run one pair's code for both."""
+    return f"integrate_normal{nid}_tangential{tid}"
+
+
 def _integrator(nid, tid):
-    @njit(INTEGRATOR, cache=True)
     def integrate(p, h, body, vn0, vt0, w10, w20, dt, max_steps, locate, out, series):
         h[:] = 0.0
         integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, body[B_INV_M], body[B_R1], body[B_R2], body[B_INV_I1],
                           body[B_INV_I2], dt, max_steps, locate, out, series)
-    return integrate
+    integrate.__name__ = integrate.__qualname__ = integrator_name(nid, tid)
+    return njit(INTEGRATOR, cache=True)(integrate)
