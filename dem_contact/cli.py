@@ -1,7 +1,8 @@
 """Command-line interface: ``dem-contact SUBCOMMAND`` (also ``python -m dem_contact``).
 
 Each subcommand lives in its own module ``dem_contact.commands.<name>`` with ``add_parser(subparsers)``
-(which sets ``run``) and ``run(args) -> int``; modules are found automatically and listed by ``ORDER``. Invalid input prints one line on stderr and exits with code 2.
+(which sets ``run``) and ``run(args) -> int``; modules are found automatically and listed by ``ORDER``. Invalid input prints one line on stderr and exits with code 2,
+a numerical failure with code 3; any other failure is one line too (code 1), never a traceback.
 """
 from __future__ import annotations
 
@@ -57,6 +58,16 @@ def main(argv=None) -> int:
     except NumericalError as e:
         sys.stderr.write(f"dem-contact {args.command}: numerical failure: {e}\n")
         return 3
+    except KeyboardInterrupt:
+        sys.stderr.write(f"dem-contact {args.command}: interrupted\n")
+        return 130
+    except OSError as e:
+        sys.stderr.write(f"dem-contact {args.command}: error: {e}\n")
+        return 2
+    except Exception as e:      # a defect of dem_contact: still one line, with what to report
+        sys.stderr.write(f"dem-contact {args.command}: internal error ({type(e).__name__}: {e}); please report "
+                         f"it with the command line\n")
+        return 1
 
 
 if __name__ == "__main__":

@@ -12,3 +12,10 @@ class InputError(ValueError):
 
 class NumericalError(ArithmeticError):
     """A simulation failed numerically (NaN, blow-up, contact that does not end)."""
+
+
+def kernel_failed(err: BaseException, what: str) -> NumericalError:
+    """The NumericalError for an exception raised inside compiled code (``what``: which kernels, where). numba
+    reports a failure inside a kernel as whatever exception it can (ZeroDivisionError, IndexError, or a
+    SystemError from a parallel region); its results are then never used."""
+    return NumericalError(f"{what} failed ({type(err).__name__}: {err})")

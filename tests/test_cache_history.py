@@ -72,3 +72,25 @@ def test_law_pairs_from_a_shared_cache_give_the_fresh_results(tmp_path):
             if got != want:
                 wrong.append(f"{PAIRS[a][1:3]} then {PAIRS[b][1:3]}: {name} differs from a fresh process")
     assert not wrong, "\n".join(wrong[:10])
+
+
+def test_every_jitted_function_of_the_package_has_a_name_of_its_own():
+    """numba names compiled code by the function's module and qualified name: two jitted functions of the
+    package under one name could run each other's code once loaded from the cache."""
+    import importlib
+    import pkgutil
+
+    from numba.core.registry import CPUDispatcher
+
+    import dem_contact
+
+    seen = {}
+    for mod in pkgutil.walk_packages(dem_contact.__path__, "dem_contact."):
+        if mod.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(mod.name)
+        for obj in vars(module).values():
+            if isinstance(obj, CPUDispatcher):
+                key = (obj.py_func.__module__, obj.py_func.__qualname__)
+                assert seen.setdefault(key, obj) is obj, f"two jitted functions named {key}"
+    assert len(seen) > 50

@@ -319,7 +319,7 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     h = np.empty(c.history_size)
     try:
         c.integrate(c.params, h, c.bodies, vn, vt, spin, spin2, dt, n_max, scheme == "located", out, ser)
-    except ArithmeticError as e:      # e.g. a division by zero inside a law: never a bare traceback
+    except Exception as e:     # a failure inside the compiled code (a division by zero in a law, ...): no result
         raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
                              f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
     if c.mdr:

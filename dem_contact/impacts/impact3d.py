@@ -47,7 +47,7 @@ import numpy as np
 from numba import njit
 
 from ..dem.contact3d import contact_force, history_size, new_histories
-from ..errors import InputError, NumericalError
+from ..errors import InputError, NumericalError, kernel_failed
 from ..laws.contact import normal_force, normal_gap
 from ..laws.model import Scene
 from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
@@ -356,9 +356,12 @@ def impact3d(scene: Scene, vn: float, vt=(0.0, 0.0), spin=(0.0, 0.0, 0.0), *, sp
     out = np.zeros(N_OUT3)
     ser = np.zeros((max_steps if series else 0, N_SERIES3))
     params, H = new_contact_state(scene)
-    integrate_impact3d(scene.normal_id, scene.tangential_id, params, H, vn, vt[0], vt[1], w1, w2,
-                       inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", bool(frame_spin),
-                       out, ser)
+    try:
+        integrate_impact3d(scene.normal_id, scene.tangential_id, params, H, vn, vt[0], vt[1], w1, w2,
+                           inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, scheme == "located", bool(frame_spin),
+                           out, ser)
+    except Exception as e:      # a failure inside the compiled code: no result
+        raise kernel_failed(e, f"the {scene.normal}/{scene.tangential} kernels at vn = {vn:g} m/s") from None
     if scene.tangential == "mdr" and H[0, H_A] > scene.mdr_max_radius:
         raise NumericalError(f"the contact radius {H[0, H_A]:.4g} m at vn = {vn:g} m/s exceeds the extent of "
                              f"the mdr springs ({scene.mdr_max_radius:.4g} m): raise the scene's v_ref or "

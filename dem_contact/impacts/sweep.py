@@ -212,7 +212,7 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
             try:
                 kernel(*args, hist[s:e], body, vn[s:e], vt[s:e], spin[s:e], w2[s:e], dts[s:e], max_steps[s:e],
                        locate, out[s:e])
-            except ArithmeticError as err:     # e.g. a division by zero inside a law: never a bare traceback
+            except Exception as err:     # a failure inside the compiled code (parallel region, law): no result
                 raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed in impacts {s} to "
                                      f"{e - 1} ({type(err).__name__}: {err})") from None
             if bar is not None:

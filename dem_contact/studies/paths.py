@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from ..dem.contact3d import contact_force, history_size, new_histories, reset_contact
-from ..errors import InputError, NumericalError
+from ..errors import InputError, NumericalError, kernel_failed
 from ..laws.model import Scene
 from ..materials import check_finite
 
@@ -96,8 +96,11 @@ def run_path(scene: Scene, delta, ux, uy, *, dt: float = 1.0):
     sc = path_scene(scene, float(delta.max()))
     H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs))
     N, Tx, Ty = np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size)
-    _drive(sc.normal_id, sc.tangential_id, np.ascontiguousarray(sc.params[None, :]), H, delta, ux, uy, dt, N, Tx,
-           Ty)
+    try:
+        _drive(sc.normal_id, sc.tangential_id, np.ascontiguousarray(sc.params[None, :]), H, delta, ux, uy, dt, N,
+               Tx, Ty)
+    except Exception as e:      # a failure inside the compiled code: no result
+        raise kernel_failed(e, f"the {sc.normal}/{sc.tangential} kernels along the path") from None
     if not (np.all(np.isfinite(N)) and np.all(np.isfinite(Tx)) and np.all(np.isfinite(Ty))):
         raise NumericalError(f"non-finite force along the path ({sc.normal}/{sc.tangential})")
     return N, Tx, Ty
