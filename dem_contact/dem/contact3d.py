@@ -39,6 +39,7 @@ their arguments: call ``check_contacts`` once per set of arrays, or ``contact_fo
 """
 import math
 import os
+import threading
 import types as pytypes
 
 import numpy as np
@@ -53,7 +54,7 @@ from ..laws import vector as V
 from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
                             MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
 from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MDR_PROFILE,
-                          P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR)
+                          P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW)
 from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
                            tangential_base)
 
@@ -615,6 +616,7 @@ def _batch_mdr(nid, tid, params, pair_rows, H, rows, normals, overlaps, velociti
 #: the loops of each law family (``_family``): (serial, parallel)
 _LOOPS = ((_serial_md, _batch_md), (_serial_spring, _batch_spring), (_serial_mdr, _batch_mdr))
 _IDENTITY = [np.arange(0)]
+_SCRATCH = threading.local()
 
 
 def _identity_rows(n):
@@ -622,6 +624,18 @@ def _identity_rows(n):
     if len(_IDENTITY[0]) < n:
         _IDENTITY[0] = np.arange(max(n, 2 * len(_IDENTITY[0])), dtype=np.int64)
     return _IDENTITY[0][:n]
+
+
+def _distinct(rows, n_rows):
+    """True when the int64 ``rows`` (all in [0, n_rows)) are distinct: O(n) with a scratch array of this
+    thread (each row is stamped with the index of a contact that uses it; a row used twice keeps one
+    stamp, so the other contact finds another's index)."""
+    scratch = getattr(_SCRATCH, "rows", None)
+    if scratch is None or len(scratch) < n_rows:
+        scratch = _SCRATCH.rows = np.empty(max(n_rows, 0 if scratch is None else 2 * len(scratch)), dtype=np.int64)
+    idx = _identity_rows(len(rows))
+    scratch[rows] = idx
+    return np.array_equal(scratch[rows], idx)
 
 
 def _valid_ids(nid, tid):
@@ -633,28 +647,38 @@ def batch_loop(nid, tid, parallel=False):
     """The jitted batch loop of the law family of ``tid`` (ids checked here, once):
     loop(nid, tid, params, pair_rows, H, history_rows, normals, overlaps, velocities, wn, dt, forces,
     tforces), the arguments of ``contact_forces_batch`` with history_rows required, none checked. For a
-    caller that steps the same laws many times and checked its arrays once (``check_contacts``)."""
+    caller that steps the same laws many times and checked its arrays once (``check_contacts``): arrays
+    that do not pass ``check_contacts`` can make it write outside them."""
     nid, tid = _valid_ids(nid, tid)
     return _LOOPS[_family(tid)][1 if parallel else 0]
 
 
 def _run(parallel, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
          history_rows):
+    nid, tid = _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
+                             tforces, history_rows)
     rows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
-    batch_loop(nid, tid, parallel)(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt,
-                                   forces, tforces)
+    _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps,
+                                               velocities, wn, float(dt), forces, tforces)
 
 
 def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
                          history_rows=None):
     """Advance every contact by one step, in parallel (numba prange over contacts), with the loop compiled
-    for the law family of ``tid`` only. The law ids are checked, nothing else (``check_contacts``).
+    for the law family of ``tid`` only.
 
-    params: float64[n_rows, N_PARAMS]; pair_rows: int64[n] row of each contact; H: float64[n, history_size]
-    (updated); normals, velocities: float64[n, 3]; overlaps, wn: float64[n]; dt [s]; forces, tforces:
-    float64[n, 3] receive the force on body 1 and its tangential part. history_rows: int64[n], distinct,
-    the row of H that holds each contact's history (H then has any number of rows: a DEM code's own
-    per-particle storage, advanced in place); default: row c for contact c."""
+    params: float64[n_rows, N_PARAMS] (``pairs.pair_table``, built for these law ids); pair_rows: int64[n]
+    row of each contact; H: float64[n, history_size] (updated); normals, velocities: float64[n, 3];
+    overlaps, wn: float64[n]; dt [s]; forces, tforces: float64[n, 3] receive the force on body 1 and its
+    tangential part. history_rows: int64[n], distinct, the row of H that holds each contact's history (H
+    then has any number of rows: a DEM code's own per-particle storage, advanced in place); default: row c
+    for contact c.
+
+    Checked here (``InputError``), in O(1) per array and O(n) over the row indices: everything that could
+    make the loop read or write outside the arrays, race, or compile another variant (law ids, dtypes,
+    shapes, C order, writeable H, forces and tforces, rows in range, distinct history rows, history rows
+    long enough, a table built for these laws, dt > 0). The values of the contacts (finite inputs, unit
+    normals) are checked by ``check_contacts`` / ``contact_forces``."""
     _run(True, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
          history_rows)
 
@@ -677,6 +701,10 @@ def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
 _NORMAL_NAMES = "0 hertz, 1 thornton, 2 hertz_damped, 3 linear"
 _TANGENTIAL_NAMES = ("0 md, 1 md_rescale, 2 mindlin_total, 3 mindlin_incremental, 4 mindlin_rescale, 5 linear, "
                      "6 ddm, 7 mdr, 8 mdr_adaptive")
+_NORMAL_BY_ID = {v: k for k, v in zip(("hertz", "thornton", "hertz_damped", "linear"), V.NORMAL_IDS)}
+_TANGENTIAL_BY_ID = {v: k for k, v in zip(("md", "md_rescale", "mindlin_total", "mindlin_incremental",
+                                           "mindlin_rescale", "linear", "ddm", "mdr", "mdr_adaptive"),
+                                          V.TANGENTIAL_IDS)}
 UNIT_TOL = 1e-6
 
 
@@ -702,7 +730,7 @@ def _array(name, a, ndim, dtype, shape=None, writeable=False):
     if not a.flags.c_contiguous:
         raise InputError(f"{name} must be C-contiguous (np.ascontiguousarray)")
     if writeable and not a.flags.writeable:
-        raise InputError(f"{name} must be writeable")
+        raise InputError(f"{name} must be writeable (the kernels write it in place): pass a writeable copy")
 
 
 def _first_bad(name, bad, what):
@@ -712,33 +740,58 @@ def _first_bad(name, bad, what):
         raise InputError(f"{name}[{c}] {what(c)}")
 
 
-def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
-                   tforces=None, history_rows=None):
-    """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
-    ``contact_force`` call that uses the same arrays): law ids, dtypes, shapes, C-contiguity, row indices
-    in range (``history_rows`` distinct rows of H), history rows long enough for the laws, unit normals
-    (within 1e-6), dt > 0 and finite inputs.
-    Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
-    again when they are reallocated); the jitted kernels themselves do not check."""
-    nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
-    tid = _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+def _law_names(nid, tid):
+    return f"{_NORMAL_BY_ID.get(nid, '?')} + {_TANGENTIAL_BY_ID.get(tid, '?')}"
+
+
+def _check_table(nid, tid, params):
+    """The laws recorded in every row of ``params`` (P_NORMAL_LAW, P_TANGENTIAL_LAW) must be (nid, tid);
+    MDR rows need a cell count (and width). Returns the history row length the table needs. O(rows)."""
     _array("params", params, 2, np.float64, (None, N_PARAMS))
     if params.shape[0] == 0:
         raise InputError("params must have at least one row (pairs.pair_table)")
-    _first_bad("params", ~np.all(np.isfinite(params), axis=1), lambda r: "is not finite")
+    built_n = params[:, P_NORMAL_LAW]
+    built_t = params[:, P_TANGENTIAL_LAW]
+    if not (np.all(built_n == nid + 1) and np.all(built_t == tid + 1)):
+        r = int(np.argmax((built_n != nid + 1) | (built_t != tid + 1)))
+        if built_n[r] == 0.0 and built_t[r] == 0.0:
+            raise InputError(f"params[{r}] records no laws (params[:, P_NORMAL_LAW], params[:, P_TANGENTIAL_LAW] "
+                             f"are 0): build the table with pairs.pair_table or model.Scene")
+        bn, bt = int(built_n[r]) - 1, int(built_t[r]) - 1
+        raise InputError(f"params[{r}] was built for the laws nid = {bn}, tid = {bt} ({_law_names(bn, bt)}), "
+                         f"not for nid = {nid}, tid = {tid} ({_law_names(nid, tid)}): pass the table's own "
+                         f"PairTable.normal_id and tangential_id, or build a table for these laws")
+    if tid not in (MDR, MDR_ADAPTIVE):
+        return history_size(nid, tid)
+    cells = params[:, P_NSPRING]
+    law = "mdr" if tid == MDR else "mdr_adaptive"
+    _first_bad("params", ~((cells >= 2) & (cells <= 10**6) & (cells == np.floor(cells))),
+               lambda r: f"has no MDR cell count (params[:, P_NSPRING] in [2, 1e6]), which the {law} law needs")
+    if tid == MDR_ADAPTIVE:
+        _first_bad("params", cells % 2 != 0, lambda r: "has an odd MDR cell count: mdr_adaptive needs an even one")
+    else:
+        _first_bad("params", ~(params[:, P_DX] > 0.0),
+                   lambda r: "has no MDR cell width (params[:, P_DX] > 0), which the mdr law needs")
+    return history_size(nid, tid, int(cells.max()))
+
+
+def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+                  history_rows):
+    """What the loops need not to read or write outside the arrays, race or compile another variant:
+    O(1) per array, O(rows of params), O(n) over the row indices. Returns the checked (nid, tid)."""
+    nid, tid = _valid_ids(nid, tid)
+    need = _check_table(nid, tid, params)
     _array("overlaps", overlaps, 1, np.float64)
     n = overlaps.shape[0]
     _array("pair_rows", pair_rows, 1, np.int64, (n,))
     if history_rows is None:
-        _array("H", H, 2, np.float64, (n, None))
+        _array("H", H, 2, np.float64, (n, None), writeable=True)
     else:
-        _array("H", H, 2, np.float64, (None, None))
+        _array("H", H, 2, np.float64, (None, None), writeable=True)
         _array("history_rows", history_rows, 1, np.int64, (n,))
-        nh = H.shape[0]
-        _first_bad("history_rows", (history_rows < 0) | (history_rows >= nh),
-                   lambda c: f"= {history_rows[c]} is not a row of H (valid: 0 to {nh - 1})")
-        if len(np.unique(history_rows)) != n:
-            raise InputError("history_rows must be distinct: two contacts cannot share one history row")
+    if H.shape[1] < need:
+        raise InputError(f"H has rows of length {H.shape[1]}; these laws and params need {need} "
+                         f"(PairTable.history_size, contact3d.history_size)")
     _array("normals", normals, 2, np.float64, (n, 3))
     _array("velocities", velocities, 2, np.float64, (n, 3))
     _array("wn", wn, 1, np.float64, (n,))
@@ -748,29 +801,35 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     if not (isinstance(dt, (float, int, np.floating, np.integer)) and not isinstance(dt, (bool, np.bool_))
             and math.isfinite(dt) and dt > 0.0):
         raise InputError(f"dt = {dt!r} must be a finite time step > 0 [s]")
-    rows = params.shape[0]
-    _first_bad("pair_rows", (pair_rows < 0) | (pair_rows >= rows),
-               lambda c: f"= {pair_rows[c]} is not a row of params (valid: 0 to {rows - 1})")
     if n == 0:
+        return nid, tid
+    rows = params.shape[0]
+    if pair_rows.min() < 0 or pair_rows.max() >= rows:
+        _first_bad("pair_rows", (pair_rows < 0) | (pair_rows >= rows),
+                   lambda c: f"= {pair_rows[c]} is not a row of params (valid: 0 to {rows - 1})")
+    if history_rows is not None:
+        nh = H.shape[0]
+        if history_rows.min() < 0 or history_rows.max() >= nh:
+            _first_bad("history_rows", (history_rows < 0) | (history_rows >= nh),
+                       lambda c: f"= {history_rows[c]} is not a row of H (valid: 0 to {nh - 1})")
+        if not _distinct(history_rows, nh):
+            raise InputError("history_rows must be distinct: two contacts cannot share one history row")
+    return nid, tid
+
+
+def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
+                   tforces=None, history_rows=None):
+    """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
+    ``contact_force`` call that uses the same arrays): law ids, a table built for them, dtypes, shapes,
+    C-contiguity, writeable H (and forces, tforces), row indices in range (``history_rows`` distinct rows
+    of H), history rows long enough for the laws, unit normals (within 1e-6), dt > 0 and finite inputs.
+    Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
+    again when they are reallocated); the jitted kernels themselves do not check."""
+    _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
+                  history_rows)
+    _first_bad("params", ~np.all(np.isfinite(params), axis=1), lambda r: "is not finite")
+    if len(overlaps) == 0:
         return
-    used = params[pair_rows]
-    if tid in (MDR, MDR_ADAPTIVE):
-        cells = used[:, P_NSPRING]
-        _first_bad("pair_rows", (cells < 2) | (cells != np.floor(cells)) | (cells > 10**6),
-                   lambda c: f"= {pair_rows[c]}: its params row has no MDR cell count (params[:, P_NSPRING]), "
-                             f"which the {'mdr' if tid == MDR else 'mdr_adaptive'} law needs")
-        if tid == MDR_ADAPTIVE:
-            _first_bad("pair_rows", cells % 2 != 0,
-                       lambda c: f"= {pair_rows[c]}: mdr_adaptive needs an even cell count")
-        else:
-            _first_bad("pair_rows", ~(used[:, P_DX] > 0.0),
-                       lambda c: f"= {pair_rows[c]}: its params row has no MDR cell width (params[:, P_DX] > 0)")
-        need = history_size(nid, tid, int(cells.max()))
-    else:
-        need = history_size(nid, tid)
-    if H.shape[1] < need:
-        raise InputError(f"H has rows of length {H.shape[1]}; these laws and params need {need} "
-                         f"(PairTable.history_size, contact3d.history_size)")
     hist = H if history_rows is None else H[history_rows]
     _first_bad("H" if history_rows is None else "H[history_rows]", ~np.all(np.isfinite(hist), axis=1),
                lambda c: "(the history of the contact) is not finite")
@@ -824,15 +883,16 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     ``NumericalError`` naming the first bad contact."""
     check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
                    history_rows)
+    nid, tid = int(nid), int(tid)
     if debug is None:
         debug = os.environ.get("DEM_CONTACT_DEBUG", "") not in ("", "0")
+    hrows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
     if debug:
         need = H.shape[1]
         if tid in (MDR, MDR_ADAPTIVE) and len(pair_rows):
             need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
         elif tid not in (MDR, MDR_ADAPTIVE):
             need = history_size(nid, tid)
-        hrows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
         c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn,
                                   float(dt), forces, tforces, need)
         if reason == 5:
@@ -840,9 +900,6 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
                                  f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
         if reason:
             raise InputError(_DEBUG_REASONS[reason].format(c=c))
-    elif parallel:
-        contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt), forces,
-                             tforces, history_rows)
     else:
-        contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, float(dt),
-                              forces, tforces, history_rows)
+        _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, hrows, normals, overlaps,
+                                                   velocities, wn, float(dt), forces, tforces)

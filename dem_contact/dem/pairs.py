@@ -19,14 +19,19 @@ from ..laws.slots import P_NSPRING
 from ..laws.vector import history_size
 
 
-@dataclass
+@dataclass(frozen=True, eq=False)
 class PairTable:
     """Parameter table of a DEM simulation.
 
-    params: float64[n_rows, N_PARAMS]; normal_id, tangential_id: law ids; sphere_row: int64[n_types,
-    n_types] row of each sphere-sphere pair (symmetric); wall_row: int64[n_types, n_walls] row of each
-    sphere-wall pair; history_size: length of a 3D history row (``contact3d``, layout in ``laws.vector``)
-    for the laws and the largest MDR cell count of the table; scenes: the Scene of each row."""
+    params: float64[n_rows, N_PARAMS]; normal_id, tangential_id: the law ids the table is built for (every
+    row records them, in its P_NORMAL_LAW and P_TANGENTIAL_LAW slots, and the checked entries of
+    ``contact3d`` refuse the table with other ids); sphere_row: int64[n_types, n_types] row of each
+    sphere-sphere pair (symmetric); wall_row: int64[n_types, n_walls] row of each sphere-wall pair;
+    history_size: length of a 3D history row (``contact3d``, layout in ``laws.vector``) for the laws and
+    the largest MDR cell count of the table; scenes: the Scene of each row (a tuple).
+
+    The table is immutable (its attributes cannot be assigned; the Scenes are immutable too): for other
+    settings build another with ``pair_table``. Its arrays are the kernels' inputs, passed without copies."""
 
     params: np.ndarray
     normal_id: int
@@ -34,7 +39,7 @@ class PairTable:
     sphere_row: np.ndarray
     wall_row: np.ndarray
     history_size: int
-    scenes: list = field(repr=False, default_factory=list)
+    scenes: tuple = field(repr=False, default=())
 
     def describe(self) -> list:
         """``Scene.describe()`` of every row."""
@@ -93,4 +98,4 @@ def pair_table(spheres, walls=(), *, mu=0.3, normal: str = "hertz", tangential: 
     params = np.ascontiguousarray(np.array(rows))
     nid, tid = scenes[0].normal_id, scenes[0].tangential_id
     return PairTable(params=params, normal_id=nid, tangential_id=tid, sphere_row=sphere_row, wall_row=wall_row,
-                     history_size=history_size(nid, tid, int(params[:, P_NSPRING].max())), scenes=scenes)
+                     history_size=history_size(nid, tid, int(params[:, P_NSPRING].max())), scenes=tuple(scenes))

@@ -1,12 +1,14 @@
 """A contact model bound to a pair of bodies: the laws, their parameter row, and its calibration.
 
 ``Scene`` validates everything once and computes the effective properties and the parameter row that
-the kernels read (see ``laws.slots``).
+the kernels read (see ``laws.slots``). A Scene is immutable: ``scene.replace(mu=0.1)`` builds the scene
+with one setting changed, validated and calibrated again like a new one.
 """
 from __future__ import annotations
 
 import functools
 import math
+from types import MappingProxyType
 
 import numpy as np
 
@@ -16,15 +18,16 @@ from . import closed_forms as cf
 from . import contact as C
 from .normal_impact import normal_impact
 from .slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
-                         P_MDR_PROFILE, P_MSTAR, P_MU, P_NSPRING, P_PY, P_RSTAR, P_TY_DMU, P_TY_NODES, P_TY_TABLE)
+                         P_MDR_PROFILE, P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW,
+                    P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 
-NORMAL_LAWS = {
+NORMAL_LAWS = MappingProxyType({
     "hertz": C.HERTZ,
     "thornton": C.THORNTON,
     "hertz_damped": C.HERTZ_DAMPED,
     "linear": C.LINEAR_NORMAL,
-}
-TANGENTIAL_LAWS = {
+})
+TANGENTIAL_LAWS = MappingProxyType({
     "md": C.MD,
     "md_rescale": C.MD_RESCALE,
     "mindlin_total": C.MINDLIN_TOTAL,
@@ -34,15 +37,15 @@ TANGENTIAL_LAWS = {
     "ddm": C.DDM,
     "mdr": C.MDR,
     "mdr_adaptive": C.MDR_ADAPTIVE,
-}
+})
 
-NORMAL_LAW_SOURCES = {
+NORMAL_LAW_SOURCES = MappingProxyType({
     "hertz": "Hertz (Johnson 1985), elastic",
     "thornton": "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p_y",
     "hertz_damped": "Hertz + dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, force clamped at 0, gamma calibrated for e_n",
     "linear": "linear spring-dashpot, stiffness matched to the Hertz contact time at v_ref, closed-form e_n",
-}
-TANGENTIAL_LAW_SOURCES = {
+})
+TANGENTIAL_LAW_SOURCES = MappingProxyType({
     "md": "Thornton & Yin (1991) incremental Mindlin-Deresiewicz",
     "md_rescale": "md with a_new/a_old scaling when the contact shrinks (Thornton, Cummins & Cleary 2013)",
     "mindlin_total": "total-displacement no-slip Hertz-Mindlin (LIGGGHTS tangential history, EDEM, LAMMPS mindlin)",
@@ -52,7 +55,7 @@ TANGENTIAL_LAW_SOURCES = {
     "ddm": "Di Renzo & Di Maio (2005): total displacement, k_t = (2/3) 8 G* a",
     "mdr": "exact reference: method of dimensionality reduction (Popov & Hess), springs on a half-line",
     "mdr_adaptive": "method of dimensionality reduction with few cells on a grid that follows the contact",
-}
+})
 
 #: Default number of MDR springs (cells on the half-line x >= 0): with MDR_STEPS_PER_CONTACT steps per
 #: contact, f/mu of an oblique impact is within 1e-5 of the converged MDR value (4 significant digits).
@@ -65,18 +68,18 @@ MDR_ADAPTIVE_CELLS = 16
 MDR_RADIUS_MARGIN = 1.05
 
 #: Coulomb-limit profiles of the MDR laws during plastic loading (``Scene(mdr_profile=...)``, laws.mdr).
-MDR_PROFILES = {"truncated": 0.0, "scaled": 1.0}
+MDR_PROFILES = MappingProxyType({"truncated": 0.0, "scaled": 1.0})
 
 #: Named models: laws and time-step practice of published DEM work.
 #: thornton2001: Thornton, Ciomocos, Ning & Kafui (2001) and Thornton's DEM of that period: Thornton's
 #: (1997) normal law (Hertz when nothing yields) with the Thornton-Yin incremental Mindlin-Deresiewicz
 #: tangential law. Their time step is not given in terms we can reproduce; it is assumed fine enough for
 #: converged results: 1000 steps per elastic contact time, where md is within 1e-3 of its converged f/mu.
-MODELS = {
-    "thornton2001": dict(normal="thornton", normal_elastic="hertz", tangential="md", steps_per_contact=1000.0,
+MODELS = MappingProxyType({
+    "thornton2001": MappingProxyType(dict(normal="thornton", normal_elastic="hertz", tangential="md", steps_per_contact=1000.0,
                          source="Thornton et al. (2001), Contact mechanics and coefficients of restitution, "
-                                "in Granular Gases (Lecture Notes in Physics 564): thornton + md"),
-}
+                                "in Granular Gases (Lecture Notes in Physics 564): thornton + md")),
+})
 
 #: Largest friction coefficient accepted (the failure map runs to 1e4).
 MAX_MU = 1e10
@@ -169,12 +172,25 @@ class Scene:
         the yielding body. Off by default.
     model : a named model that sets the laws and the time step: ``MODELS`` (``"thornton2001"``: Thornton
         et al. 2001, thornton + md). Its laws are not to be given as well.
+
+    A Scene is immutable (its attributes cannot be assigned: the parameter row, the calibrations and the
+    constants cached by the impact functions are derived from them once): ``scene.replace(mu=0.1)`` returns
+    a new Scene with the same arguments but the ones given, built and checked like a new one. ``params`` is
+    a copy of the parameter row (float64[N_PARAMS], ``laws.slots``), for the kernels; writing to it changes
+    no Scene.
     """
+
+    #: the constructor's arguments, which ``replace`` accepts
+    ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "e_n", "v_ref", "mdr_springs", "mdr_max_radius",
+                 "mdr_profile", "traction_yield", "model")
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = "hertz",
                  tangential: str = "mdr_adaptive", e_n: float | None = None, v_ref: float | None = None,
                  mdr_springs: int | None = None, mdr_max_radius: float | None = None,
                  mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None):
+        self._args = dict(sphere=sphere, body2=body2, mu=mu, normal=normal, tangential=tangential, e_n=e_n,
+                          v_ref=v_ref, mdr_springs=mdr_springs, mdr_max_radius=mdr_max_radius,
+                          mdr_profile=mdr_profile, traction_yield=traction_yield, model=model)
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):
@@ -209,6 +225,8 @@ class Scene:
         p[P_RSTAR] = pr.R_star
         p[P_MSTAR] = pr.m_star
         p[P_MU] = self.mu
+        p[P_NORMAL_LAW] = self.normal_id + 1           # the laws the row is built for (checked entries)
+        p[P_TANGENTIAL_LAW] = self.tangential_id + 1
         self.p_y = None
         if self.e_n is not None and normal == "hertz":
             raise InputError("e_n cannot act on the hertz law (elastic, e_n = 1): use hertz_damped or linear for a "
@@ -265,7 +283,7 @@ class Scene:
             if normal != "thornton":
                 raise InputError("traction_yield applies to the thornton normal law only")
             self._set_traction_yield(p)
-        self.params = p
+        self._params = p
         self.mdr_springs = 0
         self.tangential_extra_slots = 0     # history slots after N_HIST_BASE (mdr laws)
         if tangential == "mdr":
@@ -276,11 +294,43 @@ class Scene:
                 raise InputError(f"mdr_springs = {n!r} must be an even integer in [2, 1024] for mdr_adaptive")
             self.mdr_springs = int(n)
             self.tangential_extra_slots = int(n) + 1        # the cell width, then the cells
-            self.params[P_NSPRING] = int(n)
+            self._params[P_NSPRING] = int(n)
             if mdr_max_radius is not None:
                 raise InputError("mdr_max_radius applies to the mdr tangential law only")
         elif mdr_springs is not None or mdr_max_radius is not None:
             raise InputError("mdr_springs and mdr_max_radius apply to the mdr and mdr_adaptive laws only")
+        self._frozen = True
+
+    def __setattr__(self, name, value):
+        if self.__dict__.get("_frozen"):
+            raise InputError(f"a Scene is immutable: scene.{name} cannot be assigned; use "
+                             f"scene.replace({name}=...) for a scene with it changed")
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name):
+        raise InputError(f"a Scene is immutable: scene.{name} cannot be deleted")
+
+    def replace(self, **changes) -> "Scene":
+        """A new Scene with the constructor arguments of this one, but ``changes`` (any of ``ARGUMENTS``),
+        validated and calibrated like a new Scene."""
+        unknown = [k for k in changes if k not in self.ARGUMENTS]
+        if unknown:
+            raise InputError(f"replace: {', '.join(map(repr, unknown))} is not an argument of Scene; valid: "
+                             f"{', '.join(self.ARGUMENTS)}")
+        return Scene(**{**self._args, **changes})
+
+    __replace__ = replace           # copy.replace (Python 3.13)
+
+    @property
+    def arguments(self) -> dict:
+        """The constructor's arguments of this Scene (a copy)."""
+        return dict(self._args)
+
+    @property
+    def params(self) -> np.ndarray:
+        """The parameter row the kernels read, float64[N_PARAMS] (``laws.slots``): a copy (the Scene does
+        not change)."""
+        return self._params.copy()
 
     def _set_traction_yield(self, p):
         """Table of p0_first(mu_eff) / p0_first(0) on [0, mu] in the parameter row (none for mu = 0: the
@@ -314,13 +364,13 @@ class Scene:
         self.mdr_springs = n
         self.tangential_extra_slots = n
         self.mdr_max_radius = r
-        self.params[P_NSPRING] = n
-        self.params[P_DX] = r / n
+        self._params[P_NSPRING] = n
+        self._params[P_DX] = r / n
 
     def max_contact_radius(self, vn: float) -> float:
         """Largest contact radius sqrt(R* delta_max) [m] of a head-on impact at normal speed vn [m/s],
         from a simulated normal impact with this scene's normal law."""
-        p = self.params.copy()
+        p = self.params
         p[P_MU] = 0.0
         pr = self.pair
         dt = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn) / 2000.0
@@ -345,16 +395,16 @@ class Scene:
         (shorter, by a factor that depends on gamma only); or the linear spring's closed form."""
         pr = self.pair
         if self.normal == "linear":
-            return cf.linear_contact_time(self.params[P_KN], pr.m_star, self.params[P_GAMMA])
+            return cf.linear_contact_time(self._params[P_KN], pr.m_star, self._params[P_GAMMA])
         tc = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
         if self.normal == "hertz_damped":
-            tc *= hertz_damped_time_ratio(float(self.params[P_GAMMA]))
+            tc *= hertz_damped_time_ratio(float(self._params[P_GAMMA]))
         return tc
 
     def describe(self) -> dict:
         """The model and its derived parameters, for reports."""
         pr = self.pair
-        p = self.params
+        p = self._params
         d = {
             "normal_law": self.normal,
             "normal_law_source": NORMAL_LAW_SOURCES[self.normal],

@@ -24,6 +24,9 @@ P_MDR_PROFILE         Coulomb-limit profile of the MDR laws: 0 the pressure the 
 P_TY_NODES            nodes of the traction-yield table, 0 = off (thornton)
 P_TY_DMU              spacing of the table in mu_eff = |T|/N [-] (thornton)
 P_TY_TABLE ...        p0(mu_eff)/p0(0) at mu_eff = 0, P_TY_DMU, ... (TY_MAX_NODES slots; thornton)
+P_NORMAL_LAW          normal law id + 1 the row was built for (0: not recorded); no kernel reads it,
+                      the checked entries refuse a row used with other law ids
+P_TANGENTIAL_LAW      tangential law id + 1 the row was built for (0: not recorded)
 ====================  =====================================================================
 
 History row (one per contact), updated in place: a header, then the normal slots, then the
@@ -49,7 +52,9 @@ P_TY_NODES = 14
 P_TY_DMU = 15
 P_TY_TABLE = 16
 TY_MAX_NODES = 16
-N_PARAMS = 32
+P_NORMAL_LAW = 32
+P_TANGENTIAL_LAW = 33
+N_PARAMS = 34
 
 # history row: header
 H_N = 0        # normal force after the last step [N] (clamped at >= 0)
