@@ -94,3 +94,62 @@ def test_every_jitted_function_of_the_package_has_a_name_of_its_own():
                 key = (obj.py_func.__module__, obj.py_func.__qualname__)
                 assert seen.setdefault(key, obj) is obj, f"two jitted functions named {key}"
     assert len(seen) > 50
+
+
+USER_MODULE = r"""
+import dem_contact
+from dem_contact.kernel_cache import follow_kernels
+follow_kernels(__file__)
+
+import numpy as np
+from numba import njit
+
+from dem_contact import impact
+from dem_contact.impacts.presets import preset_scene
+from dem_contact.laws.normal import hertz
+
+
+@njit(cache=True)
+def users_own_loop(p, deltas):
+    total = 0.0
+    for d in deltas:
+        total += hertz(p, d)[0]
+    return total
+
+
+scene = preset_scene("EE", 5.0, tangential="linear")
+print(impact(scene, vn=5.0).max_force, users_own_loop(scene.params, np.array([1e-6, 2e-6])))
+"""
+
+
+@pytest.mark.slow
+def test_compiled_code_follows_the_law_sources_it_inlines(tmp_path):
+    """A law edited after its kernels were cached (a new version installed over an old one) is what runs next:
+    in the package's own kernels and in a user's cached loop that follows the package's kernels."""
+    import shutil
+
+    import dem_contact
+
+    pkg = tmp_path / "site"
+    shutil.copytree(os.path.dirname(dem_contact.__file__), pkg / "dem_contact",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp_path / "user.py").write_text(USER_MODULE)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"), PYTHONPATH=str(pkg))
+
+    def run():
+        done = subprocess.run([sys.executable, str(tmp_path / "user.py")], env=env, capture_output=True, text=True,
+                              timeout=600)
+        assert done.returncode == 0, done.stderr[-3000:]
+        return [float(x) for x in done.stdout.split()]
+
+    before = run()
+    assert run() == before                               # loaded from the cache: the same numbers
+    law = pkg / "dem_contact" / "laws" / "normal.py"
+    text = law.read_text()
+    assert text.count("return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a") == 1
+    law.write_text(text.replace("return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a",
+                                "return 8.0 / 3.0 * p[P_ESTAR] * a * delta, a"))
+    after = run()
+    assert after[1] == pytest.approx(2.0 * before[1], rel=1e-14)    # the user's loop: Hertz's force doubled
+    # the impact: twice the stiffness, so F_max = (2 E*)^(2/5) times the same factor: 2^(2/5) times larger
+    assert after[0] == pytest.approx(2.0 ** 0.4 * before[0], rel=2e-3)

@@ -11,14 +11,18 @@ def add_parser(sub):
                                    "on EE 5 m/s, check universality in mu and V_n, and write OUT/report.md "
                                    "with figures in OUT/figures/.")
     p.add_argument("--out", default="validation", help="output directory (default ./validation)")
+    p.add_argument("--quick", action="store_true",
+                   help="coarser grids (impact angles every 5 deg instead of 1, 17 instead of 81 values of Theta "
+                        "in the universality check, 2 instead of 5 time steps): every section in a fraction of "
+                        "the time, with wider fit uncertainties; the report states the grids")
     p.set_defaults(run=run)
 
 
 def run(args) -> int:
-    from ..studies.wu2009 import run_validation
+    from ..studies.wu2009 import FULL, QUICK, run_validation
 
     from .common import check_output_dir
 
     check_output_dir("--out", args.out)
-    print(f"report written to {run_validation(args.out)}")
+    print(f"report written to {run_validation(args.out, grids=QUICK if args.quick else FULL)}")
     return 0

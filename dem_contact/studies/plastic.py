@@ -50,8 +50,8 @@ def _key(case: str, vn: float) -> str:
     return "EE" if case == "EE" else f"PE {vn:g} m/s"
 
 
-def _run(scene, vn, spc=None):
-    res = sweep_angles(scene, ANGLES, vn, steps_per_contact=spc)
+def _run(scene, vn, angles, spc=None):
+    res = sweep_angles(scene, angles, vn, steps_per_contact=spc)
     return res, fit_wu(res.Theta, res.f_over_mu, res.persistent_sliding)
 
 
@@ -66,7 +66,7 @@ def _fit_diff(fit, key: str) -> float:
     return max_curve_difference(fit.c, PUBLISHED_FITS[key]["c"], _range(key))
 
 
-def profile_study(log=print) -> dict:
+def profile_study(log=print, angles=ANGLES) -> dict:
     """PE at 2 and 5 m/s with the exact reference (``mdr``, MDR_STEPS_PER_CONTACT) and the default law,
     Coulomb limit from the truncated pressure and from the scaled Hertz shape."""
     out = {}
@@ -74,7 +74,7 @@ def profile_study(log=print) -> dict:
         for law, spc in (("mdr", MDR_STEPS_PER_CONTACT), (DEFAULT_TANGENTIAL, None)):
             for profile in ("truncated", "scaled"):
                 scene = preset_scene("PE", vn, tangential=law, mdr_profile=profile)
-                out[(vn, law, profile)] = _run(scene, vn, spc)
+                out[(vn, law, profile)] = _run(scene, vn, angles, spc)
         log(f"profiles, PE {vn:g} m/s: done")
     return out
 
@@ -83,7 +83,7 @@ def profile_study(log=print) -> dict:
 PY_OVER_Y = (1.6, 2.2, 2.8)
 
 
-def sensitivity_study(log=print) -> dict:
+def sensitivity_study(log=print, angles=ANGLES) -> dict:
     """PE with the default law and other limiting pressures p_y = k Y (k in PY_OVER_Y; 1.6 is the
     library's conversion), and with the damped Hertz law at Thornton's e_n of each speed (Coulomb limit
     following the total force): how the PE curve depends on how much the contact yields."""
@@ -92,32 +92,32 @@ def sensitivity_study(log=print) -> dict:
     out = {}
     for vn in SPEEDS:
         for k in PY_OVER_Y:
-            out[(vn, k)] = _run(preset_scene("PE", vn, yield_pressure=k * PE_YIELD_STRESS), vn)
+            out[(vn, k)] = _run(preset_scene("PE", vn, yield_pressure=k * PE_YIELD_STRESS), vn, angles)
         e_n = out[(vn, 1.6)][0].e_n[0]
-        out[(vn, "hertz_damped")] = _run(preset_scene("EE", vn, normal="hertz_damped", e_n=float(e_n)), vn)
+        out[(vn, "hertz_damped")] = _run(preset_scene("EE", vn, normal="hertz_damped", e_n=float(e_n)), vn, angles)
         log(f"sensitivity, PE {vn:g} m/s: done")
     return out
 
 
-def traction_study(log=print) -> dict:
+def traction_study(log=print, angles=ANGLES) -> dict:
     """e_n against the angle at fixed V_n, and the f/mu curves, with and without traction_yield (PE, the
     default law)."""
     out = {}
     for vn in SPEEDS:
         for coupled in (False, True):
-            out[(vn, coupled)] = _run(preset_scene("PE", vn, traction_yield=coupled), vn)
+            out[(vn, coupled)] = _run(preset_scene("PE", vn, traction_yield=coupled), vn, angles)
         log(f"traction yield, PE {vn:g} m/s: done")
     return out
 
 
-def model_study(log=print) -> dict:
+def model_study(log=print, angles=ANGLES) -> dict:
     """thornton2001, the exact reference and the default law on EE and PE at 2 and 5 m/s."""
     out = {}
     for case in ("EE", "PE"):
         for vn in SPEEDS:
-            out[(case, vn, "thornton2001")] = _run(preset_scene(case, vn, model="thornton2001"), vn)
-            out[(case, vn, "mdr")] = _run(preset_scene(case, vn, tangential="mdr"), vn, MDR_STEPS_PER_CONTACT)
-            out[(case, vn, "default")] = _run(preset_scene(case, vn), vn)
+            out[(case, vn, "thornton2001")] = _run(preset_scene(case, vn, model="thornton2001"), vn, angles)
+            out[(case, vn, "mdr")] = _run(preset_scene(case, vn, tangential="mdr"), vn, angles, MDR_STEPS_PER_CONTACT)
+            out[(case, vn, "default")] = _run(preset_scene(case, vn), vn, angles)
             log(f"thornton2001, {case} {vn:g} m/s: done")
     return out
 
@@ -135,16 +135,17 @@ def _style(i, marker=True):
     return {"color": f"C{i}", "marker": "o" if marker else None, "ms": 2.5, "mfc": "none"}
 
 
-def plastic_sections(figdir: str, log=print) -> list:
-    """Markdown lines of the plastic-contact and thornton2001 sections; figures written to ``figdir``."""
+def plastic_sections(figdir: str, log=print, angles=ANGLES) -> list:
+    """Markdown lines of the plastic-contact and thornton2001 sections (sweeps at ``angles`` [deg]); figures
+    written to ``figdir``."""
     from .. import plots
 
     t0 = time.perf_counter()
     os.makedirs(figdir, exist_ok=True)
-    prof = profile_study(log)
-    sens = sensitivity_study(log)
-    trac = traction_study(log)
-    mods = model_study(log)
+    prof = profile_study(log, angles)
+    sens = sensitivity_study(log, angles)
+    trac = traction_study(log, angles)
+    mods = model_study(log, angles)
     lines = []
     w = lines.append
     Tm = np.linspace(0.0, 8.0, 400)
