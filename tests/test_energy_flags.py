@@ -6,7 +6,10 @@ import warnings
 import pytest
 
 import dem_contact as dc
-from dem_contact.impacts.impact import ENERGY_BALANCE_TOL, VALIDITY_A_OVER_R
+from dem_contact.errors import NumericalError
+from dem_contact.impacts.impact import CALIBRATION_RTOL, ENERGY_BALANCE_TOL, VALIDITY_A_OVER_R
+from dem_contact.impacts.impact3d import impact3d
+from dem_contact.impacts.sweep import sweep
 from dem_contact.impacts.presets import preset_scene
 
 
@@ -16,16 +19,73 @@ def quiet_impact(*args, **kwargs):
         return dc.impact(*args, **kwargs)
 
 
-@pytest.mark.parametrize("scheme,spc", [("standard", 10), ("standard", 50), ("located", 2)])
-def test_energy_gained_by_the_normal_force_is_flagged(scheme, spc):
-    """An elastic impact cannot return more kinetic energy than it received: the standard DEM end and a
-    2-step contact do, and are flagged with the normal and tangential works reported apart."""
+def _impact_on(path, scene, vn, vt, **kw):
+    """One impact through ``path``: the planar impact(), the 3D impact3d() or a one-impact sweep()."""
+    if path == "impact":
+        return dc.impact(scene, vn, vt, **kw)
+    if path == "impact3d":
+        return impact3d(scene, vn, (vt, 0.0), **kw)
+    res = sweep(scene, vn, vt, **kw)
+    for w in res.warnings:
+        warnings.warn(w, RuntimeWarning)
+    return res.points[0]
+
+
+@pytest.mark.parametrize("path", ["impact", "impact3d"])
+@pytest.mark.parametrize("spc", [10, 50])
+def test_energy_gained_by_the_normal_force_is_flagged(path, spc):
+    """An elastic impact cannot return more kinetic energy than it received: the standard DEM end does, and
+    is flagged on every path with the amount by which e_n exceeds 1 and the normal and tangential works."""
     sc = preset_scene("EE", 5.0)
     with pytest.warns(RuntimeWarning, match="kinetic energy gained"):
-        r = dc.impact(sc, 5.0, 1.0, steps_per_contact=spc, scheme=scheme)
+        r = _impact_on(path, sc, 5.0, 1.0, steps_per_contact=spc, scheme="standard")
     assert r.e_n > 1.0 and r.energy_gained
-    msg = next(w for w in r.warnings if w.startswith("kinetic energy gained"))
+    msg = next(w for w in r.warnings if w.startswith("kinetic energy gained in the normal motion"))
     assert "normal force" in msg and "tangential force" in msg
+    excess = float(msg.split("exceeds 1 by ")[1].split()[0])
+    assert excess > 0.0 and excess == pytest.approx(r.e_n - 1.0, rel=1e-2)
+
+
+IMPOSSIBLE = {     # (scene, vn, vt, steps per contact, scheme): e_n > 1 and e_n < 0 from too coarse a step
+    "e_n > 1": (lambda: preset_scene("EE", 5.0), 5.0, 1.0, 2, "located"),
+    "ends approaching": (lambda: preset_scene("EE", 5.0, normal="hertz_damped", e_n=0.01), 5.0, 2.0, 12, "located"),
+    "no time": (lambda: dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), normal="linear", e_n=0.001,
+                                 v_ref=5.0), 5.0, 1.0, 3, "located"),
+}
+
+
+@pytest.mark.parametrize("path", ["impact", "impact3d", "sweep"])
+@pytest.mark.parametrize("case", list(IMPOSSIBLE))
+def test_restitution_outside_0_1_is_a_numerical_failure(path, case):
+    """A passive normal law gives 0 <= e_n <= 1: a coarse step that ends the contact while the bodies still
+    approach (or at first touch), or returns more normal speed than came in, is a NumericalError on every
+    path, which names the time step as the cause (never a force underflow)."""
+    make, vn, vt, spc, scheme = IMPOSSIBLE[case]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(NumericalError, match="steps per contact") as err:
+            _impact_on(path, make(), vn, vt, steps_per_contact=spc, scheme=scheme)
+    assert "too coarse" in str(err.value) and "underflow" not in str(err.value)
+    # the same scene at a fine step is a physical impact
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = _impact_on(path, make(), vn, vt, steps_per_contact=2000, scheme=scheme)
+    assert 0.0 <= r.e_n <= 1.0
+
+
+@pytest.mark.parametrize("path", ["impact", "impact3d", "sweep"])
+def test_calibration_miss_is_warned(path):
+    """hertz_damped is calibrated for its e_n as dt -> 0: a coarse step misses the target by more than
+    CALIBRATION_RTOL and is warned about on every path; a fine step meets it, without the warning."""
+    sc = preset_scene("EE", 5.0, normal="hertz_damped", e_n=0.01)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        r = _impact_on(path, sc, 5.0, 1.0, steps_per_contact=20)
+    assert abs(r.e_n - 0.01) > CALIBRATION_RTOL * 0.01
+    assert any("misses the target 0.01" in str(w.message) for w in rec)
+    fine = _impact_on(path, sc, 5.0, 1.0, steps_per_contact=4000)
+    assert abs(fine.e_n - 0.01) <= CALIBRATION_RTOL * 0.01
+    assert not any("misses the target" in w for w in fine.warnings)
 
 
 @pytest.mark.parametrize("spc,bound", [(10, 6e-4), (50, 3e-6), (100, 3e-7), (1000, 2e-9)])

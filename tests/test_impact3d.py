@@ -205,3 +205,34 @@ def test_magnitudes_beyond_double_precision_are_refused():
         impact3d(sc, 5.0, (1.0, 0.0), (1e300, 0.0, 0.0))
     with pytest.raises(dc.InputError, match="vt"):
         impact3d(sc, 5.0, (1e300, 1e300), (0.0, 0.0, 0.0))
+
+
+CHECKED = {   # scenes and impacts that set off each check of impact(): (scene, vn, vt, steps per contact, scheme)
+    "energy balance": (lambda: dc.Scene(dc.Sphere(R, dc.STEEL), dc.Wall(dc.STEEL)), 5.0, 1.0, 5, "located"),
+    "validity": (lambda: dc.Scene(dc.Sphere(R, dc.Material(E=5e6, nu=0.45, rho=1100.0)), dc.Wall(dc.STEEL)),
+                 20.0, 1.0, 50, "located"),
+    "energy gained": (lambda: dc.Scene(dc.Sphere(R, dc.STEEL), dc.Wall(dc.STEEL)), 5.0, 1.0, 20, "standard"),
+    "|f| > mu": (lambda: dc.Scene(dc.Sphere(R, dc.STEEL), dc.Wall(dc.STEEL), normal="linear", tangential="linear",
+                                  e_n=0.3, v_ref=5.0), 5.0, 15.0, 50, "located"),
+    "calibration": (lambda: dc.Scene(dc.Sphere(R, dc.STEEL), dc.Wall(dc.STEEL), normal="hertz_damped", e_n=0.01),
+                    5.0, 1.0, 20, "located"),
+}
+
+
+@pytest.mark.parametrize("case", list(CHECKED))
+def test_impact3d_has_the_checks_of_impact(case):
+    """impact3d flags and warns as impact() does (a planar impact in 3D): energy gained, e_n > 1, energy
+    balance, range of validity, |f| > mu, calibration miss; the same kinds of warning on both paths."""
+    import warnings
+
+    from dem_contact.impacts.sweep import _NUMBER
+
+    make, vn, vt, spc, scheme = CHECKED[case]
+    sc = make()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = dc.impact(sc, vn, vt, steps_per_contact=spc, scheme=scheme)
+        q = impact3d(sc, vn, (vt, 0.0), steps_per_contact=spc, scheme=scheme)
+    kinds = lambda ws: sorted(_NUMBER.sub("#", w) for w in ws)  # noqa: E731
+    assert r.warnings and kinds(q.warnings) == kinds(r.warnings)
+    assert q.energy_gained == r.energy_gained and q.energy_created == r.energy_created

@@ -11,13 +11,42 @@ from dem_contact.impacts.sweep import sweep_angles
 from dem_contact.rebound import models as rm
 
 
-def test_first_sweep_says_it_compiles():
+def test_compile_message_only_when_compiling(capsys, monkeypatch):
+    """The sweep says it compiles only when loading the kernels takes a compilation's time: not in a new
+    process whose kernels come from numba's cache, but when the load is slow."""
+    import time
+
+    from dem_contact.impacts import sweep as sw
+
+    sweep_angles(preset_scene("EE", 5.0), [10.0, 20.0], 5.0)       # the kernels are in numba's cache now
     code = ("from dem_contact.impacts.presets import preset_scene\n"
             "from dem_contact.impacts.sweep import sweep_angles\n"
             "sweep_angles(preset_scene('EE', 5.0), [10.0, 20.0], 5.0, progress=True)\n")
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
-    assert "compiling kernels (first run only)" in p.stderr
+    assert "compiling" not in p.stderr
+    monkeypatch.setattr(sw, "COMPILE_NOTICE_AFTER_S", 0.05)
+    with sw.compile_notice(True):
+        time.sleep(0.5)                                             # a load that takes a compilation's time
+    assert "compiling kernels" in capsys.readouterr().err
+    with sw.compile_notice(True):
+        pass
+    assert capsys.readouterr().err == ""
+
+
+def test_sweep_warnings_one_line_per_kind():
+    """A warning that differs between the impacts only in its numbers is reported once, with the number of
+    impacts and the range of the numbers."""
+    import re
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = sweep_angles(preset_scene("EE", 5.0), [0.0, 20.0, 40.0, 60.0], 5.0, steps_per_contact=5)
+    kinds = [re.sub(r"[-+]?\d[\d.e+-]*", "#", w) for w in res.warnings]
+    assert len(kinds) == len(set(kinds))
+    balance = [w for w in res.warnings if w.startswith("energy balance error")]
+    assert len(balance) == 1 and " to " in balance[0] and balance[0].endswith(f"of {len(res)} impacts)")
 
 
 def test_model_curves_blank_where_unphysical():

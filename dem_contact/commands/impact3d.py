@@ -96,14 +96,21 @@ def run(args) -> int:
     print(f"impact plane axis e1 = {vec(r.plane_axis)}; in the plane / across it:")
     for name, a, b in [("Theta", r.Theta, r.Theta_across), ("f/mu", r.f_over_mu, r.f_across_over_mu),
                        ("Psi_r", r.Psi_r, r.Psi_r_across), ("Omega_r", r.Omega_r, r.Omega_across_r)]:
-        print(f"  {name:10s} {a:12.8g} {b:12.8g}")
+        print(f"  {name:10s} {_num(a, 12)} {_num(b, 12)}")
     rows = [("e_n", r.e_n, ""), ("e_t", r.e_t, ""), ("slip angle in", r.slip_angle_i_deg, "deg"),
             ("slip angle out", r.slip_angle_r_deg, "deg"), ("rebound angle", r.rebound_angle_deg, "deg"),
             ("out of plane", r.out_of_plane_angle_deg, "deg"), ("contact time", r.contact_time, "s")]
     for name, val, unit in rows:
-        print(f"  {name:15s} {val:.8g} {unit}")
+        print(f"  {name:15s} {_num(val)} {unit}")
+    if scene.mu == 0:
+        print("  (f/mu, Theta, Psi_r and Omega_r are undefined at mu = 0)")
     print_energy_and_warnings(r)
     return 0
+
+
+def _num(x: float, width: int = 0) -> str:
+    """A number as %.8g, or "undefined" where it is NaN (e_t at vt = 0, the groups at mu = 0)."""
+    return f"{x:{width}.8g}" if x == x else f"{'undefined':>{width}s}"
 
 
 def _row(theta, r) -> dict:

@@ -23,7 +23,7 @@ from ..laws.slots import H_A, P_GAMMA
 from ..laws import closed_forms as cf
 from ..laws.closed_forms import HERTZ_TC_FACTOR
 from ..materials import Sphere, check_finite
-from ..laws.model import Scene, hertz_damped_time_ratio
+from ..laws.model import HERTZ_DAMPED_EN_FLOOR, Scene, hertz_damped_time_ratio
 
 #: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed. With the
 #: default mdr_adaptive law f/mu is then within 3.5e-4 of its converged value and 7e-4 of converged MDR
@@ -40,6 +40,18 @@ ENERGY_CREATION_TOL = 1e-6
 KE_ROUNDING_TOL = 1e-12
 #: Energy-balance error (initial - final - work of the forces) above this fraction is warned about.
 ENERGY_BALANCE_TOL = 1e-3
+#: A passive normal law returns at most the normal speed it received, 0 <= e_n <= 1. An impact whose contact
+#: ends while the sphere still approaches (e_n < 0: a time step too coarse for a dashpot, whose predicted force
+#: turns tensile before the sphere stops) or whose e_n exceeds 1 by more than E_N_EXCESS_TOL is a numerical
+#: failure (NumericalError). Up to it the impact is flagged ``energy_gained`` with a warning: the standard DEM
+#: end of an elastic contact overshoots by 9e-4 at 10 steps per contact and by 3.5e-6 at 50.
+E_N_EXCESS_TOL = 1e-3
+#: The e_n of a calibrated law (the dashpot of hertz_damped and linear for their e_n, thornton's p_y for its
+#: e_n at the calibration speed) is warned about when it misses the target by more than CALIBRATION_RTOL of
+#: the target, and by more than CALIBRATION_ATOL (the hertz_damped dashpot of e_n = 0 is that of 1e-4): the
+#: calibrations hold as dt -> 0 (hertz_damped: 0.01 gives 0.0104 at 50 steps per contact).
+CALIBRATION_RTOL = 0.01
+CALIBRATION_ATOL = 1e-4
 #: Range of validity of the contact laws: Hertz and Mindlin-Deresiewicz theory assume a contact radius
 #: small against the radius of curvature (Johnson 1985, section 4.2); beyond a = 0.2 R* (overlap 0.04 R*) the
 #: result is flagged.
@@ -371,7 +383,8 @@ def derived_arrays(scene, out, vn, vt, spin, spin2, spc) -> dict:
         defined &= np.isfinite(e_n) & np.isfinite(f) & (tiny_vt | np.isfinite(e_t))
         state_ok = np.all(np.isfinite(out[:, [O_VN, O_VT, O_W1, O_W2, O_PN, O_PT, O_TC, O_DMAX, O_FMAX, O_WN,
                                                O_WT]]), axis=1)
-        failed = ((out[:, O_STATUS] != STATUS_OK) | ~state_ok | ~(PN > 0.0) | ~(tc > 0.0) | ~defined)
+        failed = ((out[:, O_STATUS] != STATUS_OK) | ~state_ok | ~(PN > 0.0) | ~(tc > 0.0) | ~defined
+                  | ~((e_n >= 0.0) & (e_n <= 1.0 + E_N_EXCESS_TOL)))
         I1 = 0.0 if inv_I1 == 0 else 1.0 / inv_I1
         I2 = 0.0 if inv_I2 == 0 else 1.0 / inv_I2
         E0 = 0.5 * m * (vn * vn + vt * vt) + 0.5 * I1 * spin**2 + 0.5 * I2 * spin2**2
@@ -382,6 +395,9 @@ def derived_arrays(scene, out, vn, vt, spin, spin2, spc) -> dict:
         warned = (created | gained | (out[:, O_COULOMB] > 1e-9 * np.maximum(mu * fmax, 1e-300))
                   | (np.abs(error) > ENERGY_BALANCE_TOL * E0)
                   | (np.sqrt(dmax / scene.pair.R_star) > VALIDITY_A_OVER_R) | (spc < 10))
+        c = scene_constants(scene)
+        if c.e_target is not None:
+            warned |= np.abs(e_n - c.e_target) > c.e_tol
         if mu > 0:
             warned |= np.abs(f) > mu * (1.0 + 1e-9)
         theta_deg = np.degrees(np.arctan2(vt, vn))
@@ -432,6 +448,30 @@ class SceneConstants:
         self.tc_ratio = (hertz_damped_time_ratio(float(scene.params[P_GAMMA])) if scene.normal == "hertz_damped"
                          else 1.0)
         self.model = scene.describe()
+        # the e_n its calibration aims at (None: not calibrated), at speed e_target_vn (None: any speed)
+        self.e_target, self.e_target_vn, self.e_target_what = calibration_target(scene)
+        self.e_target_or_0 = 0.0 if self.e_target is None else self.e_target
+        self.e_tol = (math.inf if self.e_target is None else
+                      max(CALIBRATION_RTOL * self.e_target, CALIBRATION_ATOL))
+
+    def calibration_missed(self, e_n: float, vn: float) -> bool:
+        """e_n misses the calibration's target (see CALIBRATION_RTOL) at an impact of normal speed vn."""
+        return abs(e_n - self.e_target) > self.e_tol and (
+            self.e_target_vn is None or abs(vn - self.e_target_vn) <= 1e-9 * vn)
+
+
+def calibration_target(scene: Scene) -> tuple:
+    """(e_n, speed, what): the restitution that the scene's normal law was calibrated for, the normal speed
+    [m/s] at which it holds (None: every speed) and a description of the calibration; (None, None, None)
+    for a law that is not calibrated to an e_n."""
+    if scene.normal in ("hertz_damped", "linear"):
+        e = 1.0 if scene.e_n is None else scene.e_n
+        if scene.normal == "hertz_damped":
+            e = max(e, HERTZ_DAMPED_EN_FLOOR)       # the dashpot of e_n = 0 is that of the floor
+        return e, None, f"the {scene.normal} dashpot's calibration"
+    if scene.normal == "thornton" and scene.e_n is not None and scene.v_ref is not None:
+        return scene.e_n, scene.v_ref, f"the thornton calibration of p_y at {scene.v_ref:g} m/s"
+    return None, None, None
 
 
 _CONSTANTS = weakref.WeakKeyDictionary()
@@ -450,38 +490,80 @@ def describe(scene: Scene) -> dict:
     return scene_constants(scene).model
 
 
-def _warning_texts(scene, o, f, e_n, energy, created, gained_total, gained_normal, a_over_R, spc) -> list:
-    """The warnings of one impact whose checks (see ``build_result``) found something."""
+def impact_warnings(c, scene, *, e_n, f_abs, energy, minwt, coul, fmax, dmax, spc, vn, created, gained_total,
+                    gained_normal) -> list:
+    """The warnings of one impact (planar or 3D) from its checks: ``c`` the scene's ``SceneConstants``; e_n, the
+    impulse ratio |f|, the EnergyBudget, the least running tangential work minwt [J], the largest Coulomb
+    excess coul [N], the peak force fmax [N] and overlap dmax [m], the steps per contact, the normal speed;
+    the flags energy_created, and kinetic energy gained in total and in the normal motion."""
     mu = scene.mu
     E0 = energy.initial
     WN, WT = energy.normal, energy.friction
     msgs = []
     if created:
         msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
-                    f"(running work reached {o[O_MINWT]:.3e} J)")
+                    f"(running work reached {minwt:.3e} J)")
     works = f"work absorbed by the normal force {WN:.4g} J, by the tangential force {WT:.4g} J"
     if gained_total:
         msgs.append(f"kinetic energy gained: the final kinetic energy exceeds the initial one by "
                     f"{(energy.final - E0) / E0:.3g} of it ({works})")
     if gained_normal:
-        msgs.append(f"kinetic energy gained in the normal motion: e_n = {e_n:.8g} > 1 ({works})")
-    coul = o[O_COULOMB]
-    if coul > 1e-9 * max(mu * o[O_FMAX], 1e-300):
+        msgs.append(f"kinetic energy gained in the normal motion: e_n exceeds 1 by {e_n - 1.0:.3g} "
+                    f"(e_n = {e_n:.12g}; {works})")
+    if coul > 1e-9 * max(mu * fmax, 1e-300):
         msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
-    if mu > 0 and abs(f) > mu * (1.0 + 1e-9):
+    if mu > 0 and f_abs > mu * (1.0 + 1e-9):
         why = (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
                "smaller than the compressive force the Coulomb limit acts on") if scene.normal == "linear" else ""
-        msgs.append(f"impulse ratio |f| exceeds mu by {abs(f) / mu - 1.0:.3g} of mu{why}")
+        msgs.append(f"impulse ratio |f| exceeds mu by {f_abs / mu - 1.0:.3g} of mu{why}")
     if abs(energy.error) > ENERGY_BALANCE_TOL * E0:
         msgs.append(f"energy balance error {energy.error / E0:.3g} of the initial kinetic energy (more than "
                     f"{ENERGY_BALANCE_TOL:g}): refine the time step")
+    a_over_R = math.sqrt(dmax / c.R_star)
     if a_over_R > VALIDITY_A_OVER_R:
         msgs.append(f"contact beyond the range of the contact laws: the contact radius reached "
-                    f"{a_over_R:.3g} R* (overlap {o[O_DMAX] / scene.pair.R_star:.3g} R*); Hertz-Mindlin "
+                    f"{a_over_R:.3g} R* (overlap {dmax / c.R_star:.3g} R*); Hertz-Mindlin "
                     f"theory assumes a small contact, a <= {VALIDITY_A_OVER_R:g} R*")
+    if c.e_target is not None and c.calibration_missed(e_n, vn):
+        msgs.append(f"e_n = {e_n:.6g} misses the target {c.e_target:g} of {c.e_target_what} by "
+                    f"{abs(e_n - c.e_target) / c.e_target:.3g} of it (tolerance {CALIBRATION_RTOL:g}): the "
+                    f"calibration holds as dt -> 0; refine the time step")
     if spc < 10:
         msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
     return msgs
+
+
+def _coarse_step_hint(scene) -> str:
+    if scene.normal in ("hertz_damped", "linear"):
+        e = 1.0 if scene.e_n is None else scene.e_n
+        return (f" (its dashpot, set for e_n = {e:g}, must change the normal velocity by a small fraction per "
+                f"step: the lower e_n, the more steps per contact it needs)")
+    return ""
+
+
+def raise_if_no_impulse(scene, PN, tc, vn, dt, spc):
+    """NumericalError for a contact that produced no normal impulse or took no time."""
+    if PN > 0.0 and tc > 0.0:
+        return
+    if tc == 0.0:
+        raise NumericalError(f"the contact ended at first touch, before any time passed: at {spc:.4g} steps per "
+                             f"contact (dt = {dt:g} s) the time step is too coarse for the {scene.normal} law"
+                             f"{_coarse_step_hint(scene)}; use more steps per contact")
+    raise NumericalError(f"the contact produced no normal impulse (normal impulse {PN:g} N s, contact time "
+                         f"{tc:g} s): its forces underflow double precision")
+
+
+def raise_if_restitution_impossible(scene, e_n, vn, dt, spc):
+    """NumericalError for an e_n that no passive normal law gives (see E_N_EXCESS_TOL)."""
+    if 0.0 <= e_n <= 1.0 + E_N_EXCESS_TOL:
+        return
+    coarse = (f" at {spc:.4g} steps per contact (dt = {dt:g} s): the time step is too coarse for the "
+              f"{scene.normal} law{_coarse_step_hint(scene)}; use more steps per contact")
+    if e_n < 0.0:
+        raise NumericalError(f"the contact ended while the bodies still approached (e_n = {e_n:.4g} < 0, final "
+                             f"normal velocity {-e_n * vn:.4g} m/s towards the contact){coarse}")
+    raise NumericalError(f"e_n = {e_n:.8g} exceeds 1 by {e_n - 1.0:.3g}, more than the {E_N_EXCESS_TOL:g} that "
+                         f"a passive normal law may show from discretisation{coarse}")
 
 
 def _raise_failed(scene, status, steps, vn, dt):
@@ -528,8 +610,9 @@ def _build_result(c, scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser, mode
         raise NumericalError(f"non-finite result ({', '.join(bad)}) with the {scene.normal}/{scene.tangential} "
                              f"laws at dt = {dt:g} s")
     if not PN > 0.0 or not tc > 0.0:
-        raise NumericalError(f"the contact produced no normal impulse (normal impulse {PN:g} N s, contact time "
-                             f"{tc:g} s): its forces underflow double precision")
+        raise_if_no_impulse(scene, PN, tc, vn, dt, spc)
+    if not 0.0 <= e_n <= 1.0 + E_N_EXCESS_TOL:
+        raise_if_restitution_impossible(scene, e_n, vn, dt, spc)
     f = PT / PN
     # undefined (NaN, None in JSON): f/mu and the dimensionless groups at mu = 0, e_t at vt = 0
     fm = f / mu if mu > 0 else math.nan
@@ -569,11 +652,13 @@ def _build_result(c, scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser, mode
     # the normal motion alone: a passive normal law cannot return more than it received (e_n <= 1)
     gained_normal = e_n * e_n - 1.0 > KE_ROUNDING_TOL
     gained = gained_total or gained_normal
-    a_over_R = math.sqrt(dmax / c.R_star)
     msgs = []
     if (created or gained or coul > 1e-9 * max(mu * fmax, 1e-300) or (mu > 0 and abs(f) > mu * (1.0 + 1e-9))
-            or abs(energy.error) > ENERGY_BALANCE_TOL * E0 or a_over_R > VALIDITY_A_OVER_R or spc < 10):
-        msgs = _warning_texts(scene, out.tolist(), f, e_n, energy, created, gained_total, gained_normal, a_over_R, spc)
+            or abs(energy.error) > ENERGY_BALANCE_TOL * E0 or math.sqrt(dmax / c.R_star) > VALIDITY_A_OVER_R
+            or spc < 10 or abs(e_n - c.e_target_or_0) > c.e_tol):     # (no calibration: e_tol = inf)
+        msgs = impact_warnings(c, scene, e_n=e_n, f_abs=abs(f), energy=energy, minwt=minwt, coul=coul, fmax=fmax,
+                               dmax=dmax, spc=spc, vn=vn, created=created, gained_total=gained_total,
+                               gained_normal=gained_normal)
         for msg in msgs:
             warnings.warn(msg, RuntimeWarning, stacklevel=3)
     series_dict = None

@@ -53,8 +53,9 @@ from ..laws.model import Scene
 from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
 from ..laws.slots import H_A, H_N, P_MU
 from ..materials import Wall, check_finite
-from .impact import (ENERGY_CREATION_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget, ImpactResult, body_inertia,
-                     check_scales, time_step)
+from .impact import (ENERGY_CREATION_TOL, KE_ROUNDING_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget,
+                     ImpactResult, _raise_failed, body_inertia, check_scales, impact_warnings, raise_if_no_impulse,
+                     raise_if_restitution_impossible, scene_constants, time_step)
 from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK
 
 # slots of the output row of integrate_impact3d
@@ -311,6 +312,7 @@ class Impact3DResult:
     model: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
     series: dict | None = None
+    energy_gained: bool = False
 
     to_dict = ImpactResult.to_dict
 
@@ -376,12 +378,8 @@ def _angle_deg(y: float, x: float) -> float:
 def build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser=None) -> Impact3DResult:
     """Turn the output row of ``integrate_impact3d`` into an Impact3DResult (NumericalError on failure)."""
     status = int(out[Q_STATUS])
-    if status == STATUS_MAX_STEPS:
-        raise NumericalError(f"the contact did not end within {int(out[Q_STEPS])} steps "
-                             f"({MAX_CONTACT_TIMES:g} elastic contact times)")
-    if status == STATUS_NONFINITE:
-        raise NumericalError(f"non-finite state (NaN or overflow) after {int(out[Q_STEPS])} steps: the "
-                             f"{scene.normal}/{scene.tangential} laws blew up at dt = {dt:g} s")
+    if status != STATUS_OK:
+        _raise_failed(scene, status, out[Q_STEPS], vn, dt)
     inv_m, R1, R2, inv_I1, inv_I2 = body_inertia(scene)
     m = 1.0 / inv_m
     mu = scene.mu
@@ -403,6 +401,11 @@ def build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser=
     s_r = slip(vt_r, w1_r, w2_r)
     e_n = -vn_r / vn
     nan = math.nan
+    if not all(math.isfinite(x) for x in (vn_r, PN, out[Q_TC], *P, *vt_r, *w1_r, *w2_r)):
+        raise NumericalError(f"non-finite result (velocity, spin or impulse) with the {scene.normal}/"
+                             f"{scene.tangential} laws at dt = {dt:g} s")
+    raise_if_no_impulse(scene, PN, out[Q_TC], vn, dt, spc)
+    raise_if_restitution_impossible(scene, e_n, vn, dt, spc)
     f = -float(P @ e1) / PN if PN > 0 else nan
     f_across = -float(P @ e2) / PN if PN > 0 else nan
     vt_i1 = float(vt @ e1)
@@ -411,10 +414,10 @@ def build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser=
         pos = mu > 0
         groups = dict(
             f_over_mu=f / mu if pos else nan, f_across_over_mu=f_across / mu if pos else nan,
-            Theta=2.0 * float(s_i @ e1) / denom if pos else math.inf,
-            Theta_across=2.0 * float(s_i @ e2) / denom if pos else math.inf,
-            Psi_r=2.0 * float(s_r @ e1) / denom if pos else math.inf,
-            Psi_r_across=2.0 * float(s_r @ e2) / denom if pos else math.inf,
+            Theta=2.0 * float(s_i @ e1) / denom if pos else nan,
+            Theta_across=2.0 * float(s_i @ e2) / denom if pos else nan,
+            Psi_r=2.0 * float(s_r @ e1) / denom if pos else nan,
+            Psi_r_across=2.0 * float(s_r @ e2) / denom if pos else nan,
             Omega_i=2.0 * R1 * float(w1[:2] @ e2) / (5.0 * denom) if pos else nan,
             Omega_r=2.0 * R1 * float(w1_r[:2] @ e2) / (5.0 * denom) if pos else nan,
             Omega_across_i=-2.0 * R1 * float(w1[:2] @ e1) / (5.0 * denom) if pos else nan,
@@ -429,16 +432,14 @@ def build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser=
     if not all(math.isfinite(x) for x in (E0, E1, WT, WN, PN)):
         raise NumericalError(f"non-finite result (energy or impulse) with the {scene.normal}/{scene.tangential} "
                              f"laws at dt = {dt:g} s")
+    # the checks of the planar impact (impact.build_result), with the impulse ratio of the whole tangential impulse
     created = bool(out[Q_MINWT] < -ENERGY_CREATION_TOL * E0)
-    msgs = []
-    if created:
-        msgs.append(f"energy created: the {scene.tangential} tangential law did negative work "
-                    f"(running work reached {out[Q_MINWT]:.3e} J)")
+    gained_total = bool(E1 - E0 > KE_ROUNDING_TOL * E0)
+    gained_normal = bool(e_n * e_n - 1.0 > KE_ROUNDING_TOL)
     coul = out[Q_COULOMB]
-    if coul > 1e-9 * max(mu * out[Q_FMAX], 1e-300):
-        msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
-    if spc < 10:
-        msgs.append(f"only {spc:.3g} steps per contact: results are coarse")
+    msgs = impact_warnings(scene_constants(scene), scene, e_n=e_n, f_abs=math.hypot(*P) / PN, energy=energy,
+                           minwt=out[Q_MINWT], coul=coul, fmax=out[Q_FMAX], dmax=out[Q_DMAX], spc=spc, vn=vn,
+                           created=created, gained_total=gained_total, gained_normal=gained_normal)
     for msg in msgs:
         warnings.warn(msg, RuntimeWarning, stacklevel=3)
     series_dict = None
@@ -461,7 +462,7 @@ def build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser=
         model=scene.describe(),
         settings={"scheme": scheme, "dt": dt, "steps_per_contact": spc, "frame_spin": bool(frame_spin),
                   "frame": "z: normal into body 2 (approach direction); x, y: tangent plane"},
-        series=series_dict)
+        series=series_dict, energy_gained=gained_total or gained_normal)
 
 
 def sweep3d(scene: Scene, angles_deg, vn: float = 5.0, spin=(0.0, 0.0, 0.0), *, direction_deg: float = 0.0,

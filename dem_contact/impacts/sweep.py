@@ -14,7 +14,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import sys
+import threading
+import time
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -38,7 +41,41 @@ PROGRESS_UPDATES = 20
 
 
 _SWEEP = []
-_LAWS_LOADED = set()
+
+#: Loading the kernels from numba's cache takes well under a second; a load that takes longer than this
+#: is a compilation (the first run after installing or after an update, tens of seconds): it is announced.
+COMPILE_NOTICE_AFTER_S = 2.0
+
+
+class compile_notice:
+    """Context manager: when ``on`` and the block (loading or compiling kernels) is still running after
+    COMPILE_NOTICE_AFTER_S, say on stderr that kernels are being compiled, and when it ends how long it took.
+    Nothing is printed when the kernels come from numba's cache (or are already loaded)."""
+
+    def __init__(self, on: bool = True):
+        self.on = on
+        self.said = threading.Event()
+
+    def _say(self):
+        self.said.set()
+        print("compiling kernels (stored in numba's cache for later runs) ...", file=sys.stderr, flush=True)
+
+    def __enter__(self):
+        self.t0 = time.perf_counter()
+        self.timer = None
+        if self.on:
+            self.timer = threading.Timer(COMPILE_NOTICE_AFTER_S, self._say)
+            self.timer.daemon = True
+            self.timer.start()
+        return self
+
+    def __exit__(self, *exc):
+        if self.timer is not None:
+            self.timer.cancel()
+            self.timer.join()
+            if self.said.is_set() and exc[0] is None:
+                print(f"kernels compiled in {time.perf_counter() - self.t0:.0f} s", file=sys.stderr, flush=True)
+        return False
 
 
 def sweep_kernel():
@@ -132,17 +169,39 @@ class SweepResult:
 
     @property
     def warnings(self) -> list:
-        """Distinct warnings of the impacts, each with the number of impacts that raised it."""
-        counts = {}
-        for i in np.flatnonzero(self._warned):
-            for w in self.points[i].warnings:
-                key = w.split(" (")[0].split(" by ")[0]
-                counts[key] = counts.get(key, 0) + 1
-        return [f"{k} ({n} of {len(self)} impacts)" for k, n in counts.items()]
+        """The warnings of the impacts, one per kind (the same text but for its numbers), each with the
+        number of impacts that raised it; a number that differs between them is given as its range."""
+        return merge_warnings([self.points[i].warnings for i in np.flatnonzero(self._warned)], len(self))
 
     def to_dicts(self) -> list:
         """One JSON-ready dict per impact (the ImpactResult keys)."""
         return [r.to_dict() for r in self.points]
+
+
+#: A number in a warning's text (not part of a name such as thornton2001 or R*).
+_NUMBER = re.compile(r"(?<![\w.*])[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?(?!\w)")
+
+
+def merge_warnings(per_impact, n_impacts: int) -> list:
+    """One line per kind of warning over the impacts' warning lists ``per_impact``: a kind is a text with its
+    numbers left out; a number that is the same in every impact is kept, one that differs is given as
+    "MIN to MAX"; each line ends with the number of impacts that raised it, of ``n_impacts``."""
+    kinds = {}
+    for msgs in per_impact:
+        for w in msgs:
+            key = _NUMBER.sub("#", w)
+            kinds.setdefault(key, []).append(_NUMBER.findall(w))
+    lines = []
+    for key, numbers in kinds.items():
+        parts = key.split("#")
+        text = parts[0]
+        for k, part in enumerate(parts[1:]):
+            column = [nums[k] for nums in numbers]
+            values = [float(x) for x in column]
+            lo, hi = column[values.index(min(values))], column[values.index(max(values))]
+            text += (lo if lo == hi or min(values) == max(values) else f"{lo} to {hi}") + part
+        lines.append(f"{text} ({len(numbers)} of {n_impacts} impacts)")
+    return lines
 
 
 def _check_inputs(scene, vn, vt, spin):
@@ -195,12 +254,9 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     w2 = np.zeros(n)
     locate = scheme == "located"
     chunk = n if not progress else max(1, -(-n // PROGRESS_UPDATES))
-    if progress and (not _SWEEP or (scene.normal_id, scene.tangential_id) not in _LAWS_LOADED):
-        # the first use loads the kernels from numba's cache or compiles them (seconds)
-        print("compiling kernels (first run only) ...", file=sys.stderr, flush=True)
-    kernel = sweep_kernel()
-    args = (integrator_for(scene.normal_id, scene.tangential_id), scene.params)
-    _LAWS_LOADED.add((scene.normal_id, scene.tangential_id))
+    with compile_notice(progress):
+        kernel = sweep_kernel()
+        args = (integrator_for(scene.normal_id, scene.tangential_id), scene.params)
     body = body_row(scene)
     bar = None
     if progress:
