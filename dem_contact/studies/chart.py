@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import InputError, kernel_failed
-from ..impacts.impact import MAX_CONTACT_TIMES, body_inertia
+from ..impacts.impact import E_N_EXCESS_TOL, MAX_CONTACT_TIMES, body_inertia
 from ..impacts.integrator import N_OUT, N_SERIES, O_PN, O_PT, O_SLID, O_STATUS, O_VN, O_VT, O_W1, integrate_impact, is_sliding
 from ..materials import STEEL, Material, Sphere, Wall
 from ..laws.model import TANGENTIAL_LAWS, Scene
@@ -81,11 +81,12 @@ def run(scene: Scene, vn: float, vt: np.ndarray, spc: float, scheme: str, repeat
             raise kernel_failed(e, f"the {scene.normal}/{scene.tangential} kernels at vn = {vn:g} m/s") from None
         if k:
             best = min(best, time.perf_counter() - t0)
-    if np.any(out[:, O_STATUS] != 0):
+    e_n = -out[:, O_VN] / vn
+    # a failed impact, or an e_n that no passive normal law gives (impact.E_N_EXCESS_TOL): no result
+    if np.any(out[:, O_STATUS] != 0) or not np.all((e_n >= 0.0) & (e_n <= 1.0 + E_N_EXCESS_TOL)):
         f = np.full(vt.size, np.nan)
         return GridRun(f, f, f, f, best / vt.size)
     mu = scene.mu
-    e_n = -out[:, O_VN] / vn
     fm = out[:, O_PT] / out[:, O_PN] / mu
     with np.errstate(divide="ignore", invalid="ignore"):
         e_t = np.where(vt != 0, out[:, O_VT] / vt, np.nan)

@@ -12,7 +12,7 @@ MDR reference (Popov & Hess 2015, chapter 6) for the accuracy class:
     inaccurate  error above ACCURACY_TOL (reported by the library only as the coarse-steps warning)
     coulomb     |T| > mu N at some step (flagged: warning, ImpactResult.coulomb_violation > 0)
     energy      the tangential law did negative work (flagged: ImpactResult.energy_created, warning)
-    blow-up     NaN / overflow / no separation: NumericalError
+    blow-up     NaN / overflow / no separation / e_n outside [0, 1]: NumericalError
     rejected    the input is outside the valid range: InputError
 """
 from __future__ import annotations
