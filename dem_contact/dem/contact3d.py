@@ -626,16 +626,29 @@ def _identity_rows(n):
     return _IDENTITY[0][:n]
 
 
+@njit(cache=True)
+def _first_shared_row(rows, stamp, epoch):
+    """The first contact c whose history row rows[c] an earlier contact uses, or -1: each used row is
+    stamped with ``epoch`` (rows checked to be in range before)."""
+    for c in range(rows.shape[0]):
+        r = rows[c]
+        if stamp[r] == epoch:
+            return c
+        stamp[r] = epoch
+    return -1
+
+
 def _distinct(rows, n_rows):
-    """True when the int64 ``rows`` (all in [0, n_rows)) are distinct: O(n) with a scratch array of this
-    thread (each row is stamped with the index of a contact that uses it; a row used twice keeps one
-    stamp, so the other contact finds another's index)."""
-    scratch = getattr(_SCRATCH, "rows", None)
-    if scratch is None or len(scratch) < n_rows:
-        scratch = _SCRATCH.rows = np.empty(max(n_rows, 0 if scratch is None else 2 * len(scratch)), dtype=np.int64)
-    idx = _identity_rows(len(rows))
-    scratch[rows] = idx
-    return np.array_equal(scratch[rows], idx)
+    """True when the int64 ``rows`` (all in [0, n_rows)) are distinct: one O(n) pass over a stamp array
+    of this thread, kept between calls (a new stamp value per call, so it is never cleared)."""
+    st = _SCRATCH.__dict__
+    stamp = st.get("stamp")
+    epoch = st.get("epoch", 0) + 1
+    if stamp is None or len(stamp) < n_rows or epoch >= 2**31 - 1:
+        stamp = st["stamp"] = np.zeros(max(n_rows, 0 if stamp is None else len(stamp)), dtype=np.int32)
+        epoch = 1
+    st["epoch"] = epoch
+    return _first_shared_row(rows, stamp, epoch) < 0
 
 
 def _valid_ids(nid, tid):
@@ -804,12 +817,12 @@ def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
     if n == 0:
         return nid, tid
     rows = params.shape[0]
-    if pair_rows.min() < 0 or pair_rows.max() >= rows:
+    if pair_rows.view(np.uint64).max() >= rows:               # (a negative row reads as a huge one)
         _first_bad("pair_rows", (pair_rows < 0) | (pair_rows >= rows),
                    lambda c: f"= {pair_rows[c]} is not a row of params (valid: 0 to {rows - 1})")
     if history_rows is not None:
         nh = H.shape[0]
-        if history_rows.min() < 0 or history_rows.max() >= nh:
+        if history_rows.view(np.uint64).max() >= nh:
             _first_bad("history_rows", (history_rows < 0) | (history_rows >= nh),
                        lambda c: f"= {history_rows[c]} is not a row of H (valid: 0 to {nh - 1})")
         if not _distinct(history_rows, nh):
