@@ -101,3 +101,17 @@ def test_the_other_configured_objects_are_immutable():
                   M.NORMAL_LAW_SOURCES, M.TANGENTIAL_LAW_SOURCES):
         with pytest.raises(TypeError):
             table["hertz"] = 9
+
+
+def test_a_path_scene_keeps_every_setting_of_the_scene():
+    """The mdr scene of a path (springs placed for the path's largest overlap) is the scene with that one
+    change: the limiting-pressure coupling and the MDR profile are kept."""
+    from dem_contact.studies.paths import path_scene
+
+    s = Scene(Sphere(0.005, YIELDING), Wall(STEEL), mu=0.3, normal="thornton", tangential="mdr", v_ref=1.0,
+              mdr_profile="scaled", traction_yield=True)
+    d = 1e-6
+    r = path_scene(s, d)
+    a = (s.pair.R_star * d) ** 0.5
+    assert r.arguments == {**s.arguments, "mdr_springs": s.mdr_springs, "mdr_max_radius": 1.05 * a}
+    assert (r.mdr_profile, r.traction_yield) == ("scaled", True)

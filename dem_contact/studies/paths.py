@@ -80,8 +80,7 @@ def path_scene(scene: Scene, delta_max: float) -> Scene:
     a = math.sqrt(scene.pair.R_star * max(delta_max, 0.0))
     if a <= 0.0:
         return scene
-    return Scene(scene.sphere, scene.body2, mu=scene.mu, normal=scene.normal, tangential="mdr", e_n=scene.e_n,
-                 v_ref=scene.v_ref, mdr_springs=scene.mdr_springs, mdr_max_radius=1.05 * a)
+    return scene.replace(mdr_springs=scene.mdr_springs, mdr_max_radius=1.05 * a)
 
 
 def run_path(scene: Scene, delta, ux, uy, *, dt: float = 1.0):
