@@ -22,7 +22,7 @@ LABELS = {"Theta": r"$\Theta$", "f_over_mu": r"$f/\mu$", "Psi_r": r"$\Psi_r$", "
           "e_t": r"$e_t$", "e_n": r"$e_n$", "collapse": r"$\kappa\Theta/(7\kappa-1)$"}
 #: style of the critical-angle lines: distinct colours and dash patterns
 THETA_C_STYLES = {"fit": dict(color="C0", ls="--", lw=1.3), "simulation": dict(color="k", ls="-", lw=1.0),
-                  "eq. 4.1": dict(color="C3", ls=":", lw=1.8)}
+                  "eq. 4.1": dict(color="C3", ls=":", lw=1.8), "criterion": dict(color="C3", ls=":", lw=1.8)}
 
 
 def _save(fig, path, dpi=DPI):
@@ -88,7 +88,7 @@ def sweep_figure(res, path, *, fit=None, published=None, kappa=None, title=None,
     if Theta_c:
         for i, (name, v) in enumerate(Theta_c.items()):
             if v is not None and np.isfinite(v):
-                style = THETA_C_STYLES.get(name, dict(color=f"C{5 + i}", ls="-.", lw=1.0))
+                style = THETA_C_STYLES.get(name.split(" (")[0], dict(color=f"C{5 + i}", ls="-.", lw=1.0))
                 axes[0, 0].axvline(v, alpha=0.9, label=rf"$\Theta_c$ {name} = {v:.3f}", **style)
     axes[0, 0].set_ylim(0, 1.08)
     axes[0, 0].legend(fontsize=7, loc="lower right")

@@ -22,16 +22,53 @@ def test_momentum_identities(model):
     assert np.all(fm <= 1.0) and np.all(fm >= 0.0)
 
 
-def test_identities_with_initial_spin():
-    m = rm.wu(T, EE["c"], Omega_i=0.4)
-    assert np.allclose(m["Omega_r"], 0.4 - m["f_over_mu"])
-    assert np.allclose(m["Psi_r"], T + 5 * 0.4 - 7 * m["f_over_mu"])
+@pytest.mark.parametrize("vt, spin", [(2.0, 300.0), (6.0, 300.0), (2.0, -150.0), (6.0, -150.0)])
+def test_models_with_initial_spin_match_spinning_impacts(vt, spin):
+    """Elastic steel sphere, 5 m/s normal, both spin signs, below and above Theta_c: the models read at the
+    patch Theta (eq. 7.1) give the simulated e_t and Psi_r to the published fit's own error, and with the
+    simulated f/mu they give the simulation's e_t, Psi_r and Omega_r to rounding (the identities are exact)."""
+    import dem_contact as dc
+
+    scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    r = dc.impact(scene, vn=5.0, vt=vt, spin=spin)
+    m = rm.wu(r.Theta, EE["c"], Omega_i=r.Omega_i)
+    assert abs(m["e_t"] - r.e_t) <= 0.06 and abs(m["Psi_r"] - r.Psi_r) <= 0.3
+    exact = rm.wu(r.Theta, (r.f_over_mu, 0.0, 0.0, 0.0), Omega_i=r.Omega_i)   # f/mu = the simulated value
+    assert exact["e_t"] == pytest.approx(r.e_t, abs=1e-9)
+    assert exact["Psi_r"] == pytest.approx(r.Psi_r, abs=1e-9)
+    assert exact["Omega_r"] == pytest.approx(r.Omega_r, abs=1e-9)
+
+
+def test_spin_identity_of_two_spheres():
+    """Two identical spheres: Omega_r - Omega_i = -(m*/m1) f/mu = -f/(2 mu); e_t and Psi_r as on a wall."""
+    import dem_contact as dc
+
+    s = dc.Sphere(0.01, dc.STEEL)
+    r = dc.impact(dc.Scene(s, s, mu=0.3), vn=5.0, vt=2.0, spin=100.0)
+    exact = rm.wu(r.Theta, (r.f_over_mu, 0.0, 0.0, 0.0), Omega_i=r.Omega_i, mass_ratio=0.5)
+    for key in ("e_t", "Psi_r", "Omega_r"):
+        assert exact[key] == pytest.approx(getattr(r, key), abs=1e-9), key
+    with pytest.raises(dc.InputError, match="mass_ratio"):
+        rm.wu(1.0, EE["c"], mass_ratio=2.0)
 
 
 @pytest.mark.parametrize("nu, expected", [(0.0, 6.0), (0.3, 5.786), (0.49, 5.520)])
 def test_theta_c_eq_4_1(nu, expected):
     assert rm.theta_c_theory(rm.kappa_from_nu(nu)) == pytest.approx(expected, abs=6e-4)
     assert rm.collapse_variable(expected, rm.kappa_from_nu(nu)) == pytest.approx(1.0, abs=1e-4)
+
+
+def test_theta_c_with_restitution():
+    """7 - 2 e_n / (kappa (1 + e_n)): eq. 4.1 at e_n = 1, 7 at e_n = 0 (no rebound), rising as e_n falls."""
+    k = rm.kappa_from_nu(0.3)
+    assert rm.theta_c_theory(k, 1.0) == pytest.approx(rm.theta_c_theory(k), abs=1e-15)
+    assert rm.theta_c_theory(k, 0.0) == 7.0
+    e = np.linspace(0.0, 1.0, 11)
+    assert np.all(np.diff(rm.theta_c_theory(k, e)) < 0)
+    b = rm.regime_boundaries(k, 1.0)
+    assert b["initial_sliding"] == pytest.approx(1.0 / k) and b["compression_sliding"] == 3.5
+    with pytest.raises(rm.InputError, match="e_n"):
+        rm.theta_c_theory(k, 1.2)
 
 
 def test_persistent_sliding_limits():

@@ -4,6 +4,7 @@ from __future__ import annotations
 import csv
 import math
 import sys
+import warnings
 
 import numpy as np
 
@@ -108,13 +109,16 @@ def run(args) -> int:
     fit = None
     fit_error = None
     try:
-        fit = fit_wu(res.Theta, res.f_over_mu, res.persistent_sliding)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")         # the fit's warnings are in fit.warnings, reported below
+            fit = fit_wu(res.Theta, res.f_over_mu, res.persistent_sliding)
     except InputError as e:
         fit_error = str(e)
     crit = None
     if args.speed is None and scene.mu > 0:
         crit = critical_angle(scene, args.vn, steps_per_contact=args.steps_per_contact, scheme=args.scheme)
-    theory = theta_c_theory(kappa)
+    e_n_slide = _sliding_e_n(res, crit)
+    theory = theta_c_theory(kappa, e_n_slide)
     key = published_key(args)
     pub = PUBLISHED_FITS.get(key) if key else None
     comparison = None
@@ -129,7 +133,8 @@ def run(args) -> int:
         from ..plots import sweep_figure
 
         plot_path = args.plot or f"sweep_{args.case}.png"
-        tc = {"fit": fit.Theta_c if fit else None, "simulation": crit.Theta if crit else None, "eq. 4.1": theory}
+        tc = {"fit": fit.Theta_c if fit else None, "simulation": crit.Theta if crit else None,
+              _criterion_label(e_n_slide): theory}
         sweep_figure(res, plot_path, fit=fit, published=pub, kappa=kappa, Theta_c=tc,
                      title=f"{args.case}: {scene.normal} / {scene.tangential}, mu = {scene.mu:g}, "
                            + (f"|V| = {args.speed:g} m/s" if args.speed is not None else f"V_n = {args.vn:g} m/s"))
@@ -150,15 +155,44 @@ def run(args) -> int:
                "points": points, "fit": fit.to_dict() if fit else None, "fit_error": fit_error,
                "Theta_c_sim": crit.Theta if crit else None,
                "Theta_c_sim_angle_deg": crit.angle_deg if crit else None,
-               "Theta_c_theory": theory, "published": comparison, "plot": plot_path,
+               "Theta_c_theory": theory, "Theta_c_theory_e_n": e_n_slide, "Theta_c_eq41": theta_c_theory(kappa),
+               "published": comparison, "plot": plot_path,
                "warnings": res.warnings}
+        why = {"fit": None if fit is not None else f"no fit: {fit_error}",
+               "Theta_c_sim": None if crit else ("not run: a fixed-total-speed sweep (--speed) has no fixed normal "
+                                                 "speed to bisect the angle at"),
+               "published": None if comparison else "no published fit of Wu et al. (2009) for these options",
+               "plot": None if plot_path else "no figure written (--no-plot, or --json/--csv without --plot)"}
+        why["Theta_c_sim_angle_deg"] = why["Theta_c_sim"]
+        for k, v in (out["fit"] or {}).items():
+            if v is None:
+                why[f"fit.{k}"] = "; ".join(fit.warnings) or "not defined for this fit"
+        why = {k: v for k, v in why.items() if v is not None}
+        if why:
+            out["null_values"] = why
         print(dump_json(out))
         return 0
-    _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, comparison, plot_path)
+    _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, e_n_slide, comparison, plot_path)
     return 0
 
 
-def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, comparison, plot_path):
+def _sliding_e_n(res, crit) -> float:
+    """The e_n of the sliding impacts, for the criterion Theta_c = 7 - 2 e_n / (kappa (1 + e_n)): that of the
+    first persistently sliding impact of the bisection, else of the sweep, else of its last impact (clipped to
+    [0, 1])."""
+    if crit is not None:
+        e = crit.e_n
+    else:
+        idx = np.flatnonzero(res.persistent_sliding)
+        e = res.e_n[idx[0] if idx.size else -1]
+    return min(max(float(e), 0.0), 1.0)
+
+
+def _criterion_label(e_n: float) -> str:
+    return "eq. 4.1" if e_n == 1.0 else f"criterion (e_n = {e_n:.3f})"
+
+
+def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, e_n_slide, comparison, plot_path):
     s = res.settings
     speed = f"|V| = {args.speed:g} m/s" if args.speed is not None else f"V_n = {args.vn:g} m/s"
     print(f"{args.case} scene: normal {scene.normal}, tangential {scene.tangential}, mu = {scene.mu:g}, "
@@ -175,14 +209,15 @@ def _print_summary(args, scene, res, angles, fit, fit_error, crit, theory, compa
         print(f"fit of eq. 4.5 ({fit.n_points} points below persistent sliding, residual RMS {fit.rms:.4f}): {c}")
     else:
         print(f"no fit: {fit_error}")
-    tc = critical_theta(fit, scene.pair.kappa, crit.Theta if crit else None) if fit else None
+    tc = critical_theta(fit, scene.pair.kappa, crit.Theta if crit else None, e_n_slide) if fit else None
     print("Theta_c: " + "; ".join([
         (f"fit crossing 1 = {tc.fit:.4f} +/- {fit.Theta_c_err:.4f} (statistical) +/- "
          f"{fit.Theta_c_model_err:.2g} (model form of eq. 4.5){' EXTRAPOLATED' if fit.extrapolated else ''} "
          f"(0.99 at {tc.fit_099:.4f})") if tc else "fit: none",
         f"simulation = {crit.Theta:.4f} (angle {crit.angle_deg:.4f} deg)" if crit else "simulation: not run "
         "(fixed total speed)",
-        f"eq. 4.1 = {theory:.4f}"]))
+        f"criterion 7 - 2 e_n/(kappa (1 + e_n)) with the sliding e_n = {e_n_slide:.4f}: {theory:.4f} (eq. 4.1, "
+        f"e_n = 1: {theta_c_theory(scene.pair.kappa):.4f})"]))
     if comparison:
         print(f"published fit ({comparison['case']}): Theta_c (paper) = {comparison['Theta_c_paper']:g}; "
               f"max |f/mu - published| over 0 <= Theta <= {comparison['max_curve_difference_range'][1]:g}: "

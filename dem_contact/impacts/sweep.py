@@ -395,12 +395,13 @@ def sweep_scenes(scenes: dict, angles_deg=None, vn: float = 5.0, *, Theta=None, 
 @dataclass
 class CriticalAngle:
     """Smallest impact angle (at fixed vn, no spin) at which the contact slides at every step, bracketed
-    to ``tol_deg``; Theta is that of the first sliding impact (at angle_deg)."""
+    to ``tol_deg``; Theta and e_n are those of the first sliding impact (at angle_deg)."""
 
     angle_deg: float
     Theta: float
     bracket_deg: tuple
     impacts: int
+    e_n: float
 
 
 def critical_angle(scene: Scene, vn: float = 5.0, *, steps_per_contact: float | None = None,
@@ -435,4 +436,4 @@ def critical_angle(scene: Scene, vn: float = 5.0, *, steps_per_contact: float | 
             hi, r_hi = mid, r
         else:
             lo = mid
-    return CriticalAngle(angle_deg=hi, Theta=r_hi.Theta, bracket_deg=(lo, hi), impacts=count[0])
+    return CriticalAngle(angle_deg=hi, Theta=r_hi.Theta, bracket_deg=(lo, hi), impacts=count[0], e_n=r_hi.e_n)

@@ -248,7 +248,8 @@ def _jacobian(T, c):
 class CriticalTheta:
     """Three estimates of the critical Theta (Wu, Thornton & Li 2009): ``fit`` (crossing of the fitted
     curve with 1), ``fit_099`` (crossing with 0.99), ``simulation`` (smallest Theta at which the
-    contact slides at every step, from ``sweep.critical_angle``), ``theory`` (eq. 4.1)."""
+    contact slides at every step, from ``sweep.critical_angle``), ``theory`` (7 - 2 e_n / (kappa (1 + e_n)),
+    ``models.theta_c_theory``; eq. 4.1 at e_n = 1)."""
 
     fit: float
     fit_099: float
@@ -259,7 +260,8 @@ class CriticalTheta:
         return {k: (None if v is None or not math.isfinite(v) else float(v)) for k, v in asdict(self).items()}
 
 
-def critical_theta(fit: WuFit, kappa: float, simulation: float | None = None) -> CriticalTheta:
-    """Collect the three estimates of Theta_c (``simulation`` is computed by ``sweep.critical_angle``)."""
+def critical_theta(fit: WuFit, kappa: float, simulation: float | None = None, e_n: float = 1.0) -> CriticalTheta:
+    """Collect the three estimates of Theta_c (``simulation`` is computed by ``sweep.critical_angle``; e_n: that
+    of the sliding impacts)."""
     return CriticalTheta(fit=fit.Theta_c, fit_099=fit.Theta_c_099, simulation=simulation,
-                         theory=theta_c_theory(kappa))
+                         theory=theta_c_theory(kappa, e_n))

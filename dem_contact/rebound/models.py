@@ -1,10 +1,16 @@
 """Rebound models of oblique impact in the dimensionless groups of Wu, Thornton & Li (2009).
 
-Pure numpy, usable on their own (Wu, Thornton & Li 2009, section 4). Theta is the dimensionless incidence
-2 tan(theta_i) / ((1 + e_n) mu); every model returns f/mu, Omega_r, e_t and Psi_r through the momentum
-identities (eqs 2.21-2.23) from its f/mu:
+Pure numpy, usable on their own (Wu, Thornton & Li 2009, section 4). Theta is the dimensionless incidence of
+the contact patch, 2 v_ti / ((1 + e_n) mu V_ni) with v_ti = V_ti + R omega_i (eq. 7.1; without spin
+2 tan(theta_i) / ((1 + e_n) mu), eq. 2.20), as ``ImpactResult.Theta`` gives it: with in-plane spin the f/mu
+curves are unchanged when read at the patch Theta (section 7). Every model returns f/mu, Omega_r, e_t and
+Psi_r through the momentum identities (eqs 2.21-2.23) from its f/mu, with the centre value
+Theta - 5 Omega_i in e_t (e_t is a ratio of centre velocities, eq. 2.1b):
 
-    Omega_r = Omega_i - f/mu,   e_t = 1 - 2 (f/mu) / Theta,   Psi_r = Theta + 5 Omega_i - 7 f/mu.
+    Omega_r = Omega_i - (m*/m1) f/mu,   e_t = 1 - 2 (f/mu) / (Theta - 5 Omega_i),   Psi_r = Theta - 7 f/mu
+
+(m*/m1 = 1 for a sphere on a wall, 1/2 for two identical spheres; the e_t and Psi_r forms hold for any two
+solid spheres, with Omega_i from the radius and spin of body 1 and body 2 not spinning).
 
 - ``wu``: the fit f/mu = c1 + c2 tanh(c3 + c4 Theta) below the crossing with 1, 1 above (eqs 4.5-4.8);
 - ``bilinear``: Walton / Foerster et al., Psi_r = -beta Theta below Theta_c, beta = 1/(7 kappa - 1)
@@ -47,13 +53,42 @@ def kappa_from_nu(nu):
     return 2.0 * (1.0 - nu) / (2.0 - nu)
 
 
-def theta_c_theory(kappa):
-    """Critical Theta above which sliding persists, eq. 4.1 (Maw et al. 1976): (7 kappa - 1) / kappa."""
+def _check_e_n(e_n):
+    e_n = np.asarray(e_n, dtype=float)
+    if not np.all((e_n >= 0.0) & (e_n <= 1.0)):
+        raise InputError(f"e_n (normal coefficient of restitution) must be in [0, 1], got {e_n}")
+    return e_n
+
+
+def theta_c_theory(kappa, e_n=1.0):
+    """Critical Theta above which sliding persists (no spin): Theta_c = 7 - 2 e_n / (kappa (1 + e_n)).
+
+    Persistent sliding needs kappa v_t >= mu d(delta)/dt at every instant of an elastic unloading with
+    k_t/k_n = kappa (Maw, Barber & Fawcett 1976; Johnson 1985, section 7.3); the margin falls through the
+    impact, so the condition binds at separation, where d(delta)/dt = -e_n V_ni. At e_n = 1 this is eq. 4.1 of
+    Wu, Thornton & Li (2009), (7 kappa - 1) / kappa. For an impact whose e_n changes with the angle, give the
+    e_n of the sliding impacts."""
     kappa = np.asarray(kappa, dtype=float)
-    if np.any(kappa <= 1.0 / 7.0):
-        raise InputError("kappa must be > 1/7 for eq. 4.1")
-    out = (7.0 * kappa - 1.0) / kappa
+    e_n = _check_e_n(e_n)
+    if np.any(kappa <= 2.0 * e_n / (7.0 * (1.0 + e_n))):
+        raise InputError(f"kappa must be > 2 e_n / (7 (1 + e_n)) (1/7 at e_n = 1), got {kappa}")
+    out = 7.0 - 2.0 * e_n / (kappa * (1.0 + e_n))
     return float(out) if out.ndim == 0 else out
+
+
+def regime_boundaries(kappa, e_n=1.0) -> dict:
+    """The values of Theta (no spin) that separate the regimes of an oblique impact, by the argument of
+    ``theta_c_theory`` (kappa v_t against mu d(delta)/dt):
+
+    - ``initial_sliding``: the contact slides from first touch iff Theta > 2 / (kappa (1 + e_n)), i.e.
+      kappa tan(theta_i) > mu (1/kappa at e_n = 1);
+    - ``compression_sliding``: it slides through the whole compression iff Theta >= 7 / (1 + e_n), i.e.
+      tan(theta_i) >= 3.5 mu (3.5 at e_n = 1, whatever kappa);
+    - ``persistent_sliding``: it slides until separation iff Theta >= ``theta_c_theory(kappa, e_n)``.
+    """
+    e_n = float(_check_e_n(e_n))
+    return {"initial_sliding": 2.0 / (float(kappa) * (1.0 + e_n)), "compression_sliding": 7.0 / (1.0 + e_n),
+            "persistent_sliding": theta_c_theory(kappa, e_n)}
 
 
 def collapse_variable(Theta, kappa):
@@ -78,25 +113,35 @@ def wu_crossing(c, level: float = 1.0) -> float:
     return (math.atanh(y) - c3) / c4
 
 
-def _identities(Theta, fm, Omega_i):
-    """Omega_r, e_t, Psi_r from f/mu through eqs 2.21-2.23 (e_t NaN at Theta = 0)."""
+def _identities(Theta, fm, Omega_i, mass_ratio):
+    """Omega_r, e_t, Psi_r from f/mu at the patch Theta through eqs 2.21-2.23 (see the module docstring;
+    e_t NaN where the centre Theta - 5 Omega_i is 0)."""
     Theta = np.asarray(Theta, dtype=float)
+    centre = Theta - 5.0 * Omega_i
     with np.errstate(divide="ignore", invalid="ignore"):
-        e_t = np.where(Theta != 0, 1.0 - 2.0 * fm / np.where(Theta != 0, Theta, 1.0), np.nan)
-    return {"Theta": Theta, "f_over_mu": fm, "Omega_r": Omega_i - fm, "e_t": e_t,
-            "Psi_r": Theta + 5.0 * Omega_i - 7.0 * fm}
+        e_t = np.where(centre != 0, 1.0 - 2.0 * fm / np.where(centre != 0, centre, 1.0), np.nan)
+    return {"Theta": Theta, "f_over_mu": fm, "Omega_r": Omega_i - mass_ratio * fm, "e_t": e_t,
+            "Psi_r": Theta - 7.0 * fm}
 
 
-def wu(Theta, c, Theta_c: float | None = None, Omega_i: float = 0.0) -> dict:
-    """Wu et al. model, eqs 4.5-4.8: f/mu = c1 + c2 tanh(c3 + c4 Theta) for Theta < Theta_c, 1 above.
+def _mass_ratio(mass_ratio):
+    if not 0.0 < mass_ratio <= 1.0:
+        raise InputError(f"mass_ratio (m*/m1: 1 for a wall, 1/2 for two identical spheres) must be in (0, 1], "
+                         f"got {mass_ratio}")
+    return float(mass_ratio)
+
+
+def wu(Theta, c, Theta_c: float | None = None, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
+    """Wu et al. model, eqs 4.5-4.8 and 7.1: f/mu = c1 + c2 tanh(c3 + c4 Theta) for Theta < Theta_c, 1 above,
+    at the patch Theta (module docstring) with initial spin Omega_i.
 
     c: (c1, c2, c3, c4); Theta_c: default the crossing of the curve with 1 (``wu_crossing``); give the
-    paper's printed value to reproduce its piecewise curve. Returns dict of arrays Theta, f_over_mu,
-    Omega_r, e_t, Psi_r."""
+    paper's printed value to reproduce its piecewise curve; mass_ratio: m*/m1. Returns dict of arrays Theta,
+    f_over_mu, Omega_r, e_t, Psi_r."""
     Theta = np.asarray(Theta, dtype=float)
     tc = wu_crossing(c) if Theta_c is None else float(Theta_c)
     fm = np.where(Theta < tc, wu_curve(Theta, c), 1.0)
-    return _identities(Theta, fm, Omega_i)
+    return _identities(Theta, fm, Omega_i, _mass_ratio(mass_ratio))
 
 
 def wu_f_over_mu(Theta, c, Theta_c: float | None = None):
@@ -104,29 +149,30 @@ def wu_f_over_mu(Theta, c, Theta_c: float | None = None):
     return wu(Theta, c, Theta_c)["f_over_mu"]
 
 
-def bilinear(Theta, kappa) -> dict:
-    """Bilinear model (Walton; Foerster et al.), eqs 5.1-5.6: Psi_r = -beta Theta below
+def bilinear(Theta, kappa, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
+    """Bilinear model (Walton; Foerster et al.), eqs 5.1-5.6, at the patch Theta: Psi_r = -beta Theta below
     Theta_c = (7 kappa - 1)/kappa, Theta - 7 above, beta = 1/(7 kappa - 1); f/mu = (1 + beta) Theta / 7
-    below, 1 above."""
+    below, 1 above (the model holds e_n = 1 in its Theta_c)."""
     Theta = np.asarray(Theta, dtype=float)
     tc = theta_c_theory(kappa)
     beta = 1.0 / (7.0 * kappa - 1.0)
     fm = np.where(Theta < tc, (1.0 + beta) * Theta / 7.0, 1.0)
-    return _identities(Theta, fm, 0.0)
+    return _identities(Theta, fm, Omega_i, _mass_ratio(mass_ratio))
 
 
-def rigid_body(Theta) -> dict:
-    """Rigid-body dynamics (Brach), eqs 5.7-5.9: Theta_c = 7, f/mu = Theta/7 below (e_t = 5/7,
-    Omega_r = -Theta/7, Psi_r = 0), 1 above."""
+def rigid_body(Theta, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
+    """Rigid-body dynamics (Brach), eqs 5.7-5.9, at the patch Theta: Theta_c = 7, f/mu = Theta/7 below (the
+    patch ends at rest, Psi_r = 0; without spin e_t = 5/7, Omega_r = -Theta/7), 1 above."""
     Theta = np.asarray(Theta, dtype=float)
     fm = np.where(Theta < 7.0, Theta / 7.0, 1.0)
-    return _identities(Theta, fm, 0.0)
+    return _identities(Theta, fm, Omega_i, _mass_ratio(mass_ratio))
 
 
-def persistent_sliding(Theta, Omega_i: float = 0.0) -> dict:
-    """Persistent sliding, f/mu = 1: Omega_r = Omega_i - 1, e_t = 1 - 2/Theta, Psi_r = Theta + 5 Omega_i - 7."""
+def persistent_sliding(Theta, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
+    """Persistent sliding, f/mu = 1, at the patch Theta: Omega_r = Omega_i - m*/m1,
+    e_t = 1 - 2/(Theta - 5 Omega_i), Psi_r = Theta - 7."""
     Theta = np.asarray(Theta, dtype=float)
-    return _identities(Theta, np.ones_like(Theta), Omega_i)
+    return _identities(Theta, np.ones_like(Theta), Omega_i, _mass_ratio(mass_ratio))
 
 
 def max_curve_difference(c_a, c_b, Theta_max: float, Theta_c_a=None, Theta_c_b=None, n: int = 2001) -> float:

@@ -13,6 +13,7 @@
 """
 from __future__ import annotations
 
+import math
 import os
 import sys
 import time
@@ -273,7 +274,10 @@ def plastic_sections(figdir: str, log=print, angles=ANGLES) -> list:
     w(f"The table gives g(mu) = {g[-1]:.4f} at mu = 0.3 (nu = 0.3): sliding lowers the yield pressure by "
       f"{100 * (1 - g[-1]):.1f}%. The coupled law reproduces the 2 m/s drop and about half of the 5 m/s one. "
       "Its e_n falls as soon as the contact carries traction and is constant once the contact slides through "
-      "the whole loading phase (mu_eff = mu, Theta above about 3, angles above about 40 deg). The plateau is Thornton's closed-form e_n with p_y g(mu) ({closed[2.0]:.4f} and "
+      f"the whole loading phase (mu_eff = mu): tan(theta_i) >= 3.5 mu, angles above "
+      f"{math.degrees(math.atan(3.5 * sc.mu)):.1f} deg at mu = {sc.mu:g} (Theta >= 7 / (1 + e_n), "
+      "`rebound.models.regime_boundaries`). The plateau is Thornton's closed-form e_n with p_y g(mu) "
+      f"({closed[2.0]:.4f} and "
       f"{closed[5.0]:.4f}; V/V_y = {2.0 / vy:.1f} and {5.0 / vy:.1f}). The FEA's drops would need p_y lowered "
       f"by {100 * need[2.0]:.1f}% at 2 m/s and {100 * need[5.0]:.1f}% at 5 m/s: a reduction that grows with "
       "the plastic deformation, which a first-yield result cannot give. What the option holds is the onset "
