@@ -77,3 +77,16 @@ def test_validate_quick_writes_its_report(cli, tmp_path):
     report = (tmp_path / "val" / "report.md").read_text()
     assert "coarser grids" in report and "steps of 5 deg" in report
     assert len(list((tmp_path / "val" / "figures").glob("*.png"))) >= 5
+
+
+@pytest.mark.parametrize("angles, n", [("55:70:0.5", 31), ("70:85:5", 4)])
+def test_sweep_keeps_its_rows_when_eq_4_5_cannot_be_fitted(angles, n, capsys):
+    """Zoomed on the critical angle (the tanh does not converge on those points) or all in persistent
+    sliding (nothing to fit): the rows and the simulated Theta_c come back, the fit is null with its reason."""
+    from dem_contact.cli import main
+
+    assert main(["sweep", "--angles", angles, "--json", "--no-progress"]) == 0
+    out = _strict(capsys.readouterr().out)
+    assert out["fit"] is None and out["fit_error"] and "fit" in out["null_values"]
+    assert len(out["points"]) == n
+    assert out["Theta_c_sim"] == pytest.approx(out["Theta_c_theory"], rel=2e-3)

@@ -8,7 +8,7 @@ import warnings
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, NumericalError
 from ..rebound.fit import critical_theta, fit_wu
 from ..materials import STEEL, check_finite
 from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
@@ -112,7 +112,7 @@ def run(args) -> int:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")         # the fit's warnings are in fit.warnings, reported below
             fit = fit_wu(res.Theta, res.f_over_mu, res.persistent_sliding)
-    except InputError as e:
+    except (InputError, NumericalError) as e:     # too few points, or points eq. 4.5 cannot follow: rows kept
         fit_error = str(e)
     crit = None
     if args.speed is None and scene.mu > 0:
