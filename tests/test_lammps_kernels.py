@@ -50,7 +50,7 @@ def _bridge_step(S, g, step, all_atoms, save):
     buf = S["buf"]
     m, nt = K.gather_contacts(
         g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["tag"], g["typ"], g["walls"],
-        g["wall_mat"], *g["cand"], S["cand_rows"], S["keys"], S["H"], t.normal_id, t.sphere_row, t.wall_row,
+        g["wall_mat"], *g["cand"], S["cand_rows"], S["keys"], S["sep"], np.inf, S["H"], t.normal_id, t.sphere_row, t.wall_row,
         g["dt"], True, S["rebuilt"], True, S["stat"], S["used"], g["near"], all_atoms, S["prev"], S["n_prev"],
         S["touched"], *buf[:10])
     _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = buf
@@ -58,7 +58,7 @@ def _bridge_step(S, g, step, all_atoms, save):
                           vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m])
     S["f"][:] = 0.0                                       # LAMMPS clears forces and torques every step
     S["torque"][:] = 0.0
-    K.scatter_contacts(g["n"], g["x"], g["radius"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
+    K.scatter_contacts(g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["typ"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
                        S["f"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["touched"], nt, save)
     S["prev"], S["touched"], S["n_prev"], S["rebuilt"] = S["touched"], S["prev"], nt, False
     return m
@@ -85,7 +85,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
              wall_mat=np.zeros(1, dtype=np.int64), dt=2e-6, near=np.zeros(n, dtype=np.bool_))
 
     def state():
-        return dict(keys=np.zeros((n, slots)), H=np.zeros((n * slots, table.history_size)),
+        return dict(keys=np.zeros((n, slots)), sep=np.zeros((n, 3 * slots)), H=np.zeros((n * slots, table.history_size)),
                     stat=np.zeros((n, K.N_STAT)), saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
                     acc=np.zeros((n, 7)), prev=np.zeros(n, dtype=np.int64),
                     touched=np.zeros(n, dtype=np.int64), n_prev=0, f=np.zeros((n, 3)), torque=np.zeros((n, 3)),
@@ -106,20 +106,33 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
         save = step % 100 == 99
         counts.append(_bridge_step(every, g, step, True, save))
         _bridge_step(few, g, step, rebuild or save, save)
-        for key in ("f", "torque", "stat", "H", "keys"):
+        for key in ("f", "torque", "stat", "H", "keys", "sep"):
             assert np.array_equal(every[key], few[key]), (step, key)
         assert not few["acc"].any()
         if save:
             assert np.array_equal(few["saved"][:, :3], few["f"])
             assert np.array_equal(few["saved"][:, 3:6], few["torque"])
             f, torque = np.zeros((n, 3)), np.zeros((n, 3))
-            assert K.saved_match(n, x, g["radius"], few["saved"], step)
+            periods, periodic = np.diag([0.008, 0.008, 0.02]), np.array([True, True, False])
+
+            def match(x=x, v=v, omega=g["omega"], mark=step):
+                return K.saved_match(n, x, v, omega, g["radius"], g["rmass"], g["typ"], few["saved"], mark,
+                                     periods, periodic, 1e-17)
+
+            assert match()
             K.reapply_saved(n, f, torque, few["saved"])
             assert np.array_equal(f, few["f"]) and np.array_equal(torque, few["torque"])
-            assert not K.saved_match(n, x, g["radius"], few["saved"], step + 1)      # another step's
-            moved = x.copy()
-            moved[n // 2, 2] += 1e-9
-            assert not K.saved_match(n, moved, g["radius"], few["saved"], step)      # an atom moved since
+            assert not match(mark=step + 1)                                         # another step's
+            for name, arr, d in (("x", x, 2), ("x", x, 0), ("v", v, 1), ("omega", g["omega"], 2)):
+                changed = arr.copy()
+                changed[n // 2, d] += 1e-9
+                assert not match(**{name: changed}), name                           # a state changed since
+            wrapped = x.copy()
+            wrapped[n // 3, 0] -= 0.008                                              # a wrap: the same state
+            wrapped[n // 4, 1] += 0.008
+            assert match(x=wrapped)
+            wrapped[n // 5, 2] += 0.02                                               # z is not periodic
+            assert not match(x=wrapped)
         x += v * g["dt"] * 5.0                   # (positions moved by hand: contacts form and end)
         v[:, 2] -= 0.02
     counts = np.array(counts)

@@ -96,21 +96,53 @@ def _mpich():
     return lib
 
 
-def any_rank(lmp, flag: bool) -> bool | None:
-    """Whether ``flag`` is true on any MPI rank of the LAMMPS instance (collective: every rank must call
-    it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+def max_rank(lmp, value: int) -> int | None:
+    """The largest of the ints ``value`` of the MPI ranks of the LAMMPS instance (collective: every rank
+    must call it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
     if lmp.extract_setting("world_size") <= 1:
-        return bool(flag)
+        return int(value)
     lib = _mpich()
     if lib is None:
         return None
     import ctypes
 
     comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))     # (ints in MPICH)
-    one, out = ctypes.c_int(int(bool(flag))), ctypes.c_int(0)
+    one, out = ctypes.c_int(int(value)), ctypes.c_int(0)
     if lib.MPI_Allreduce(ctypes.byref(one), ctypes.byref(out), 1, _MPICH_INT, _MPICH_MAX, comm) != 0:
         return None
-    return out.value != 0
+    return out.value
+
+
+def any_rank(lmp, flag: bool) -> bool | None:
+    """Whether ``flag`` is true on any MPI rank of the LAMMPS instance (collective: every rank must call
+    it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+    out = max_rank(lmp, int(bool(flag)))
+    return None if out is None else out != 0
+
+
+#: Fix styles that may come before the bridge's fix external in LAMMPS's list of fixes: they neither read
+#: nor overwrite the total force between the force computation and the end of a step's post_force stage,
+#: nor at a run's set-up (integrators, which read it later; forces that add to it; output, insertion,
+#: bookkeeping). Any other fix must be defined after attaching the bridge, so that it acts on the total
+#: force with the contact forces in it (as it would after a pair style's).
+FIXES_BEFORE_OK = frozenset("""
+    nve nve/sphere nve/limit nve/noforce nvt npt nph nvt/sphere npt/sphere nph/sphere nvt/sllod
+    move deform balance property/atom halt print external gravity addforce addtorque viscous viscous/sphere
+    drag spring spring/self spring/chunk efield indent wall/gran wall/gran/region wall/region wall/reflect
+    wall/lj93 wall/lj126 wall/lj1043 wall/harmonic wall/morse wall/colloid wall/table ave/time ave/atom
+    ave/chunk ave/histo ave/histo/weight ave/correlate vector store/state dt/reset momentum recenter
+    temp/rescale temp/berendsen temp/csvr temp/csld press/berendsen press/langevin pour deposit evaporate
+    """.split())
+#: Fix styles that move the subdomain faces during a run (load balancing, a box that changes): atoms far
+#: from a face can then change rank, so the bridge keeps both copies of every history current.
+FIXES_MOVING_SUBDOMAINS = frozenset("""
+    balance deform npt nph npt/sphere nph/sphere npt/asphere nph/asphere press/berendsen press/langevin
+    box/relax rigid/npt rigid/nph rigid/npt/small rigid/nph/small
+    """.split())
+
+
+class FixOrderError(InputError):
+    """A fix that reads or overwrites the total force is defined before the bridge's contact forces."""
 
 
 def new_lammps(*cmdargs):
@@ -303,7 +335,7 @@ class LammpsContacts:
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
-        self.col_stat = K.atom_columns(self.slots)
+        self.col_stat = K.atom_columns(self.slots)      # keys, then separations
         self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
         self.col_saved = self.col_stat + K.N_STAT
         p = prefix
@@ -328,7 +360,6 @@ class LammpsContacts:
         self._fext_key = None          # (address, nlocal) of fix external's force array when last zeroed
         self._set_callback(f"{p}_ext")
         self._last_step = None
-        self._checked = False
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
         self._cand_rows = None         # history slots found for each candidate (-1: none yet)
         self._rebuilt = False          # lists rebuilt and no step advanced since
@@ -345,6 +376,10 @@ class LammpsContacts:
         self._setup_pending = False    # run() started a run: its first call is the set-up
         self._nlocal_ref = -1          # local atoms when the Verlet lists were built
         self._near = None              # local atoms that may change rank before the next rebuild
+        self._near_all = None          # every local atom (a step at which every second copy is written)
+        self._sync_all = False         # atoms may change rank otherwise during this run: write every copy
+        self._fix_key = None           # the fix ids at the last check of their order, and its outcome
+        self._sep_tol2 = math.inf      # (half the shortest box period)^2: tells two images of one partner
         self.dt = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
@@ -354,17 +389,25 @@ class LammpsContacts:
     # -- set-up -------------------------------------------------------------------------------------
     def _global_max(self, values):
         """Global maxima of up to 4 per-atom columns (written into the statistics columns of the local
-        atoms; collective: every rank must call it)."""
-        nlocal = self.lmp.extract_setting("nlocal")
+        atoms, which are zero after; collective: every rank must call it). Computes made for the call
+        (LAMMPS's keep their result for the rest of a time step)."""
+        lmp = self.lmp
+        nlocal = lmp.extract_setting("nlocal")
         data = self._data()
         st = data[:nlocal, self.col_stat:self.col_stat + K.N_STAT]
         st[:] = 0.0
         for k, v in enumerate(values):
             st[:, k] = v
-        return _reduce(self.lmp, self.prefix, "max")
+        p = f"{self.prefix}_chk"
+        _stat_computes(lmp, p, self.prefix, self.col_stat)
+        out = _reduce(lmp, p, "max")
+        for c in ("max", "sum", "stat"):
+            lmp.command(f"uncompute {p}_{c}")
+        st[:] = 0.0
+        return out
 
     def check(self):
-        """The checks that need the atoms and the time step (collective; ``run`` calls it once)."""
+        """The checks that need the atoms and the time step (collective; ``run`` calls it before every run)."""
         lmp = self.lmp
         nlocal = lmp.extract_setting("nlocal")
         typ = lmp.numpy.extract_atom("type")[:nlocal]
@@ -382,7 +425,6 @@ class LammpsContacts:
         if worst[1] > SIZE_TOL:
             raise InputError(f"an atom's mass differs from its type's Sphere mass by {worst[1]:.3g} "
                              f"(relative): set the density of type k to that of spheres[k - 1]")
-        self._global_max([])
         dt = lmp.extract_global("dt")
         tcs = [sc.contact_time(self.v_max) for sc in self.table.scenes]
         k = int(np.argmin(tcs))
@@ -391,7 +433,6 @@ class LammpsContacts:
             raise InputError(f"timestep {dt:g} s cannot resolve the stiffest contact "
                              f"({self._row_name(k)}: contact time {tcs[k]:.4g} s at v_max = {self.v_max:g} "
                              f"m/s): it must be <= t_c / {MIN_STEPS_PER_CONTACT:g} = {limit:.4g} s")
-        self._checked = True
 
     def _row_name(self, row):
         nt = self.table.sphere_row.shape[0]
@@ -414,8 +455,9 @@ class LammpsContacts:
         owns no atom, whose run goes on to its end; the reduction needs MPICH, which the extra installs).
         After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a later run starts
         afresh."""
-        if not self._checked:
-            self.check()
+        # (at every run: radii, masses and the time step may have been changed between runs)
+        self.check()
+        moving = self._check_fixes()
         if self.lmp.extract_setting("ghost_velocity") != 1:
             raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
         # the lists follow LAMMPS's rebuilds: its skin must be the bridge's and it must rebuild (LAMMPS's skin
@@ -432,10 +474,19 @@ class LammpsContacts:
         self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
         self._error = None
         self._setup_pending = True
+        self._sync_all = moving
         try:
             self.lmp.command(f"run {int(nsteps)}")
         finally:
             self._end_step = None
+        if self._saved is not None and self._saved[0] == self._evals:
+            # the state the saved forces belong to is that at the end of the step: the velocities and
+            # spins after the step's final integration (the callback saw those of its half-step)
+            nlocal = self.lmp.extract_setting("nlocal")
+            ex = self.lmp.numpy.extract_atom
+            saved = self._data()[:nlocal, self.col_saved:self.col_saved + K.N_SAVED]
+            saved[:, K.SF_V:K.SF_V + 3] = ex("v")[:nlocal]
+            saved[:, K.SF_W:K.SF_W + 3] = ex("omega")[:nlocal]
         error, self._error = self._error, None
         # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
         elsewhere = any_rank(self.lmp, error is not None)
@@ -458,6 +509,47 @@ class LammpsContacts:
             raise InputError(f"too few history slots: an atom had {int(need)} contacts at once but slots = "
                              f"{self.slots}; attach with slots >= {int(need)} (the run stopped there)")
 
+    def _check_fixes(self) -> bool:
+        """Refuse a fix ahead of the bridge's in LAMMPS's list of fixes that may read or overwrite the total
+        force (``FIXES_BEFORE_OK``; raises FixOrderError on every rank); returns whether a fix moves the
+        subdomain faces during a run (``FIXES_MOVING_SUBDOMAINS``). Collective (rank 0 reads the styles
+        from LAMMPS's ``info fixes``); made again only when the fix ids changed."""
+        lmp = self.lmp
+        ids = tuple(lmp.available_ids("fix"))
+        if self._fix_key is None or self._fix_key[0] != ids:
+            code = -1
+            styles = {}
+            if lmp.extract_setting("world_rank") == 0:
+                import re
+                import tempfile
+
+                with tempfile.TemporaryDirectory() as d:
+                    path = os.path.join(d, "fixes.txt")
+                    lmp.command(f"info fixes out overwrite {path}")
+                    text = open(path).read()
+                styles = dict(re.findall(r"Fix\[\s*\d+\]:\s*(\S+),\s*style = (\S+),", text))
+                ours = ids.index(f"{self.prefix}_ext")
+                bad = next((k for k in range(ours) if styles.get(ids[k]) not in FIXES_BEFORE_OK), -1)
+                moving = any(st in FIXES_MOVING_SUBDOMAINS for st in styles.values())
+                code = 2 * (bad + 1) + int(moving)
+            code = max_rank(lmp, code)
+            if code is None:
+                raise InputError("the bridge on several MPI ranks needs LAMMPS on MPICH (the lammps extra's) "
+                                 "to check the order of the fixes")
+            self._fix_key = (ids, code, styles)
+        ids, code, styles = self._fix_key
+        bad = code // 2 - 1
+        if bad >= 0:
+            fid = ids[bad]
+            style = f" (style {styles[fid]})" if fid in styles else ""
+            raise FixOrderError(
+                f"fix {fid!r}{style} is defined before the bridge's contact forces (fix {self.prefix}_ext): a fix "
+                f"that may read or overwrite the total force (setforce, freeze, aveforce, rigid, enforce2d, ...) "
+                f"would act on it without the contact forces. Define it after attaching LammpsContacts (`unfix "
+                f"{fid}`, then the same `fix {fid} ...` again), as one defines such fixes after a pair style's "
+                f"forces; fixes that only add forces or integrate may come before")
+        return bool(code % 2)
+
     def stats(self) -> dict:
         """Global contact counts and the largest overlap at the last evaluated step (collective)."""
         return _stats(self.lmp, self.prefix)
@@ -467,8 +559,8 @@ class LammpsContacts:
         return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
 
     def _views(self, nall):
-        """numpy views of LAMMPS's per-atom arrays (x, v, omega, radius, rmass, id, type, f, torque, keys, H,
-        stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
+        """numpy views of LAMMPS's per-atom arrays (x, v, omega, radius, rmass, id, type, f, torque, keys, sep,
+        H, stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
         whenever nmax (the allocated length) or nall changes."""
         lmp = self.lmp
         nmax = lmp.extract_setting("nmax")
@@ -483,7 +575,7 @@ class LammpsContacts:
             self._view = (ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
                           ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
                           ex("type", nelem=nall), ex("f", nelem=nall, dim=3), ex("torque", nelem=nall, dim=3),
-                          data[:, :self.slots], H,
+                          data[:, :self.slots], data[:, self.slots:self.col_stat], H,
                           data[:, self.col_stat:self.col_stat + K.N_STAT],
                           data[:, self.col_saved:self.col_saved + K.N_SAVED])
             self._view_key = (nmax, nall)
@@ -550,6 +642,11 @@ class LammpsContacts:
         # at the first step): forces are needed, but nothing may advance
         # (a call that does not follow the last step is a set-up: after a reset_timestep too)
         setup = self._setup_pending or self._last_step is None or ntimestep != self._last_step + 1
+        if setup and not self._setup_pending:
+            # a run not started by run(): its end is not known, so no step of it can be the one at which the
+            # second copies of the histories are brought up to date before the next run: all are written
+            # at every step of it
+            self._sync_all = True
         self._setup_pending = False
         self._last_step = ntimestep
         same = False
@@ -578,19 +675,33 @@ class LammpsContacts:
             self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
         self.callback_s += time.perf_counter() - t0
 
+    def _box(self):
+        """The box (bounds, tilts, periodicity) and the time step: the state that is not the atoms'."""
+        g = self.lmp.extract_global
+        return (tuple(g("boxlo")), tuple(g("boxhi")), g("xy"), g("xz"), g("yz"), tuple(g("periodicity")), g("dt"))
+
     def _saved_match(self, nlocal):
-        """Whether the forces saved at the last call are those of the local atoms now (``K.saved_match``)."""
-        if self._saved != (self._evals - 1, self.lmp.extract_global("natoms")):
+        """Whether the forces saved at the last call are those of the local atoms now (``K.saved_match``:
+        each atom's position up to a wrap into the box, velocity, spin, radius, mass, type), with the same
+        box and time step."""
+        box = self._box()
+        if self._saved != (self._evals - 1, self.lmp.extract_global("natoms"), box):
             return False
-        xa, _, _, radius, *_, saved = self._views(self.lmp.extract_setting("nall"))
-        return K.saved_match(nlocal, xa, radius, saved, self._evals - 1)
+        xa, v, omega, radius, rmass, _, typ, *_, saved = self._views(self.lmp.extract_setting("nall"))
+        (lo, hi, xy, xz, yz, periodic, _) = box
+        lx, ly, lz = (h - l for h, l in zip(hi, lo))
+        periods = np.array([[lx, 0.0, 0.0], [xy, ly, 0.0], [xz, yz, lz]])
+        # a wrap (x - L) is exact or off by the rounding of the box's coordinates
+        tol = 8.0 * np.finfo(float).eps * max(map(abs, (*lo, *hi, xy, xz, yz)))
+        return K.saved_match(nlocal, xa, v, omega, radius, rmass, typ, saved, self._evals - 1, periods,
+                             np.array(periodic, dtype=np.bool_), tol)
 
     def _step(self, ntimestep, nlocal, setup, reapply):
         """The contact forces and torques of one step (or a run's set-up: ``setup``; ``reapply``: the
         forces saved at the last call), added to LAMMPS's."""
         nall = self.lmp.extract_setting("nall")
         ago = self.lmp.extract_setting("neigh_ago")       # steps since LAMMPS rebuilt its lists
-        xa, v, omega, radius, rmass, ids, typ, f, torque, keys, H, stat, saved = self._views(nall)
+        xa, v, omega, radius, rmass, ids, typ, f, torque, keys, sep, H, stat, saved = self._views(nall)
         # Our Verlet lists are rebuilt exactly when LAMMPS rebuilds its own (neigh_ago 0: at a run's set-up,
         # and when an atom has moved skin/2, with our skin and `neigh_modify delay 0 every 1 check yes`,
         # which run() checks): only then does LAMMPS re-index atoms (exchange, sort, new ghosts), and
@@ -604,6 +715,9 @@ class LammpsContacts:
             self._n_prev = -1
             self.list_builds += 1
             self._near = None
+            g = self.lmp.extract_global
+            lengths = [h - l for h, l, p in zip(g("boxhi"), g("boxlo"), g("periodicity")) if p]
+            self._sep_tol2 = (0.5 * min(lengths)) ** 2 if lengths else math.inf
         if reapply:
             K.reapply_saved(nlocal, f, torque, saved)
             return
@@ -620,13 +734,21 @@ class LammpsContacts:
         # next run's set-up); otherwise only the atoms with contacts now or at the last step
         save = setup or ntimestep == self._end_step
         all_atoms = save or self._n_prev < 0
+        near = self._near
+        if save or self._sync_all:
+            # every second copy of a history written: at a run's last step, so that whatever moves atoms
+            # between ranks before the next run finds both copies current, and at every step of a run in
+            # which atoms may change rank otherwise than by crossing a face near them
+            if self._near_all is None or len(self._near_all) < nlocal + 1:
+                self._near_all = np.ones(2 * nlocal + 16, dtype=np.bool_)
+            near = self._near_all
         n_prev = max(self._n_prev, 0)
         _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = self._buffers
         t = self.table
         m, n_touched = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
-            keys, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt, self.frame_spin, stat,
-            self._used, self._near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
+            keys, sep, self._sep_tol2, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt,
+            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
         if setup:
             # nothing advances: the law works on copies of the histories
             Hl, hl_rows = K.read_histories(H, hrow, m), np.arange(m)
@@ -637,14 +759,14 @@ class LammpsContacts:
                   wn[:m], self.dt, forces[:m], tforces[:m])
         if not setup:
             self._rebuilt = False
-        summary = K.scatter_contacts(nlocal, xa, radius, m, body, src, dst, normals, overlaps, H, forces, tforces,
+        summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)
         # the atoms with contacts now are the next step's prev
         self._atoms = (acc, prev, touched)
         self._n_prev = n_touched
         if save:
-            self._saved = (self._evals, self.lmp.extract_global("natoms"))
+            self._saved = (self._evals, self.lmp.extract_global("natoms"), self._box())
         if not setup:
             # a law that failed (NaN force: an mdr grid outgrown, a blow-up) marked its atom; run() raises
             self.contact_updates += int(summary[K.R_PAIRS] + summary[K.R_WALLS])

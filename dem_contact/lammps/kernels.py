@@ -4,10 +4,16 @@ the kernels take numpy views of LAMMPS's per-atom arrays.
 
 History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
 ``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
-rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), in one array, and the rows in
-another, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is
-the partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. The Verlet list keeps the slot
-numbers found for each candidate pair, so a continuing contact finds its rows without a search.
+rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), and the separation of each
+contact when its row was last matched, ``sep`` (nmax, 3 slots), in one array, and the rows in another,
+viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
+partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. A contact is the partner and the
+periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
+two images of one partner, each its own contact with its own row, told apart by the separation
+(x_partner - x_atom, continuous in time whatever the atoms' wraps), which is stored with the row when it
+is taken and at every rebuild of the Verlet lists, and differs between two images by a box period. The
+Verlet list keeps the slot numbers found for each candidate pair, so a continuing contact finds its
+rows without a search.
 
 One step: ``gather_contacts`` finds the contacts among the Verlet candidates, their history rows and the
 inputs of the law; the batch law kernel of the law family (``dem.contact3d.batch_loop``, the
@@ -22,8 +28,12 @@ body 1, from the same inputs (ghost positions, velocities and spins are exact co
 so the two copies of the history stay bitwise equal and the two forces are exact opposites. A contact
 between two local atoms is evaluated once; each atom has a row for it: the lower atom id's is the current
 one, and the other is rewritten with it at every step while either atom is near a subdomain face it can
-cross (``near_boundary``), so that an atom that moves to another rank takes a current copy along. (Across a periodic boundary the ghost position is
-x + L, rounded: there the two sides agree to rounding error only.)
+cross (``near_boundary``), so that an atom that moves to another rank takes a current copy along; the
+bridge has every second copy rewritten at the last step of each run and at every step of a run in which
+atoms can change rank otherwise (subdomains that move), so that a pair split between ranks between runs
+(a restart read on other ranks, ``balance``, ``displace_atoms``) or by a rebalancing finds two current
+copies. (Across a periodic boundary the ghost position is x + L, rounded: there the two sides agree to
+rounding error only.)
 
 Kinematics follow LAMMPS's granular models (``pair granular``, ``fix wall/gran``): the slip velocity
 uses the full radii, v = v1 - v2 + (R1 w1 + R2 w2) x n; the torque arm is R - delta/2 for a sphere pair
@@ -46,9 +56,13 @@ N_STAT = 4
 
 # columns of the per-atom stored contact force (d2 property): reapplied at LAMMPS's run set-up
 SF_MARK = 6      # 1 + the mark (evaluation number) of the step the force and torque were saved at (0: none)
-SF_X = 7         # the atom's position (3 columns) and radius (SF_R) when they were saved
-SF_R = 10
-N_SAVED = 11
+SF_X = 7         # the atom's state when they were saved: position (3 columns), radius, velocity (3),
+SF_R = 10        # spin (3), mass and type
+SF_V = 11
+SF_W = 14
+SF_M = 17
+SF_T = 18
+N_SAVED = 19
 
 # per-rank summary returned by scatter_contacts
 R_PAIRS = 0      # sphere-sphere contacts evaluated on this rank
@@ -59,8 +73,8 @@ N_SUMMARY = 4
 
 
 def atom_columns(slots: int) -> int:
-    """Columns of the per-atom array before the statistics: the keys."""
-    return slots
+    """Columns of the per-atom array before the statistics: the keys (slots) and the separations (3 slots)."""
+    return 4 * slots
 
 
 @njit(cache=True)
@@ -286,11 +300,30 @@ def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
 
 
 @njit(cache=True)
-def _find_row(keys, i, key):
+def _find_row(keys, sep, i, key, dx, dy, dz, tol2):
+    """The slot of atom i that keeps contact ``key`` at separation (dx, dy, dz) (x_partner - x_i): among the
+    rows with that key (one per periodic image of the partner touched), the one stored with the nearest
+    separation, if nearer than sqrt(tol2) (half the shortest box period; a wall: its row); else -1."""
+    best = -1
     for s in range(keys.shape[1]):
         if keys[i, s] == key:
-            return s
-    return -1
+            if key < 0.0:
+                return s
+            ex = sep[i, 3 * s] - dx
+            ey = sep[i, 3 * s + 1] - dy
+            ez = sep[i, 3 * s + 2] - dz
+            d2 = ex * ex + ey * ey + ez * ez
+            if d2 < tol2:
+                best = s
+                tol2 = d2
+    return best
+
+
+@njit(inline="always", cache=True)
+def _store_sep(sep, i, s, dx, dy, dz):
+    sep[i, 3 * s] = dx
+    sep[i, 3 * s + 1] = dy
+    sep[i, 3 * s + 2] = dz
 
 
 @njit(cache=True)
@@ -350,7 +383,7 @@ def _clear_stat(stat, i):
 
 @njit(cache=True)
 def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
-                    keys, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near,
+                    keys, sep, sep_tol2, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near,
                     all_atoms, prev, n_prev, touched, work, body, src, dst, hrow, pair_rows, normals, overlaps,
                     velocities, wn):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
@@ -361,7 +394,9 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     wall_row; cand, cand_walls: the Verlet lists (``candidates``); cand_rows: int64[len(cand) +
     len(cand_walls), 2] the history slots of both atoms of each candidate found at earlier steps (-1: none;
     all -1 when the lists were rebuilt): a continuing contact finds its rows without a search; keys:
-    float64[nmax, slots], H: float64[nmax * slots, history_size] histories; params rows: sphere_row,
+    float64[nmax, slots], sep: float64[nmax, 3 slots] (the separation stored with each row, see the
+    module's docstring; written when a row is taken or found by key, if ``advance``), sep_tol2: the square
+    of half the shortest period of the box (inf if none); H: float64[nmax * slots, history_size] histories; params rows: sphere_row,
     wall_row; dt [s]; advance: False at LAMMPS's set-up call (nothing is advanced: rows are neither freed
     nor taken); rebuilt: the lists were rebuilt since the last step (the rows of every local atom that no
     contact uses are then freed; otherwise a contact that ended frees the rows cached for its candidate,
@@ -528,12 +563,15 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         # rows not cached: found by their keys (first step after a rebuild) or none yet (a new contact)
         c = work[k, 1]
         i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
-        ri = _find_row(keys, i, key_i)
+        dx = dy = dz = 0.0
+        if j >= 0:
+            dx, dy, dz, _, _ = _separation(x, radius, i, j)
+        ri = _find_row(keys, sep, i, key_i, dx, dy, dz, sep_tol2)
         cand_rows[c, 0] = ri
         if full and ri >= 0:
             used[i, ri] = True
         if local_j:
-            rj = _find_row(keys, j, float(tag[i]))
+            rj = _find_row(keys, sep, j, float(tag[i]), -dx, -dy, -dz, sep_tol2)
             cand_rows[c, 1] = rj
             if full and rj >= 0:
                 used[j, rj] = True
@@ -567,6 +605,12 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 continue
             keys[i, fi] = key_i
             cand_rows[c, 0] = ri = fi
+            if j >= 0:
+                # (the separation that tells this contact from one with another image of the partner)
+                dx, dy, dz, _, _ = _separation(x, radius, i, j)
+                _store_sep(sep, i, fi, dx, dy, dz)
+                if local_j:
+                    _store_sep(sep, j, fj, -dx, -dy, -dz)
             if local_j:
                 keys[j, fj] = tag[i]
                 cand_rows[c, 1] = rj = fj
@@ -654,7 +698,7 @@ def read_histories(H, hrow, m):
 
 
 @njit(cache=True)
-def scatter_contacts(nlocal, x, radius, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, f,
+def scatter_contacts(nlocal, x, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, f,
                      torque, stat, saved, mark, acc, all_atoms, touched, n_touched, save):
     """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
     their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
@@ -662,7 +706,7 @@ def scatter_contacts(nlocal, x, radius, m, body, src, dst, normals, overlaps, H,
     float64[>= nlocal, 3] LAMMPS's forces and torques (cleared by LAMMPS every step), the contact forces
     and torques are added to the local rows; stat[:, ST_OVERLAP] receives each local atom's largest
     overlap; saved: float64[nmax, N_SAVED] receives the contact force and torque of every local atom with
-    mark + 1, its position and radius when ``save`` (then all_atoms must be set: the last step of a run,
+    mark + 1 and its state (position, radius, velocity, spin, mass, type) when ``save`` (then all_atoms must be set: the last step of a run,
     whose forces the next run's set-up reapplies; mark: the number of the evaluation, the same on every
     rank); acc: float64[>= nlocal, 7] scratch, zero on entry and left zero (every row summed into is
     cleared after it is written). A local atom whose force or torque is not finite gets none, and
@@ -728,7 +772,11 @@ def scatter_contacts(nlocal, x, radius, m, body, src, dst, normals, overlaps, H,
                 saved[i, SF_MARK] = mark + 1.0
                 for d in range(3):
                     saved[i, SF_X + d] = x[i, d]
+                    saved[i, SF_V + d] = v[i, d]
+                    saved[i, SF_W + d] = omega[i, d]
                 saved[i, SF_R] = radius[i]
+                saved[i, SF_M] = rmass[i]
+                saved[i, SF_T] = typ[i]
             for d in range(7):
                 acc[i, d] = 0.0
     else:
@@ -760,12 +808,30 @@ def _write_atom(i, acc, advance, f, torque, stat):
 
 
 @njit(cache=True)
-def saved_match(nlocal, x, radius, saved, mark):
-    """Whether every local atom has a contact force saved with ``mark`` (``scatter_contacts``) at its
-    present position and radius (the forces of that step are then those of the atoms now, on this rank)."""
+def saved_match(nlocal, x, v, omega, radius, rmass, typ, saved, mark, periods, periodic, tol):
+    """Whether every local atom has a contact force saved with ``mark`` (``scatter_contacts``) in its
+    present state: the same velocity, spin, radius, mass and type, and the same position up to a period
+    of the box (LAMMPS wraps atoms into the box at a run's set-up) and ``tol`` (the rounding of a wrap).
+    periods: float64[3, 3] the box's edge vectors a, b, c (rows; LAMMPS's a = (lx, 0, 0), b = (xy, ly, 0),
+    c = (xz, yz, lz)); periodic: bool[3]. The forces of that step are then those of the atoms now, on
+    this rank."""
     for i in range(nlocal):
-        if (saved[i, SF_MARK] != mark + 1.0 or saved[i, SF_X] != x[i, 0] or saved[i, SF_X + 1] != x[i, 1]
-                or saved[i, SF_X + 2] != x[i, 2] or saved[i, SF_R] != radius[i]):
+        if saved[i, SF_MARK] != mark + 1.0 or saved[i, SF_R] != radius[i] or saved[i, SF_M] != rmass[i] \
+                or saved[i, SF_T] != typ[i]:
+            return False
+        for d in range(3):
+            if saved[i, SF_V + d] != v[i, d] or saved[i, SF_W + d] != omega[i, d]:
+                return False
+        dx = x[i, 0] - saved[i, SF_X]
+        dy = x[i, 1] - saved[i, SF_X + 1]
+        dz = x[i, 2] - saved[i, SF_X + 2]
+        for e in range(2, -1, -1):          # c, then b, then a (triangular edge vectors)
+            if periodic[e]:
+                k = math.floor((dz if e == 2 else (dy if e == 1 else dx)) / periods[e, e] + 0.5)
+                dx -= k * periods[e, 0]
+                dy -= k * periods[e, 1]
+                dz -= k * periods[e, 2]
+        if abs(dx) > tol or abs(dy) > tol or abs(dz) > tol:
             return False
     return True
 
