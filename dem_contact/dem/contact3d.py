@@ -46,7 +46,7 @@ import numpy as np
 from llvmlite import ir
 from numba import njit, prange, types
 from numba.core import cgutils
-from numba.extending import intrinsic
+from numba.extending import intrinsic, overload
 
 from ..errors import InputError, NumericalError
 from ..laws import mdr as M
@@ -448,26 +448,24 @@ def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn
     return _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
+# The contact helpers: a jitted kernel each (``_peek_force`` ...), called unchecked from jitted code (the
+# ``overload`` of the public name), and a Python function of that name that checks its arguments first, so
+# that a call from Python cannot write outside H.
+
 @njit(**JIT)
-def peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """``contact_force`` on a copy of the contact's history: H is left unchanged."""
+def _peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     tmp = H[c:c + 1].copy()
     return contact_force(nid, tid, params, row, tmp, 0, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 @njit(**JIT)
-def reset_contact(H, c):
-    """Zero the history of contact c (call on separation, before the row is reused)."""
+def _reset_contact(H, c):
     for j in range(H.shape[1]):
         H[c, j] = 0.0
 
 
 @njit(**JIT)
-def swap_bodies(nid, tid, H, c):
-    """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
-    tangential force change sign. Swapping twice is the identity. The law ids come first, (nid, tid), as in
-    every kernel: where the tangential slots start depends on the normal law (``thornton`` has a longer
-    normal state), and the MDR laws hold a frame and cells."""
+def _swap_bodies(nid, tid, H, c):
     b = tangential_base(nid)
     for j in range(W_X, W_X + 3):
         H[c, b + j] = -H[c, b + j]
@@ -479,10 +477,7 @@ def swap_bodies(nid, tid, H, c):
 
 
 @njit(**JIT)
-def rotate_history(nid, tid, H, c, Q):
-    """Turn the tangential history of contact c rigidly by the rotation matrix Q (float64[3, 3], proper
-    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n.
-    The law ids (nid, tid) come first, as in every kernel (the turned slots do not depend on tid)."""
+def _rotate_history(nid, tid, H, c, Q):
     b = tangential_base(nid)
     x = H[c, b + W_X]
     y = H[c, b + W_X + 1]
@@ -492,11 +487,97 @@ def rotate_history(nid, tid, H, c, Q):
 
 
 @njit(**JIT)
+def _tangential_work(nid, tid, H, c):
+    return H[c, tangential_base(nid) + W_WORK]
+
+
+def _check_row(H, c, writes, need=0):
+    """H a float64 2D C array (writeable if the helper ``writes``) with rows of length >= ``need``, c one
+    of its rows."""
+    _array("H", H, 2, np.float64, writeable=writes)
+    if isinstance(c, (bool, np.bool_)) or not isinstance(c, (int, np.integer)) or not 0 <= c < H.shape[0]:
+        shown = repr(c) if isinstance(c, (int, float, np.number)) else f"a {type(c).__name__}"
+        raise InputError(f"c = {shown} is not a row of H (valid: integers 0 to {H.shape[0] - 1})")
+    if H.shape[1] < need:
+        raise InputError(f"H has rows of length {H.shape[1]}; these laws need at least {need} "
+                         f"(PairTable.history_size, contact3d.history_size)")
+
+
+def _check_ids_and_row(nid, tid, H, c, writes):
+    nid, tid = _valid_ids(nid, tid)
+    _check_row(H, c, writes, history_size(nid, tid))
+    return nid, tid
+
+
+def peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """``contact_force`` on a copy of the contact's history: H is left unchanged. Called from Python, the
+    law ids, the table (built for them), ``row``, H and ``c`` are checked first (``InputError``)."""
+    nid, tid = _valid_ids(nid, tid)
+    need = _check_table(nid, tid, params)
+    if isinstance(row, (bool, np.bool_)) or not isinstance(row, (int, np.integer)) or not 0 <= row < len(params):
+        raise InputError(f"row = {row!r} is not a row of params (valid: 0 to {len(params) - 1})")
+    _check_row(H, c, False, need)
+    return _peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+def reset_contact(H, c):
+    """Zero the history of contact c (call on separation, before the row is reused)."""
+    _check_row(H, c, True)
+    _reset_contact(H, c)
+
+
+def swap_bodies(nid, tid, H, c):
+    """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
+    tangential force change sign. Swapping twice is the identity. The law ids come first, (nid, tid), as in
+    every kernel: where the tangential slots start depends on the normal law (``thornton`` has a longer
+    normal state), and the MDR laws hold a frame and cells."""
+    nid, tid = _check_ids_and_row(nid, tid, H, c, True)
+    _swap_bodies(nid, tid, H, c)
+
+
+def rotate_history(nid, tid, H, c, Q):
+    """Turn the tangential history of contact c rigidly by the rotation matrix Q (float64[3, 3], proper
+    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n.
+    The law ids (nid, tid) come first, as in every kernel (the turned slots do not depend on tid)."""
+    nid, tid = _check_ids_and_row(nid, tid, H, c, True)
+    _array("Q", Q, 2, np.float64, (3, 3))
+    if not (np.allclose(Q @ Q.T, np.eye(3), rtol=0.0, atol=1e-9) and np.linalg.det(Q) > 0.0):
+        raise InputError("Q must be a rotation matrix (Q Q^T = I within 1e-9, det Q = +1)")
+    _rotate_history(nid, tid, H, c, Q)
+
+
 def tangential_work(nid, tid, H, c):
     """Work absorbed by the tangential force of contact c since its history was zeroed [J]: the sum over
     steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created.
     The law ids (nid, tid) come first, as in every kernel (the slot does not depend on tid)."""
-    return H[c, tangential_base(nid) + W_WORK]
+    nid, tid = _check_ids_and_row(nid, tid, H, c, False)
+    return _tangential_work(nid, tid, H, c)
+
+
+@overload(peek_force)
+def _peek_force_jit(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    return lambda nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt: _peek_force(
+        nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+
+
+@overload(reset_contact)
+def _reset_contact_jit(H, c):
+    return lambda H, c: _reset_contact(H, c)
+
+
+@overload(swap_bodies)
+def _swap_bodies_jit(nid, tid, H, c):
+    return lambda nid, tid, H, c: _swap_bodies(nid, tid, H, c)
+
+
+@overload(rotate_history)
+def _rotate_history_jit(nid, tid, H, c, Q):
+    return lambda nid, tid, H, c, Q: _rotate_history(nid, tid, H, c, Q)
+
+
+@overload(tangential_work)
+def _tangential_work_jit(nid, tid, H, c):
+    return lambda nid, tid, H, c: _tangential_work(nid, tid, H, c)
 
 
 def _family(tid):
@@ -723,7 +804,8 @@ UNIT_TOL = 1e-6
 
 def _law_id(name, value, valid, names):
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or int(value) not in valid:
-        raise InputError(f"{name} = {value!r} is not a law id (valid: {names})")
+        shown = repr(value) if isinstance(value, (int, float, str, np.number)) else f"a {type(value).__name__}"
+        raise InputError(f"{name} = {shown} is not a law id (valid: {names})")
     return int(value)
 
 
@@ -737,9 +819,8 @@ def _array(name, a, ndim, dtype, shape=None, writeable=False):
     if shape is not None:
         for k, (got, want) in enumerate(zip(a.shape, shape)):
             if want is not None and got != want:
-                raise InputError(f"{name} must have shape {tuple('n' if w is None else w for w in shape)} "
-                                 f"with n = {shape[0] if shape[0] is not None else 'the number of contacts'}, "
-                                 f"got {a.shape}")
+                want_text = ", ".join("any" if w is None else str(w) for w in shape)
+                raise InputError(f"{name} must have shape ({want_text}) (any: any length), got {a.shape}")
     if not a.flags.c_contiguous:
         raise InputError(f"{name} must be C-contiguous (np.ascontiguousarray)")
     if writeable and not a.flags.writeable:
