@@ -1,5 +1,6 @@
 """Options that cannot act, garbage magnitudes, work budgets, output paths: every one is a one-line error
 (exit 2) naming the parameter, or a numerical failure (exit 3), never a traceback or a printed NaN."""
+import json
 import math
 import os
 
@@ -150,3 +151,203 @@ def test_integrator_of_unknown_laws_is_refused(ids):
     """The per-law-pair integrator is built for known law ids only (no kernel compiled for anything else)."""
     with pytest.raises(dc.InputError, match="not law ids"):
         integrator_for(*ids)
+
+
+# --- every output path of every command is checked before anything is computed ------------------------
+
+OUTPUT_OPTIONS = {"csv", "plot", "out", "report"}
+#: per (command, option): the arguments of a run that would otherwise compute, the bad path, the function
+#: that computes (module, name), replaced so that the test sees whether it was called
+OUTPUT_CASES = {
+    ("sweep", "--csv"): (["--no-progress"], "missing/x.csv", ("dem_contact.commands.sweep", "sweep_angles")),
+    ("sweep", "--plot"): (["--no-progress"], "x.pdf", ("dem_contact.commands.sweep", "sweep_angles")),
+    ("impact3d", "--csv"): (["--angles", "0:10:10"], "missing/x.csv", ("dem_contact.commands.impact3d", "sweep3d")),
+    ("path", "--csv"): (["--shape", "circle"], "missing/x.csv", ("dem_contact.studies.paths", "run_path")),
+    ("path", "--plot"): (["--shape", "circle"], "x.pdf", ("dem_contact.studies.paths", "run_path")),
+    ("chart", "--out"): ([], "blocker/sub", ("dem_contact.studies.chart", "chart")),
+    ("validate", "--out"): ([], "blocker/sub", ("dem_contact.studies.wu2009", "run_validation")),
+    ("benchmark", "--plot"): (["chung-ooi"], "blocker/sub", ("dem_contact.studies.chung_ooi", "run_suite")),
+    ("benchmark", "--report"): (["chung-ooi"], "missing/r.md", ("dem_contact.studies.chung_ooi", "run_suite")),
+}
+
+
+def _output_options():
+    import argparse
+
+    from dem_contact.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return {(cmd, opt) for cmd, p in sub.choices.items() for a in p._actions if a.dest in OUTPUT_OPTIONS
+            for opt in a.option_strings}
+
+
+def test_every_output_option_has_a_case():
+    """The cases below cover every output option of every command (a new one must be added here)."""
+    assert _output_options() == set(OUTPUT_CASES)
+
+
+@pytest.mark.parametrize("cmd,opt", sorted(OUTPUT_CASES))
+def test_output_paths_checked_before_computing(capsys, tmp_path, monkeypatch, cmd, opt):
+    """A missing folder, a folder that cannot be made or a figure name that is not .png: one line, exit 2,
+    before anything is computed or written."""
+    import importlib
+
+    args, bad, (module, name) = OUTPUT_CASES[(cmd, opt)]
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "blocker").write_text("")
+    called = []
+    mod = importlib.import_module(module)
+    if hasattr(mod, name):
+        monkeypatch.setattr(mod, name, lambda *a, **k: called.append(1))
+    before = sorted(os.listdir(tmp_path))
+    rc, out, err = run_cli(capsys, cmd, *args, opt, str(tmp_path / bad))
+    assert rc == 2 and err.count("\n") == 1 and opt in err, err
+    assert not called
+    assert sorted(os.listdir(tmp_path)) == before
+
+
+# --- strict JSON: no NaN or Infinity; every null says why ---------------------------------------------
+
+def _strict(text):
+    def refuse(const):
+        raise AssertionError(f"not strict JSON: {const}")
+    return json.loads(text, parse_constant=refuse)
+
+
+def _null_paths(x, path=""):
+    if isinstance(x, dict):
+        for k, v in x.items():
+            if k != "null_values":
+                yield from _null_paths(v, f"{path}.{k}" if path else k)
+    elif isinstance(x, list):
+        for i, v in enumerate(x):
+            yield from _null_paths(v, f"{path}[{i}]")
+    elif x is None:
+        yield path
+
+
+def _explained(x, path=""):
+    """Paths that a null_values entry (of the object at ``path`` or of one inside it) explains."""
+    if isinstance(x, dict):
+        for k in x.get("null_values", {}):
+            yield f"{path}.{k}" if path else k
+        for k, v in x.items():
+            if k != "null_values":
+                yield from _explained(v, f"{path}.{k}" if path else k)
+    elif isinstance(x, list):
+        for i, v in enumerate(x):
+            yield from _explained(v, f"{path}[{i}]")
+
+
+@pytest.mark.parametrize("args", [
+    ["impact", "--mu", "0", "--vt", "0"],
+    ["impact3d", "--mu", "0", "--vt", "0", "0"],
+    ["impact3d", "--angles", "0:10:10", *QUICK],
+    ["sweep", "--speed", "5", "--angles", "0:60:30", "--no-progress", *QUICK],
+    ["advise", "--vn-range", "1", "3", "--angle-range", "0", "40"],     # a fit that never reaches 1 (inf)
+], ids=["impact", "impact3d", "impact3d-sweep", "sweep", "advise"])
+def test_json_is_strict_and_every_null_has_a_reason(capsys, args):
+    rc, out, err = run_cli(capsys, *args, "--json")
+    assert rc == 0, err
+    data = _strict(out)
+    nulls = set(_null_paths(data))
+    assert nulls <= set(_explained(data)), nulls - set(_explained(data))
+
+
+def test_json_of_a_non_finite_number_is_null_with_a_reason():
+    """dump_json, under every command's --json: never a ValueError on inf or NaN."""
+    from dem_contact.commands.common import dump_json
+
+    d = _strict(dump_json({"a": math.inf, "b": [1.0, np.float64("nan")], "c": {"d": -math.inf}}))
+    assert d["a"] is None and d["b"] == [1.0, None] and d["c"]["d"] is None
+    assert set(d["null_values"]) == {"a", "b[1]", "c.d"}
+
+
+# --- options that cannot act are refused; those that can, act ----------------------------------------
+
+@pytest.mark.parametrize("args,word", [
+    (["advise", "--vn", "3"], "--vn-range"),
+    (["advise", "--dt", "1e-6"], "--steps-per-contact"),
+    (["path", "--shape", "circle", "--rigid-sphere", "--E", "1e9"], "--E"),
+    (["path", "--shape", "circle", "--rigid-wall", "--wall-nu", "0.2"], "--wall-nu"),
+])
+def test_options_that_cannot_act_are_refused(capsys, args, word):
+    rc, out, err = run_cli(capsys, *args)
+    assert rc == 2 and err.count("\n") == 1 and word in err, err
+
+
+def test_advise_law_step_and_scheme_options_act(capsys, monkeypatch):
+    """--tangential, --steps-per-contact and --scheme reach advise as a candidate and the integrator end."""
+    import dem_contact.studies.advise as adv
+
+    seen = {}
+
+    def fake(scene, *a, **k):
+        seen.update(k, tangential=scene.tangential)
+        raise dc.InputError("stop")
+
+    monkeypatch.setattr(adv, "advise", fake)
+    rc, out, err = run_cli(capsys, "advise", "--tangential", "md", "--steps-per-contact", "300", "--scheme",
+                           "standard")
+    assert rc == 2 and seen["scheme"] == "standard" and list(seen["candidates"]) == [("md", 300.0)]
+
+
+def test_advise_measures_the_extra_candidate_with_the_scheme(steel_sphere, steel_wall):
+    from dem_contact.studies.advise import advise
+
+    sc = dc.Scene(steel_sphere, steel_wall, mu=0.3)
+    a = advise(sc, (2.0, 5.0), (0.0, 40.0), n_speeds=1, n_angles=3, scheme="standard", candidates=[("md", 30)])
+    laws = [c for c in a.candidates if "law" in c.params and c.name != "mdr@1000"]
+    assert any(c.name == "md@30" for c in laws)
+    assert all(c.params["scheme"] == "standard" and "standard scheme" in c.description for c in laws)
+    assert math.isfinite(next(c for c in laws if c.name == "md@30").error)
+
+
+def test_every_tangential_law_offered_by_path_works(capsys):
+    """An offered choice works: every --tangential of path (mdr places its springs for the path)."""
+    import argparse
+
+    from dem_contact.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    laws = next(a for a in sub.choices["path"]._actions if a.dest == "tangential").choices
+    for law in laws:
+        rc, out, err = run_cli(capsys, "path", "--shape", "circle", "--steps", "10", "--tangential", law)
+        assert rc == 0, (law, err)
+
+
+# --- messages ---------------------------------------------------------------------------------------
+
+def test_path_csv_with_byte_order_mark(capsys, tmp_path):
+    """A CSV saved by a spreadsheet (UTF-8 with a byte-order mark) reads as the same path."""
+    text = "delta,ux,uy\n1e-5,0,0\n1e-5,1e-7,0\n"
+    (tmp_path / "plain.csv").write_text(text, encoding="utf-8")
+    (tmp_path / "bom.csv").write_text(text, encoding="utf-8-sig")
+    rc1, plain, err1 = run_cli(capsys, "path", str(tmp_path / "plain.csv"))
+    rc2, bom, err2 = run_cli(capsys, "path", str(tmp_path / "bom.csv"))
+    assert rc1 == rc2 == 0, err2
+    assert bom.splitlines()[1:] == plain.splitlines()[1:]
+
+
+def test_shape_error_names_the_shape():
+    from dem_contact.dem.contact3d import _array
+
+    with pytest.raises(dc.InputError, match=r"^H must have shape \(3, any\) .*got \(2, 5\)$") as e:
+        _array("H", np.zeros((2, 5)), 2, np.float64, (3, None))
+    assert "'n'" not in str(e.value)
+
+
+def test_readme_benchmark_usage_parses():
+    """The README's usage line of the benchmark, with its placeholders filled in, is a valid command."""
+    import pathlib
+    import re
+
+    from dem_contact.cli import build_parser
+
+    readme = (pathlib.Path(__file__).resolve().parents[1] / "README.md").read_text()
+    usage = next(line.strip() for line in readme.splitlines() if line.strip().startswith("dem-contact benchmark"))
+    test_part = re.search(r"\[--test N.*?\]+", usage).group(0)
+    filled = test_part.replace("[", " ").replace("]", " ").replace("...", "").replace("N", "1").split()
+    assert filled.count("--test") == 2            # the README shows how to ask for several tests
+    args = build_parser().parse_args(["benchmark", "chung-ooi", *filled])
+    assert args.test == [1, 1]

@@ -1,6 +1,9 @@
 """``dem-contact advise``: the cheapest model of the rebound that meets a tolerance, from measured data."""
 from __future__ import annotations
 
+import math
+
+from ..errors import InputError
 from .common import add_scene_options, dump_json, scene_from_args
 
 ORDER = 5
@@ -12,8 +15,13 @@ def add_parser(sub):
                                    "reference, measure the error in f/mu (= error in Omega_r; e_t and Psi_r "
                                    "follow from it) and the time per impact of each candidate (rigid-body "
                                    "sliding, the Wu et al. model fitted to the sample, cheap laws at coarse "
-                                   "steps, the reference itself) and recommend the cheapest within --tol.")
+                                   "steps, the reference itself) and recommend the cheapest within --tol. "
+                                   "--tangential, --steps-per-contact and --model add that law at that time "
+                                   "step as a candidate; --scheme sets the integrator end of the law "
+                                   "candidates.")
     add_scene_options(p)
+    # options of one impact that advise takes otherwise: None marks "not given" (see run)
+    p.set_defaults(vn=None, dt=None, scheme=None)
     p.add_argument("--vn-range", nargs=2, type=float, default=[1.0, 5.0], metavar=("MIN", "MAX"),
                    help="normal speed range [m/s] (default 1 5)")
     p.add_argument("--angle-range", nargs=2, type=float, default=[0.0, 60.0], metavar=("MIN", "MAX"),
@@ -26,11 +34,22 @@ def add_parser(sub):
 
 
 def run(args) -> int:
+    from ..impacts.impact import default_steps_per_contact
     from ..studies.advise import advise
 
+    if args.vn is not None:
+        raise InputError("--vn does not apply to advise: it samples the normal speeds of --vn-range MIN MAX")
+    if args.dt is not None:
+        raise InputError("--dt does not apply to advise: every sampled speed has its own contact time; give "
+                         "--steps-per-contact")
     args.vn = args.vn_range[1]
     scene = scene_from_args(args)
-    a = advise(scene, tuple(args.vn_range), tuple(args.angle_range), args.spin, args.tol, verify=args.verify)
+    extra = []
+    if args.tangential is not None or args.steps_per_contact is not None or args.model is not None:
+        extra.append((scene.tangential, args.steps_per_contact if args.steps_per_contact is not None
+                      else default_steps_per_contact(scene)))
+    a = advise(scene, tuple(args.vn_range), tuple(args.angle_range), args.spin, args.tol, verify=args.verify,
+               scheme=args.scheme or "located", candidates=extra)
     if args.json:
         print(dump_json(a.to_dict()))
         return 0
@@ -38,7 +57,12 @@ def run(args) -> int:
           f"(measured against converged MDR)")
     print(f"  {'candidate':22s} {'max |f/mu err|':>15s} {'us/impact':>10s}  meets  description")
     for c in a.candidates:
-        print(f"  {c.name:22s} {c.error:15.3e} {c.time_us:10.3g}  {'yes' if c.meets else 'no ':3s}    {c.description}")
+        err = f"{c.error:15.3e}" if math.isfinite(c.error) else f"{'failed':>15s}"
+        print(f"  {c.name:22s} {err} {c.time_us:10.3g}  {'yes' if c.meets else 'no ':3s}    {c.description}")
+    if any(not math.isfinite(c.error) for c in a.candidates):
+        print("  (failed: the candidate failed numerically on the sample, a blow-up or an e_n outside [0, 1])")
+    for w in a.warnings:
+        print(f"warning: {w}")
     if a.recommended is None:
         print("no candidate meets the tolerance: use mdr with more springs and steps")
         return 1

@@ -6,6 +6,8 @@ import json
 import math
 import os
 
+import numpy as np
+
 from ..errors import InputError
 from ..impacts.presets import CASES, DEFAULT_TANGENTIAL, preset_scene
 from ..laws.model import MDR_PROFILES, MODELS, NORMAL_LAWS, TANGENTIAL_LAWS, Scene
@@ -73,8 +75,70 @@ def time_options(args) -> dict:
     return {"steps_per_contact": args.steps_per_contact, "dt": args.dt, "scheme": args.scheme}
 
 
+def strict_json(obj, nulls: dict | None = None, path: str = ""):
+    """``obj`` as strict JSON data: numpy scalars and arrays become Python numbers and lists, and every NaN
+    or infinity becomes None, its path (``points[3].e_t``) and value recorded in ``nulls``."""
+    if isinstance(obj, dict):
+        return {k: strict_json(v, nulls, f"{path}.{k}" if path else str(k)) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple, np.ndarray)):
+        return [strict_json(v, nulls, f"{path}[{i}]") for i, v in enumerate(obj)]
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        x = float(obj)
+        if math.isfinite(x):
+            return x
+        if nulls is not None:
+            nulls[path] = x
+        return None
+    return obj
+
+
+def _null_paths(x, path=""):
+    """Paths of the nulls in JSON data ``x`` (outside the ``null_values`` entries)."""
+    if isinstance(x, dict):
+        for k, v in x.items():
+            if k != "null_values":
+                yield from _null_paths(v, f"{path}.{k}" if path else k)
+    elif isinstance(x, list):
+        for i, v in enumerate(x):
+            yield from _null_paths(v, f"{path}[{i}]")
+    elif x is None:
+        yield path
+
+
+def _explained(x, path=""):
+    """Paths that a ``null_values`` entry explains (of the object at ``path`` or of one inside it)."""
+    if isinstance(x, dict):
+        for k in x.get("null_values", {}):
+            yield f"{path}.{k}" if path else k
+        for k, v in x.items():
+            if k != "null_values":
+                yield from _explained(v, f"{path}.{k}" if path else k)
+    elif isinstance(x, list):
+        for i, v in enumerate(x):
+            yield from _explained(v, f"{path}[{i}]")
+
+
 def dump_json(obj) -> str:
-    return json.dumps(obj, indent=2, allow_nan=False)
+    """Strict JSON text of ``obj``: no NaN or Infinity, and every null has its reason in a ``null_values``
+    object (of the output, or of each object of an output that is a list). The producers give the reasons
+    they know (an undefined quantity, a step not run); any other null is explained here: a number that is
+    not finite, or a setting with no value."""
+    nonfinite = {}
+    data = strict_json(obj, nonfinite)
+    targets = [(data, "")] if isinstance(data, dict) else [
+        (d, f"[{i}]") for i, d in enumerate(data) if isinstance(d, dict)] if isinstance(data, list) else []
+    for d, prefix in targets:
+        explained = set(_explained(d))
+        for p in list(_null_paths(d)):
+            if p not in explained:
+                full = f"{prefix}.{p}" if prefix else p
+                d.setdefault("null_values", {})[p] = (f"not a finite number ({nonfinite[full]})" if full in nonfinite
+                                                      else "no value: not set for this output")
+    return json.dumps(data, indent=2, allow_nan=False)
 
 
 def model_line(r) -> str:

@@ -8,7 +8,7 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
-from .common import (add_scene_options, dump_json, model_line, print_energy_and_warnings, scene_from_args,
+from .common import (add_scene_options, check_output_file, dump_json, model_line, print_energy_and_warnings, scene_from_args,
                      time_options)
 from .sweep import parse_angles
 
@@ -63,6 +63,8 @@ def run(args) -> int:
         raise InputError("--direction applies to --angle and --angles, not to --vt")
     if args.angles is None and args.csv:
         raise InputError("--csv applies to --angles only")
+    if args.csv:
+        check_output_file("--csv", args.csv)        # before any impact is computed
     if args.series and (args.angles is not None or not args.json):
         raise InputError("--series applies to one impact with --json")
     opts = dict(time_options(args), frame_spin=not args.fixed_frame)

@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 import json
+import math
 
 from ..errors import InputError
 from ..laws.model import TANGENTIAL_LAWS
 from ..materials import STEEL
+from .common import check_output_file
 
 ORDER = 6
 
@@ -38,10 +40,10 @@ def add_parser(sub):
                    help="steps of the named path after its first row (the loaded contact at u = 0; default 400)")
     s = p.add_argument_group("contact (SI units; defaults: steel sphere of radius 10 mm on a steel wall)")
     s.add_argument("--radius", type=float, default=0.01, help="sphere radius [m] (default 0.01)")
-    s.add_argument("--E", type=float, default=STEEL.E, help="sphere Young's modulus [Pa] (default 208e9)")
-    s.add_argument("--nu", type=float, default=STEEL.nu, help="sphere Poisson ratio (default 0.3)")
-    s.add_argument("--wall-E", type=float, default=STEEL.E, help="wall Young's modulus [Pa] (default 208e9)")
-    s.add_argument("--wall-nu", type=float, default=STEEL.nu, help="wall Poisson ratio (default 0.3)")
+    s.add_argument("--E", type=float, default=None, help="sphere Young's modulus [Pa] (default 208e9)")
+    s.add_argument("--nu", type=float, default=None, help="sphere Poisson ratio (default 0.3)")
+    s.add_argument("--wall-E", type=float, default=None, help="wall Young's modulus [Pa] (default 208e9)")
+    s.add_argument("--wall-nu", type=float, default=None, help="wall Poisson ratio (default 0.3)")
     s.add_argument("--rigid-wall", action="store_true", help="the wall is rigid")
     s.add_argument("--rigid-sphere", action="store_true", help="the sphere is rigid")
     s.add_argument("--mu", type=float, default=0.3, help="friction coefficient >= 0 (default 0.3)")
@@ -49,7 +51,8 @@ def add_parser(sub):
                    help="normal law (default hertz; dashpot laws need a rate, which a path does not have)")
     s.add_argument("--yield-stress", type=float, default=None, help="sphere's yield stress Y [Pa] (thornton)")
     s.add_argument("--tangential", choices=[t for t in TANGENTIAL_LAWS if t != "linear"], default=None,
-                   help="tangential law (default: the library default)")
+                   help="tangential law (default: the library default; mdr places its springs for the path's "
+                        "largest overlap)")
     s.add_argument("--reference", action="store_true",
                    help="use the boundary-element reference (exact 3D Cattaneo-Mindlin, slow) instead of a law")
     s.add_argument("--n-across", type=int, default=64,
@@ -62,26 +65,47 @@ def add_parser(sub):
     p.set_defaults(run=run)
 
 
-def _scene(args):
+def _scene(args, delta_max: float):
+    """The contact of the options; delta_max [m]: the path's largest overlap (places the mdr springs)."""
     from ..laws.model import Scene
-    from ..materials import Material, Sphere, Wall
+    from ..materials import Material, Sphere, Wall, pair_properties
 
     if args.yield_stress is not None and args.normal != "thornton":
         raise InputError("--yield-stress applies to --normal thornton only")
     if args.normal == "thornton" and args.yield_stress is None:
         raise InputError("--normal thornton needs --yield-stress (the sphere's yield stress Y [Pa])")
+    for rigid, flag, opts in ((args.rigid_sphere, "--rigid-sphere", (("--E", args.E), ("--nu", args.nu),
+                                                                     ("--yield-stress", args.yield_stress))),
+                              (args.rigid_wall, "--rigid-wall", (("--wall-E", args.wall_E),
+                                                                 ("--wall-nu", args.wall_nu)))):
+        given = [name for name, v in opts if v is not None]
+        if rigid and given:
+            raise InputError(f"{', '.join(given)} cannot act on a rigid body ({flag})")
+    pick = lambda v, default: default if v is None else v  # noqa: E731
     sphere_mat = (Material.rigid(rho=STEEL.rho) if args.rigid_sphere else
-                  Material(E=args.E, nu=args.nu, rho=STEEL.rho, yield_stress=args.yield_stress))
-    wall = Wall.rigid() if args.rigid_wall else Wall(Material(E=args.wall_E, nu=args.wall_nu, rho=STEEL.rho))
+                  Material(E=pick(args.E, STEEL.E), nu=pick(args.nu, STEEL.nu), rho=STEEL.rho,
+                           yield_stress=args.yield_stress))
+    wall = Wall.rigid() if args.rigid_wall else Wall(Material(E=pick(args.wall_E, STEEL.E),
+                                                              nu=pick(args.wall_nu, STEEL.nu), rho=STEEL.rho))
+    sphere = Sphere(args.radius, sphere_mat)
     laws = {} if args.tangential is None else {"tangential": args.tangential}
-    return Scene(Sphere(args.radius, sphere_mat), wall, mu=args.mu, normal=args.normal, **laws)
+    if args.tangential == "mdr":
+        # a path has no impact speed to place the springs by: they cover the contact radius of its largest
+        # overlap (as studies.paths.path_scene does)
+        R_star = pair_properties(sphere, wall).R_star
+        laws["mdr_max_radius"] = 1.05 * math.sqrt(R_star * max(delta_max, 1e-12 * R_star))
+    return Scene(sphere, wall, mu=args.mu, normal=args.normal, **laws)
 
 
 def run(args) -> int:
     from ..reference.paths import scene_path
     from ..studies.paths import read_path_csv, reference_path, run_path, write_path_csv
 
-    scene = _scene(args)
+    # output paths first: nothing is computed for a file that cannot be written
+    if args.csv:
+        check_output_file("--csv", args.csv)
+    if args.plot:
+        check_output_file("--plot", args.plot, (".png",))
     if args.reference and args.tangential is not None:
         raise InputError("give either --reference or --tangential, not both")
     if args.reference and args.normal != "hertz":
@@ -97,9 +121,11 @@ def run(args) -> int:
         size = args.size if args.size is not None else {"l-turn": 1.5, "load-unload": 1.0}.get(args.shape, 0.6)
         if not args.overlap > 0:
             raise InputError(f"--overlap = {args.overlap:g} must be > 0 [m]")
+        scene = _scene(args, args.overlap)
         delta, ux, uy = scene_path(args.shape, size, args.steps, scene, args.overlap)
     else:
         delta, ux, uy = read_path_csv(args.path_csv)
+        scene = _scene(args, float(delta.max()))
     if args.reference:
         N, Tx, Ty = reference_path(scene, delta, ux, uy, n_across=args.n_across)
         law = f"boundary-element reference ({args.n_across} elements across)"

@@ -141,13 +141,33 @@ class ImpactResult:
     energy_gained: bool = False
 
     def to_dict(self, series: bool = False) -> dict:
-        """JSON-ready dict (NaN and inf become None)."""
+        """JSON-ready dict: NaN and inf become None, and ``null_values`` gives the reason for each (only
+        when there is one)."""
         d = asdict(self)
         if not series:
             d.pop("series")
         elif self.series is not None:
             d["series"] = {k: v.tolist() for k, v in self.series.items()}
-        return _json_safe(d)
+        why = {k: _undefined_reason(k, self) for k, v in d.items()
+               if isinstance(v, (float, np.floating)) and not math.isfinite(v)}
+        d = _json_safe(d)
+        if why:
+            d["null_values"] = why
+        return d
+
+
+#: The dimensionless quantities that divide by mu (undefined at mu = 0).
+_PER_MU = ("f_over_mu", "f_across_over_mu", "Theta", "Theta_across", "Psi_r", "Psi_r_across", "Omega_i",
+           "Omega_r", "Omega_across_i", "Omega_across_r")
+
+
+def _undefined_reason(key: str, r) -> str:
+    """Why quantity ``key`` of result ``r`` is undefined (NaN)."""
+    if key in _PER_MU and r.model.get("mu", 1.0) == 0.0:
+        return "undefined at mu = 0 (the quantity is divided by mu)"
+    if key == "e_t":
+        return "undefined: no incident tangential velocity of the centre (e_t = vt_r / vt)"
+    return "not a finite number"
 
 
 def _json_safe(x):

@@ -21,13 +21,15 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import chart
-from ..errors import InputError
+from ..errors import InputError, NumericalError
 from ..rebound.fit import fit_wu
+from ..impacts.impact import check_steps_per_contact
 from ..materials import Wall, check_finite
 from ..laws.model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
 from ..rebound.models import wu_curve
@@ -54,9 +56,32 @@ class Advice:
     tolerance: float
     sample_points: int
     verification: dict | None = None
+    scheme: str = "located"                       # integrator end of the law candidates
+    warnings: list = dataclasses.field(default_factory=list)
 
     def to_dict(self) -> dict:
-        return dataclasses.asdict(self)
+        """JSON-ready dict: a quantity that is not a number is None, with its reason in ``null_values``."""
+        d = dataclasses.asdict(self)
+        why = {}
+        for key, cands in (("candidates", d["candidates"]), ("recommended", [d["recommended"]])):
+            for i, c in enumerate(cands):
+                if c is None:
+                    continue
+                at = f"{key}[{i}]" if key == "candidates" else key
+                if not math.isfinite(c["error"]):
+                    why[f"{at}.error"] = ("the candidate failed numerically on the sample (a blow-up, or an e_n "
+                                          "outside [0, 1] at its time step): no error measured")
+                    c["error"] = None
+                if "Theta_c" in c["params"] and not math.isfinite(c["params"]["Theta_c"]):
+                    why[f"{at}.params.Theta_c"] = "the fitted curve does not reach f/mu = 1: no Theta_c"
+                    c["params"]["Theta_c"] = None
+        if d["recommended"] is None:
+            why["recommended"] = "no candidate meets the tolerance"
+        if d["verification"] is None:
+            why["verification"] = "not run (verify=False, or nothing recommended)"
+        if why:
+            d["null_values"] = why
+        return d
 
 
 def _with_law(scene: Scene, tangential: str, vmax: float, **kw) -> Scene:
@@ -80,16 +105,17 @@ def _sample(vn_range, angle_range, n_speeds, n_angles, rng=None):
     return [(v, rng.uniform(angle_range[0], angle_range[1], n_angles)) for v in speeds]
 
 
-def _evaluate(scene, sample, spc, spin, repeats=1):
-    """f/mu, Theta (patch, eq. 7.1), sliding flags and time per impact over the sample."""
+def _evaluate(scene, sample, spc, spin, repeats=1, scheme="located"):
+    """f/mu, Theta (patch, eq. 7.1), sliding flags and time per impact over the sample (NaN where the
+    impacts failed)."""
     fm, Th, slid, t = [], [], [], []
     for vn, angles in sample:
         vt = vn * np.tan(np.radians(angles))
-        r = chart.run(scene, vn, vt, spc, "located", repeats, spin=spin)
+        r = chart.run(scene, vn, vt, spc, scheme, repeats, spin=spin)
         v_ti = vt + scene.sphere.radius * spin
         fm.append(r.f_over_mu)
         Th.append(2.0 * v_ti / ((1.0 + r.e_n) * scene.mu * vn))
-        slid.append(r.persistent_sliding)
+        slid.append(r.persistent_sliding if r.persistent_sliding is not None else np.zeros(vt.size, bool))
         t.append(r.seconds_per_impact)
     return np.concatenate(fm), np.concatenate(Th), np.concatenate(slid), 1e6 * float(np.mean(t))
 
@@ -109,8 +135,13 @@ def _time_closed_form(fn, x, repeats=20):
 
 
 def advise(scene: Scene, vn_range, angle_range, spin: float = 0.0, tol: float = 0.01, *, n_speeds: int = 3,
-           n_angles: int = 12, verify: bool = False, seed: int = 1) -> Advice:
-    """Measure the candidates on a sample of the ranges and recommend the cheapest within ``tol``."""
+           n_angles: int = 12, verify: bool = False, seed: int = 1, scheme: str = "located",
+           candidates=()) -> Advice:
+    """Measure the candidates on a sample of the ranges and recommend the cheapest within ``tol``.
+
+    scheme: integrator end of the law candidates ("located" or "standard"; the reference is always
+    located and converged); candidates: further (tangential law, steps per contact) to measure besides
+    LAW_CANDIDATES (with the scene's normal law)."""
     if not isinstance(scene.body2, Wall):
         raise InputError("advise handles sphere-wall impacts only")
     if scene.mu <= 0:
@@ -123,6 +154,13 @@ def advise(scene: Scene, vn_range, angle_range, spin: float = 0.0, tol: float = 
         raise InputError("ranges must be given as (min, max) with min <= max")
     tol = check_finite("tol (tolerance on f/mu)", tol, lo=0.0)
     spin = check_finite("spin (rad/s)", spin)
+    if scheme not in chart.SCHEMES:
+        raise InputError(f"scheme {scheme!r} is unknown; choose one of: {', '.join(chart.SCHEMES)}")
+    laws = list(LAW_CANDIDATES)
+    for law, spc in candidates:
+        spc = check_steps_per_contact(spc)
+        if (law, spc) not in laws:
+            laws.append((law, spc))
     sample = _sample((vmin, vmax), (a0, a1), n_speeds, n_angles)
     f_ref, Th, _, _ = _reference(scene, sample, spin, vmax)
     cands = []
@@ -130,21 +168,28 @@ def advise(scene: Scene, vn_range, angle_range, spin: float = 0.0, tol: float = 
     err = float(np.max(np.abs(1.0 - f_ref)))
     cands.append(Candidate("sliding", "rigid-body persistent sliding, f/mu = 1 (Omega_r = Omega_i - 1, "
                            "e_t = 1 - 2/Theta)", err, _time_closed_form(np.ones_like, x)))
+    notes = []
     if spin == 0.0:
         try:
-            fit = fit_wu(Th, f_ref)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")     # the fit's warnings are in fit.warnings
+                fit = fit_wu(Th, f_ref)
+            notes += [f"Wu et al. fit: {w}" for w in fit.warnings]
             err = float(np.max(np.abs(fit(Th) - f_ref)))
             c = ", ".join(f"{v:.4f}" for v in fit.c)
-            cands.append(Candidate("wu", f"Wu et al. eq. 4.5 fitted to MDR: c = ({c}), Theta_c = {fit.Theta_c:.4g}",
+            tc = f"{fit.Theta_c:.4g}" if math.isfinite(fit.Theta_c) else "none (the curve does not reach 1)"
+            cands.append(Candidate("wu", f"Wu et al. eq. 4.5 fitted to MDR: c = ({c}), Theta_c = {tc}",
                                    err, _time_closed_form(lambda t: wu_curve(t, fit.c), x),
                                    params={"c": list(fit.c), "Theta_c": fit.Theta_c}))
-        except (InputError, ValueError, RuntimeError):
-            pass   # too few points below Theta_c to fit
-    for law, spc in LAW_CANDIDATES:
+        except (InputError, NumericalError, ValueError, RuntimeError) as e:
+            notes.append(f"no Wu et al. candidate: its fit to the sample failed ({e})")
+    end = "" if scheme == "located" else f", {scheme} scheme"
+    for law, spc in laws:
         sc = _with_law(scene, law, vmax)
-        f, _, _, t = _evaluate(sc, sample, spc, spin, repeats=3)
-        cands.append(Candidate(f"{law}@{spc}", f"tangential law {law}, {spc} steps per contact",
-                               float(np.max(np.abs(f - f_ref))), t, params={"law": law, "steps": spc}))
+        f, _, _, t = _evaluate(sc, sample, spc, spin, repeats=3, scheme=scheme)
+        cands.append(Candidate(f"{law}@{spc:g}", f"tangential law {law}, {spc:g} steps per contact{end}",
+                               float(np.max(np.abs(f - f_ref))), t,
+                               params={"law": law, "steps": spc, "scheme": scheme}))
     sc = _with_law(scene, "mdr", vmax)
     f, _, _, t = _evaluate(sc, sample, MDR_STEPS_PER_CONTACT, spin, repeats=1)
     cands.append(Candidate(f"mdr@{MDR_STEPS_PER_CONTACT}", f"exact reference mdr, {MDR_SPRINGS} springs, "
@@ -153,7 +198,8 @@ def advise(scene: Scene, vn_range, angle_range, spin: float = 0.0, tol: float = 
     for c in cands:
         c.meets = bool(np.isfinite(c.error) and c.error <= tol)
     ok = sorted((c for c in cands if c.meets), key=lambda c: c.time_us)
-    advice = Advice(cands, ok[0] if ok else None, tol, sum(len(a) for _, a in sample))
+    advice = Advice(cands, ok[0] if ok else None, tol, sum(len(a) for _, a in sample), scheme=scheme,
+                    warnings=notes)
     if verify and advice.recommended is not None:
         advice.verification = verify_candidate(scene, advice.recommended, (vmin, vmax), (a0, a1), spin, tol,
                                                seed=seed)
@@ -171,6 +217,6 @@ def verify_candidate(scene, cand, vn_range, angle_range, spin, tol, *, seed=1, n
         f = np.where(Th < cand.params["Theta_c"], wu_curve(Th, cand.params["c"]), 1.0)
     else:
         sc = _with_law(scene, cand.params["law"], vn_range[1])
-        f = _evaluate(sc, sample, cand.params["steps"], spin)[0]
+        f = _evaluate(sc, sample, cand.params["steps"], spin, scheme=cand.params.get("scheme", "located"))[0]
     err = float(np.max(np.abs(f - f_ref)))
     return {"points": int(f.size), "max_error": err, "passed": bool(err <= tol), "seed": seed}

@@ -116,12 +116,15 @@ def reference_path(scene: Scene, delta, ux, uy, *, n_across: int = 64):
 
 def read_path_csv(path) -> tuple:
     """Read a path CSV: a header naming the columns delta, ux, uy (any order, other columns ignored,
-    lines starting with # skipped), then one row per step [m]. Returns (delta, ux, uy)."""
+    lines starting with # skipped), then one row per step [m]; UTF-8, with or without a byte-order mark (as
+    spreadsheets write it). Returns (delta, ux, uy)."""
     try:
-        with open(path, newline="") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             rows = [r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")]
     except OSError as e:
         raise InputError(f"cannot read the path CSV {path}: {e.strerror}") from None
+    except UnicodeDecodeError as e:
+        raise InputError(f"the path CSV {path} is not UTF-8 text (byte {e.start}): save it as UTF-8 CSV") from None
     if not rows:
         raise InputError(f"the path CSV {path} is empty: it needs a header delta,ux,uy and one row per step")
     header = [h.strip() for h in rows[0]]
