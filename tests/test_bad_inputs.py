@@ -270,6 +270,8 @@ def test_json_of_a_non_finite_number_is_null_with_a_reason():
     (["advise", "--dt", "1e-6"], "--steps-per-contact"),
     (["path", "--shape", "circle", "--rigid-sphere", "--E", "1e9"], "--E"),
     (["path", "--shape", "circle", "--rigid-wall", "--wall-nu", "0.2"], "--wall-nu"),
+    (["sweep", "--speed", "5", "--vn", "3", "--no-progress"], "--speed"),
+    (["chart", "--stability", "--steps", "5", "--repeats", "1"], "--steps, --repeats"),
 ])
 def test_options_that_cannot_act_are_refused(capsys, args, word):
     rc, out, err = run_cli(capsys, *args)

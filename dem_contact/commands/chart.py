@@ -23,12 +23,12 @@ def add_parser(sub):
     p.add_argument("--full", action="store_true",
                    help="all steps per contact from 5 to 1e4 and 41 values of Theta")
     p.add_argument("--laws", nargs="+", default=None, help="tangential laws (default: all)")
-    p.add_argument("--normals", nargs="+", default=["hertz", "thornton"], choices=["hertz", "thornton"],
+    p.add_argument("--normals", nargs="+", default=None, choices=["hertz", "thornton"],
                    help="normal laws (default: hertz thornton)")
     p.add_argument("--steps", nargs="+", type=float, default=None,
                    help="steps per contact (default 5 20 100 1000; --full: 5 ... 10000)")
     p.add_argument("--n-theta", type=int, default=None, help="number of Theta values (default 11; --full 41)")
-    p.add_argument("--repeats", type=int, default=3, help="timing repeats, best kept (default 3)")
+    p.add_argument("--repeats", type=int, default=None, help="timing repeats, best kept (default 3)")
     p.add_argument("--stability", action="store_true",
                    help="instead: the stability map (every law and integrator end at extreme settings: "
                         "blow-up, energy creation, Coulomb excess, accuracy loss); writes stability.csv/png")
@@ -39,14 +39,23 @@ def run(args) -> int:
     from ..studies import chart
     from ..plots import speed_accuracy_figure
 
+    if args.stability:
+        given = [name for name, v in (("--full", args.full or None), ("--normals", args.normals),
+                                      ("--steps", args.steps), ("--n-theta", args.n_theta),
+                                      ("--repeats", args.repeats)) if v is not None]
+        if given:
+            raise InputError(f"{', '.join(given)} cannot act with --stability (the stability map has its own "
+                             f"settings; it takes --laws)")
     check_output_dir("--out", args.out)
     if args.stability:
         return run_stability(args)
     steps = args.steps or (chart.FULL_STEPS if args.full else chart.DEFAULT_STEPS)
     n_theta = args.n_theta or (41 if args.full else 11)
-    if args.repeats < 1:
+    repeats = 3 if args.repeats is None else args.repeats
+    if repeats < 1:
         raise InputError("--repeats must be >= 1")
-    rows = chart.chart(laws=args.laws, normals=args.normals, steps=steps, n_theta=n_theta, repeats=args.repeats,
+    rows = chart.chart(laws=args.laws, normals=args.normals or ["hertz", "thornton"], steps=steps, n_theta=n_theta,
+                       repeats=repeats,
                        progress=lambda s: print(f"  {s}", file=sys.stderr, flush=True))
     os.makedirs(args.out, exist_ok=True)
     csv_path = os.path.join(args.out, "speed_accuracy.csv")

@@ -18,6 +18,7 @@ from .common import add_scene_options, check_output_file, dump_json, scene_from_
 ORDER = 2
 
 DEFAULT_ANGLES = "0:85:1"
+DEFAULT_VN = 5.0
 MAX_IMPACTS = 100000
 CSV_COLUMNS = ("theta_deg", "vn_i", "vt_i", "Theta", "e_n", "e_t", "f_over_mu", "Psi_r", "Omega_r", "omega_r",
                "rebound_angle_deg", "contact_time", "max_force", "persistent_sliding")
@@ -45,7 +46,7 @@ def add_parser(sub):
                         "sweep_<CASE>.png in the current directory)")
     o.add_argument("--no-plot", action="store_true", help="write no figure")
     o.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, vn=None)        # None: --vn not given (it cannot act with --speed)
 
 
 def parse_angles(text: str) -> np.ndarray:
@@ -82,6 +83,10 @@ def published_key(args):
 
 
 def run(args) -> int:
+    if args.speed is not None and args.vn is not None:
+        raise InputError("give either --vn (fixed normal speed) or --speed (fixed total speed), not both")
+    if args.vn is None:
+        args.vn = DEFAULT_VN
     angles = parse_angles(args.angles)
     if args.steps_per_contact is not None and args.dt is not None:
         raise InputError("give either --steps-per-contact or --dt, not both")
