@@ -34,8 +34,15 @@ then the law acts on the slip increment:
 - ``mdr``, ``mdr_adaptive``: vector MDR, each cell a displacement in the tangent plane with its own
   Coulomb circle (radial return).
 
-Motion in one plane repeats the planar laws (``laws.contact``) to rounding error. The kernels do not check
-their arguments: call ``check_contacts`` once per set of arrays, or ``contact_forces(..., debug=True)``.
+Motion in one plane repeats the planar laws (``laws.contact``) to rounding error.
+
+Checks: ``contact_force`` (and the helpers called from jitted code) check nothing and raise nothing, so a
+user's ``prange`` loop around them runs in parallel (unknown law ids give NaN forces). Called from Python,
+the helpers (``peek_force``, ``reset_contact``, ``swap_bodies``, ``rotate_history``, ``tangential_work``)
+check their arguments; ``contact_forces_batch`` / ``contact_forces_serial`` check what could make the loop
+write outside its arrays, race or compile another variant; ``check_contacts`` and ``contact_forces`` check
+the values too (``debug=True``: a bounds-checked loop). Every parameter row records the laws it was built
+for, and all of these refuse a table used with other law ids. Law ids always come first, (nid, tid).
 """
 import math
 import os
