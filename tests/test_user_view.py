@@ -79,3 +79,15 @@ def test_fixed_speed_sweep_figure_keeps_every_point(tmp_path, monkeypatch):
               for l in f_ax.lines if "Theta_c" in str(l.get_label())}
     assert len(styles) == 3                              # three distinct critical-angle lines
     assert "$\\Theta$" in f_ax.get_xlabel()
+
+
+def test_sweep_reports_show_each_warning_once(capsys):
+    """The text reports of the angle sweeps (sweep, impact3d --angles) carry their impacts' warnings, one
+    line per kind with the number of impacts."""
+    from dem_contact.cli import main
+
+    for args in (["sweep", "--no-plot", "--no-progress"], ["impact3d"]):
+        assert main([*args, "--angles", "0:20:10", "--steps-per-contact", "5"]) == 0
+        out = capsys.readouterr().out
+        coarse = [line for line in out.splitlines() if line.startswith("warning: only 5 steps per contact")]
+        assert len(coarse) == 1 and coarse[0].endswith("(3 of 3 impacts)"), (args, out)

@@ -8,6 +8,7 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
+from ..impacts.sweep import merge_warnings
 from .common import (add_scene_options, check_output_file, dump_json, model_line, print_energy_and_warnings, scene_from_args,
                      time_options)
 from .sweep import parse_angles
@@ -143,4 +144,6 @@ def _print_sweep(args, scene, angles, res) -> int:
               f"{r.out_of_plane_angle_deg:8.3f}")
     print("(_x: across the impact plane; slip angles of the contact-point velocity from the impact plane; "
           "out_deg: rebound velocity out of the plane)")
+    for w in merge_warnings([r.warnings for r in res], len(res)):
+        print(f"warning: {w}")
     return 0
