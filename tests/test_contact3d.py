@@ -197,6 +197,18 @@ def _user_helpers(nid, tid, params, H, Q):
     return f[0], w
 
 
+def test_history_size_has_no_default_cell_count_for_the_mdr_laws():
+    """history_size(nid, tid) of an MDR law would be a row without cells (the kernels would write past it):
+    the cell count is required there; with it the size is the table's."""
+    tab = pair_table([Sphere(1e-3, STEEL)], [Wall(STEEL)], tangential="mdr_adaptive", mdr_springs=12)
+    for tid in (TANGENTIAL_LAWS["mdr"], TANGENTIAL_LAWS["mdr_adaptive"]):
+        with pytest.raises(InputError, match=r"^n_cells = 0: the mdr and mdr_adaptive laws need their cell count"):
+            history_size(tab.normal_id, tid)
+    assert history_size(tab.normal_id, tab.tangential_id, 12) == tab.history_size == 2 + 7 + 2 * 12
+    with pytest.raises(InputError, match=r"^tid = 9 is not a tangential law id"):
+        history_size(0, 9)
+
+
 def test_contact_helpers_check_their_arguments_from_python():
     """Called from Python, the helpers refuse (one-line InputError) what would write outside H, a table of
     other laws, or law ids in the old order of swap_bodies (tid, H, c, nid); from jitted code they are the

@@ -512,7 +512,7 @@ def _check_row(H, c, writes, need=0):
 
 def _check_ids_and_row(nid, tid, H, c, writes):
     nid, tid = _valid_ids(nid, tid)
-    _check_row(H, c, writes, history_size(nid, tid))
+    _check_row(H, c, writes, history_size(nid, tid, 2 if tid in (MDR, MDR_ADAPTIVE) else 0))
     return nid, tid
 
 

@@ -33,6 +33,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..errors import InputError
 from .contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE, MDR,
                       MDR_ADAPTIVE, MINDLIN_INCREMENTAL, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
 
@@ -80,11 +81,15 @@ def tangential_base(nid):
 
 def history_size(nid: int, tid: int, n_cells: int = 0) -> int:
     """Length of a 3D history row for the normal law ``nid`` and the tangential law ``tid``; ``n_cells``:
-    the MDR cell count (params[P_NSPRING]) for mdr and mdr_adaptive."""
-    if nid not in NORMAL_IDS:
-        raise ValueError(f"unknown normal law id {nid}")
-    if tid not in TANGENTIAL_IDS:
-        raise ValueError(f"unknown tangential law id {tid}")
+    the MDR cell count (the largest params[:, P_NSPRING] of the table, >= 2) for mdr and mdr_adaptive,
+    which have no default (``PairTable.history_size`` has it all)."""
+    if isinstance(nid, bool) or nid not in NORMAL_IDS:
+        raise InputError(f"nid = {nid!r} is not a normal law id (valid: {', '.join(map(str, NORMAL_IDS))})")
+    if isinstance(tid, bool) or tid not in TANGENTIAL_IDS:
+        raise InputError(f"tid = {tid!r} is not a tangential law id (valid: {', '.join(map(str, TANGENTIAL_IDS))})")
+    if tid in (MDR, MDR_ADAPTIVE) and not (isinstance(n_cells, (int, np.integer)) and n_cells >= 2):
+        raise InputError(f"n_cells = {n_cells!r}: the mdr and mdr_adaptive laws need their cell count (an integer "
+                         f">= 2, the largest params[:, P_NSPRING] of the table; PairTable.history_size has it)")
     b = 6 if nid == THORNTON else 2
     if tid in (MD, MD_RESCALE):
         return b + N_MD
