@@ -1,5 +1,6 @@
 """3D contact kernels: planar reduction, batch = per-contact, history helpers, objectivity, energy on closed loops,
 checked entry and debug mode, Hertz head-on impact."""
+import dataclasses
 import importlib
 import inspect
 import math
@@ -477,6 +478,14 @@ def test_pair_table_rows_and_validation():
         pair_table(s, walls, mu=np.array([[0.1, 0.3, 0.3, 0.4], [0.2, 0.5, 0.6, 0.7]]))
     with pytest.raises(InputError, match="Sphere"):
         pair_table([STEEL])
+    # a table is consistent with its laws, whoever builds it
+    with pytest.raises(InputError, match=r"^params\[0\] was built for the laws nid = 0, tid = 8 \(hertz \+ "
+                                         r"mdr_adaptive\), not for nid = 1, tid = 8"):
+        dataclasses.replace(tab, normal_id=NORMAL_LAWS["thornton"])
+    with pytest.raises(InputError, match=r"^history_size = 3: the table's laws and rows need at least"):
+        dataclasses.replace(tab, history_size=3)
+    with pytest.raises(InputError, match=r"^wall_row holds rows outside params"):
+        dataclasses.replace(tab, wall_row=tab.wall_row + 5)
 
 
 def test_user_loop_caches_and_calls_the_kernel(tmp_path):

@@ -41,6 +41,23 @@ class PairTable:
     history_size: int
     scenes: tuple = field(repr=False, default=())
 
+    def __post_init__(self):
+        """A table is consistent: its rows record its laws, its history rows fit them, its row indices
+        are rows of params (a table built by hand, or by ``dataclasses.replace``, is checked too)."""
+        from .contact3d import _check_table, _valid_ids
+
+        nid, tid = _valid_ids(self.normal_id, self.tangential_id)
+        need = _check_table(nid, tid, self.params)
+        if isinstance(self.history_size, bool) or not isinstance(self.history_size, (int, np.integer)) \
+                or self.history_size < need:
+            raise InputError(f"history_size = {self.history_size!r}: the table's laws and rows need at least {need}")
+        for name in ("sphere_row", "wall_row"):
+            a = getattr(self, name)
+            if not (isinstance(a, np.ndarray) and a.dtype == np.int64 and a.ndim == 2):
+                raise InputError(f"{name} must be an int64 2D array")
+            if a.size and (a.min() < 0 or a.max() >= len(self.params)):
+                raise InputError(f"{name} holds rows outside params (valid: 0 to {len(self.params) - 1})")
+
     def describe(self) -> list:
         """``Scene.describe()`` of every row."""
         return [s.describe() for s in self.scenes]
