@@ -239,13 +239,28 @@ def _explained(x, path=""):
             yield from _explained(v, f"{path}[{i}]")
 
 
-@pytest.mark.parametrize("args", [
-    ["impact", "--mu", "0", "--vt", "0"],
-    ["impact3d", "--mu", "0", "--vt", "0", "0"],
-    ["impact3d", "--angles", "0:10:10", *QUICK],
-    ["sweep", "--speed", "5", "--angles", "0:60:30", "--no-progress", *QUICK],
-    ["advise", "--vn-range", "1", "3", "--angle-range", "0", "40"],     # a fit that never reaches 1 (inf)
-], ids=["impact", "impact3d", "impact3d-sweep", "sweep", "advise"])
+JSON_RUNS = {
+    "impact": ["impact", "--mu", "0", "--vt", "0"],
+    "impact3d": ["impact3d", "--mu", "0", "--vt", "0", "0"],
+    "impact3d-sweep": ["impact3d", "--angles", "0:10:10", *QUICK],
+    "sweep": ["sweep", "--speed", "5", "--angles", "0:60:30", "--no-progress", *QUICK],
+    "advise": ["advise", "--vn-range", "1", "3", "--angle-range", "0", "40"],     # a fit that never reaches 1
+    "path": ["path", "--shape", "circle", "--steps", "10"],
+    "benchmark": ["benchmark", "chung-ooi", "--test", "1"],
+}
+
+
+def test_every_json_option_is_run_below():
+    import argparse
+
+    from dem_contact.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    with_json = {cmd for cmd, p in sub.choices.items() for a in p._actions if "--json" in a.option_strings}
+    assert with_json == {args[0] for args in JSON_RUNS.values()}
+
+
+@pytest.mark.parametrize("args", list(JSON_RUNS.values()), ids=list(JSON_RUNS))
 def test_json_is_strict_and_every_null_has_a_reason(capsys, args):
     rc, out, err = run_cli(capsys, *args, "--json")
     assert rc == 0, err

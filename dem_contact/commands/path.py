@@ -1,13 +1,12 @@
 """``dem-contact path``: the forces of a contact law along a prescribed loading path."""
 from __future__ import annotations
 
-import json
 import math
 
 from ..errors import InputError
 from ..laws.model import TANGENTIAL_LAWS
 from ..materials import STEEL
-from .common import check_output_file
+from .common import check_output_file, dump_json
 
 ORDER = 6
 
@@ -139,9 +138,8 @@ def run(args) -> int:
         title = (f"{args.shape} path" if named else args.path_csv) + f": {law}, mu = {scene.mu:g}"
         path_figure(delta, ux, uy, N, Tx, Ty, scene.mu, args.plot, title=title)
     if args.json:
-        print(json.dumps({"N": [float(x) + 0.0 for x in N], "Tx": [float(x) + 0.0 for x in Tx],
-                          "Ty": [float(x) + 0.0 for x in Ty],
-                          "law": law, "model": scene.describe()}, allow_nan=False))
+        print(dump_json({"N": [float(x) + 0.0 for x in N], "Tx": [float(x) + 0.0 for x in Tx],
+                         "Ty": [float(x) + 0.0 for x in Ty], "law": law, "model": scene.describe()}))
         return 0
     print(f"# {law}; mu = {scene.mu:g}, kappa = {scene.pair.kappa:.4f}; {len(N)} rows; forces on body 1 [N]")
     print("N,Tx,Ty")
