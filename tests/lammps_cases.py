@@ -10,7 +10,8 @@ Scenes (R = 1 mm spheres, hertz + mindlin_total without the frame spin, which is
 - hold: a sphere dropped with spin onto a base sphere held by ``fix freeze`` or ``fix setforce 0 0 0``
   (defined after attaching the bridge; defined before, the bridge refuses it);
 - split: a pressed pair sliding under prescribed motion (fix move) that comes to be split between the
-  ranks by a restart written on one rank, ``balance``, ``fix balance`` or ``displace_atoms``;
+  ranks by a restart written on one rank (between runs, or during a run by the ``restart`` command, which
+  two ranks refuse), ``balance``, ``fix balance`` or ``displace_atoms``;
 - images: periodic y of 1.95 diameters: atom 1 touches atom 2 and atom 2's periodic image, while atom 1
   spins and atom 2 slides (4 runs);
 - wrap: a pressed spinning pair in runs of 10 steps while a far atom leaves the periodic box during the
@@ -26,7 +27,7 @@ import numpy as np
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import LammpsContacts, new_lammps
-from dem_contact.lammps.bridge import FixOrderError
+from dem_contact.lammps.bridge import FixOrderError, StaleHistoryError
 from dem_contact.materials import Material, Sphere
 
 R = 1e-3
@@ -151,21 +152,34 @@ def split(how, restart):
             bridge.run(250)
             rows.append((gather(lmp, "f"), gather(lmp, "x")))
 
-    if how == "restart":
-        # the run before the restart on one rank (the pair straddles x = 0, the face between two ranks)
+    raised = None
+    if how.startswith("restart"):
+        # the run before the restart on one rank (the pair straddles x = 0, the face between two ranks):
+        # write_restart between runs, or the restart command during a run
+        restart += ".mid" if how == "restart during a run" else ""
         if ranks == 1:
             dt = box(lmp, (-0.004, -0.002, -0.002), (0.004, 0.002, 0.004))
             pair_at(lmp, -0.3e-3, dt)
             bridge = LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
-            record(bridge, 1500)
-            lmp.command(f"write_restart {restart}")
+            if how == "restart":
+                record(bridge, 1500)
+                lmp.command(f"write_restart {restart}")
+            else:
+                lmp.command(f"restart 1500 {restart}")
+                bridge.run(1600)
             lmp.close()
             lmp = new_lammps()
-        for c in (f"read_restart {restart}", "timestep 1e-6", "fix m1 a1 move linear 0 0 0", "fix m2 a2 move linear 0 0.002 0"):
+        if how == "restart during a run":
+            restart += ".1500"              # (the restart command's file of step 1500)
+        for c in (f"read_restart {restart}", "timestep 1e-6", "fix m1 a1 move linear 0 0 0",
+                  "fix m2 a2 move linear 0 0.002 0"):
             lmp.command(c)
         bridge = LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
         rows = []
-        record(bridge, 1500)
+        try:
+            record(bridge, 1500)
+        except StaleHistoryError as e:
+            raised = str(e)             # (on every rank)
     else:
         dt = box(lmp, (-0.004, -0.002, -0.002), (0.004, 0.002, 0.004))
         pair_at(lmp, -1.3e-3, dt)         # both atoms on rank 0, 0.7 mm from x = 0 (two skins: 0.6 mm)
@@ -183,7 +197,8 @@ def split(how, restart):
             moves(lmp)
         record(bridge, 1500)
     nloc = [lmp.extract_setting("nlocal")]
-    out = {"f": [r[0] for r in rows], "x": [r[1] for r in rows], "ranks": ranks, "nlocal_rank0": nloc[0]}
+    out = {"f": [r[0] for r in rows], "x": [r[1] for r in rows], "ranks": ranks, "nlocal_rank0": nloc[0],
+           "raised": raised}
     lmp.close()
     return out
 
@@ -296,7 +311,7 @@ def main():
     res["hold"] = {how: {"ours": hold(how, True), "refused": hold(how, True, before=True)["refused"]}
                    for how in ("freeze", "setforce")}
     res["split"] = {how: split(how, os.path.join(OUT, "split.restart"))
-                    for how in ("restart", "balance", "fix balance", "displace")}
+                    for how in ("restart", "restart during a run", "balance", "fix balance", "displace")}
     res["images"] = {"ours": images("ours")}
     res["wrap"] = {"pieces": wrap_pair([10, 10]), "one": wrap_pair([20]),
                    "gas_pieces": gas([100] * 10), "gas_one": gas([1000])}

@@ -539,6 +539,20 @@ def test_a_contact_split_between_ranks_keeps_its_history(cases, ranks, how):
 
 
 @pytest.mark.parametrize("ranks", RANKS)
+def test_a_restart_written_during_a_run_is_refused_where_a_history_copy_is_out_of_date(cases, ranks):
+    """The restart command writes its files during a run, when the second copy of a history (kept by the
+    higher atom id of a pair on one rank) may be out of date: read on the grid it was written on, the run
+    is that of a restart written between runs (the one-rank rows); read on two ranks, which split the pair,
+    it is refused on every rank, with what to do."""
+    out = cases[ranks]["split"]["restart during a run"]
+    if ranks == 1:
+        assert out["raised"] is None
+        assert _max_rel(out["f"], cases[1]["split"]["restart"]["f"]) < 1e-12
+    else:
+        assert "out-of-date copy" in out["raised"] and "write_restart" in out["raised"]
+
+
+@pytest.mark.parametrize("ranks", RANKS)
 def test_each_periodic_image_of_a_partner_is_its_own_contact(cases, ranks):
     """A box periodic in y and 1.95 diameters wide: atom 1 touches atom 2 and atom 2's image, spins and is
     slid past by it. Run in 4 pieces (each set-up finds the histories again), forces and torques are LAMMPS's
@@ -574,3 +588,25 @@ def test_a_velocity_set_between_runs_is_in_the_set_up_forces(cases, ranks):
     for key in ("v", "omega", "x"):
         assert _max_rel(cont[key], fresh[key]) < 1e-12
     assert _max_rel(cont["v"], cases[1]["velocity"]["restarted"]["v"]) < 1e-9
+
+
+def test_atoms_renumbered_between_runs_are_refused():
+    """The histories are kept by the partner's atom id: after reset_atoms id has renumbered a pair in
+    contact (an atom with a lower id deleted), the next run is refused instead of losing them or giving
+    them to other contacts."""
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+              "create_atoms 1 single 0.008 0.008 0.008", "create_atoms 1 single 0 0 0",
+              "create_atoms 1 single 0 0 0.0019", "set type 1 diameter 2e-3", f"set type 1 density {GLASS.rho!r}",
+              "timestep 1e-7", "fix nve all nve/sphere"):
+        lmp.command(c)
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    bridge.run(10)
+    assert bridge.stats()["pair_contacts"] == 1
+    lmp.command("group far id 1")
+    lmp.command("delete_atoms group far")
+    lmp.command("reset_atoms id")
+    with pytest.raises(InputError, match="reset_atoms id"):
+        bridge.run(10)
+    lmp.close()

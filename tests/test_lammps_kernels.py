@@ -48,11 +48,12 @@ def _bridge_step(S, g, step, all_atoms, save):
     from dem_contact.dem.contact3d import contact_forces_serial
     t = g["table"]
     buf = S["buf"]
-    m, nt = K.gather_contacts(
+    m, nt, stale = K.gather_contacts(
         g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["tag"], g["typ"], g["walls"],
         g["wall_mat"], *g["cand"], S["cand_rows"], S["keys"], S["sep"], np.inf, S["H"], t.normal_id, t.sphere_row, t.wall_row,
         g["dt"], True, S["rebuilt"], True, S["stat"], S["used"], g["near"], all_atoms, S["prev"], S["n_prev"],
         S["touched"], *buf[:10])
+    assert stale == 0
     _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = buf
     contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], S["H"], normals[:m], overlaps[:m],
                           vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m])
@@ -85,7 +86,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
              wall_mat=np.zeros(1, dtype=np.int64), dt=2e-6, near=np.zeros(n, dtype=np.bool_))
 
     def state():
-        return dict(keys=np.zeros((n, slots)), sep=np.zeros((n, 3 * slots)), H=np.zeros((n * slots, table.history_size)),
+        return dict(keys=np.zeros((n, slots)), sep=np.zeros((n, 4 * slots)), H=np.zeros((n * slots, table.history_size)),
                     stat=np.zeros((n, K.N_STAT)), saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
                     acc=np.zeros((n, 7)), prev=np.zeros(n, dtype=np.int64),
                     touched=np.zeros(n, dtype=np.int64), n_prev=0, f=np.zeros((n, 3)), torque=np.zeros((n, 3)),

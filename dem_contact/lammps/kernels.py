@@ -4,8 +4,9 @@ the kernels take numpy views of LAMMPS's per-atom arrays.
 
 History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
 ``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
-rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), and the separation of each
-contact when its row was last matched, ``sep`` (nmax, 3 slots), in one array, and the rows in another,
+rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), and for each row the separation
+of its contact when it was last matched and a mark of an out-of-date second copy (see below), ``sep``
+(nmax, 4 slots), in one array, and the rows in another,
 viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
 partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. A contact is the partner and the
 periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
@@ -32,8 +33,11 @@ cross (``near_boundary``), so that an atom that moves to another rank takes a cu
 bridge has every second copy rewritten at the last step of each run and at every step of a run in which
 atoms can change rank otherwise (subdomains that move), so that a pair split between ranks between runs
 (a restart read on other ranks, ``balance``, ``displace_atoms``) or by a rebalancing finds two current
-copies. (Across a periodic boundary the ghost position is x + L, rounded: there the two sides agree to
-rounding error only.)
+copies. A second copy not rewritten at every step is marked out of date (at the rebuild that stops its
+rewriting) until the run's last step rewrites it: a contact that would read a marked row as its only
+copy (its atom changed rank in a way the bridge did not follow, as after a restart file written during
+a run and read on other ranks) is counted, and the bridge refuses it. (Across a periodic boundary the
+ghost position is x + L, rounded: there the two sides agree to rounding error only.)
 
 Kinematics follow LAMMPS's granular models (``pair granular``, ``fix wall/gran``): the slip velocity
 uses the full radii, v = v1 - v2 + (R1 w1 + R2 w2) x n; the torque arm is R - delta/2 for a sphere pair
@@ -62,7 +66,8 @@ SF_V = 11
 SF_W = 14
 SF_M = 17
 SF_T = 18
-N_SAVED = 19
+SF_ID = 19       # the atom's id at the end of the last run (0: none yet), which its partners' keys name
+N_SAVED = 20
 
 # per-rank summary returned by scatter_contacts
 R_PAIRS = 0      # sphere-sphere contacts evaluated on this rank
@@ -73,8 +78,9 @@ N_SUMMARY = 4
 
 
 def atom_columns(slots: int) -> int:
-    """Columns of the per-atom array before the statistics: the keys (slots) and the separations (3 slots)."""
-    return 4 * slots
+    """Columns of the per-atom array before the statistics: the keys (slots), then the separations and
+    out-of-date marks (4 slots)."""
+    return 5 * slots
 
 
 @njit(cache=True)
@@ -309,9 +315,9 @@ def _find_row(keys, sep, i, key, dx, dy, dz, tol2):
         if keys[i, s] == key:
             if key < 0.0:
                 return s
-            ex = sep[i, 3 * s] - dx
-            ey = sep[i, 3 * s + 1] - dy
-            ez = sep[i, 3 * s + 2] - dz
+            ex = sep[i, 4 * s] - dx
+            ey = sep[i, 4 * s + 1] - dy
+            ez = sep[i, 4 * s + 2] - dz
             d2 = ex * ex + ey * ey + ez * ez
             if d2 < tol2:
                 best = s
@@ -321,9 +327,9 @@ def _find_row(keys, sep, i, key, dx, dy, dz, tol2):
 
 @njit(inline="always", cache=True)
 def _store_sep(sep, i, s, dx, dy, dz):
-    sep[i, 3 * s] = dx
-    sep[i, 3 * s + 1] = dy
-    sep[i, 3 * s + 2] = dz
+    sep[i, 4 * s] = dx
+    sep[i, 4 * s + 1] = dy
+    sep[i, 4 * s + 2] = dz
 
 
 @njit(cache=True)
@@ -394,8 +400,9 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     wall_row; cand, cand_walls: the Verlet lists (``candidates``); cand_rows: int64[len(cand) +
     len(cand_walls), 2] the history slots of both atoms of each candidate found at earlier steps (-1: none;
     all -1 when the lists were rebuilt): a continuing contact finds its rows without a search; keys:
-    float64[nmax, slots], sep: float64[nmax, 3 slots] (the separation stored with each row, see the
-    module's docstring; written when a row is taken or found by key, if ``advance``), sep_tol2: the square
+    float64[nmax, slots], sep: float64[nmax, 4 slots] (the separation stored with each row and the
+    out-of-date mark of a second copy, see the module's docstring; written when a row is taken or found by
+    key, if ``advance``; the bridge clears the marks when it has every second copy rewritten), sep_tol2: the square
     of half the shortest period of the box (inf if none); H: float64[nmax * slots, history_size] histories; params rows: sphere_row,
     wall_row; dt [s]; advance: False at LAMMPS's set-up call (nothing is advanced: rows are neither freed
     nor taken); rebuilt: the lists were rebuilt since the last step (the rows of every local atom that no
@@ -420,7 +427,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     the inputs of the law; work int64[:, 3] scratch. When ``advance``, every contact has its rows, hrow ==
     src, and the history to advance is in row src (copied there from the other copy when that was the
     one found): the law advances H in place (``history_rows=src``). Returns (m, the number of
-    atoms in touched). A contact for which an atom
+    atoms in touched, the number of contacts whose history read is a second copy marked out of date). A contact for which an atom
     has no free history row is left out (no force; counted in ST_NEED, so the run stops at the next check).
     """
     hs = H.shape[1]
@@ -443,6 +450,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
     left_out = 0        # contacts with no free history row
     ended = 0           # candidates whose contact ended (work[:ended, 2])
+    stale = 0           # contacts whose history read is a second copy marked out of date
     for c in range(npc + nwc):
         dx = dy = dz = r2 = rs = delta = nx = ny = nz = 0.0
         w = -1
@@ -596,6 +604,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             h_read = i * slots + ri
         elif rj >= 0:
             h_read = j * slots + rj
+        if h_read >= 0 and sep[h_read // slots, 4 * (h_read % slots) + 3] != 0.0:
+            stale += 1
         if advance:
             fi = ri if ri >= 0 else _free_row(keys, i)
             fj = (rj if rj >= 0 else _free_row(keys, j)) if local_j else -1
@@ -605,6 +615,9 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 continue
             keys[i, fi] = key_i
             cand_rows[c, 0] = ri = fi
+            sep[i, 4 * fi + 3] = 0.0
+            if local_j:
+                sep[j, 4 * fj + 3] = 0.0
             if j >= 0:
                 # (the separation that tells this contact from one with another image of the partner)
                 dx, dy, dz, _, _ = _separation(x, radius, i, j)
@@ -616,6 +629,10 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 cand_rows[c, 1] = rj = fj
         if ri >= 0 and (not local_j or rj >= 0):
             src[n_], dst[n_] = _copies(i, j, ri, rj, tag, slots, local_j, near)
+            if advance and local_j:
+                # the second copy (the higher id's) is out of date from now on unless rewritten every step
+                hi, rh = (j, rj) if tag[i] < tag[j] else (i, ri)
+                sep[hi, 4 * rh + 3] = 1.0 if dst[n_] < 0 else 0.0
         else:
             src[n_] = dst[n_] = -1         # set-up call, a new contact: evaluated, nothing kept
         if advance and h_read != src[n_]:
@@ -659,7 +676,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             kick = 0.5 * dt * (H[hrow[k], V_N] if hrow[k] >= 0 else 0.0) * inv_m
             for d in range(3):
                 velocities[k, d] -= kick * normals[k, d]
-    return n, nt
+    return n, nt, stale
 
 
 @njit(cache=True)
