@@ -368,3 +368,15 @@ def test_readme_benchmark_usage_parses():
     assert filled.count("--test") == 2            # the README shows how to ask for several tests
     args = build_parser().parse_args(["benchmark", "chung-ooi", *filled])
     assert args.test == [1, 1]
+
+
+def test_chart_csv_with_byte_order_mark(tmp_path):
+    """The package's own CSVs read back after a spreadsheet saved them with a byte-order mark."""
+    from dem_contact.studies import chart
+
+    rows = [chart.ChartRow("hertz", "md", "located", 20.0, 0.1, 0.2, 0.3, 1e-4, 0.05, 0.05, 1.5)]
+    chart.write_csv(rows, tmp_path / "c.csv")
+    text = (tmp_path / "c.csv").read_text()
+    (tmp_path / "bom.csv").write_text(text, encoding="utf-8-sig")
+    back = chart.read_csv(tmp_path / "bom.csv")
+    assert [r.tangential for r in back] == ["md"] and back[0].err_f_over_mu == 0.1

@@ -195,7 +195,7 @@ def write_csv(rows, path):
 
 def read_csv(path) -> list:
     rows = []
-    with open(path) as fh:
+    with open(path, newline="", encoding="utf-8-sig") as fh:   # BOM accepted
         for d in csv.DictReader(fh):
             rows.append(ChartRow(d["normal"], d["tangential"], d["scheme"], float(d["steps_per_contact"]),
                                  *(float(d[k]) for k in ("err_f_over_mu", "err_e_t", "err_Omega_r", "err_e_n",

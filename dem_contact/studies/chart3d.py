@@ -86,7 +86,7 @@ def read_reference(path):
     """(paths, forces, n_across) from ``write_reference``'s CSV."""
     rows = {}
     n_across = None
-    with open(path) as fh:
+    with open(path, newline="", encoding="utf-8-sig") as fh:   # BOM accepted
         for r in csv.DictReader(fh):
             rows.setdefault(r["path"], []).append([float(r[k]) for k in ("delta", "ux", "uy", "N", "Tx", "Ty")])
             n_across = int(r["n_across"])

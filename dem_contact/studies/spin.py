@@ -168,7 +168,7 @@ def read_bem_spin_reference(path) -> list:
     """``bem_spin_reference`` cases from ``write_rows``'s CSV."""
     import csv
 
-    with open(path) as fh:
+    with open(path, newline="", encoding="utf-8-sig") as fh:   # BOM accepted
         return [BEMSpinCase(*(int(d[k]) if k in ("n_across", "steps") else float(d[k])
                               for k in BEMSpinCase.__dataclass_fields__)) for d in csv.DictReader(fh)]
 
