@@ -99,9 +99,11 @@ class ImpactResult:
     energy_created: the tangential law did negative work at some time (a passive law cannot);
     energy_gained: the final kinetic energy exceeds the initial one beyond rounding (KE_ROUNDING_TOL),
     whatever the cause (the works of the normal and tangential forces are in ``energy``). Both are also
-    in ``warnings``, with an impulse ratio |f| > mu, an energy-balance error above ENERGY_BALANCE_TOL and a
-    contact beyond the laws' range of validity (a > VALIDITY_A_OVER_R R*). NaN marks what is undefined:
-    e_t at vt = 0 (|vt| < 1e-100 vn); f/mu, Theta, Psi_r, Omega_i, Omega_r at mu = 0.
+    in ``warnings``, with an impulse ratio |f| > mu, an energy-balance error above ENERGY_BALANCE_TOL, a
+    contact beyond the laws' range of validity (a > VALIDITY_A_OVER_R R*) and an e_n that misses the target
+    of its calibration (CALIBRATION_RTOL). An e_n outside [0, 1 + E_N_EXCESS_TOL] is never returned: the
+    impact raises NumericalError. NaN marks what is undefined: e_t at vt = 0 (|vt| < 1e-100 vn); f/mu,
+    Theta, Psi_r, Omega_i, Omega_r at mu = 0 (``to_dict`` gives None and the reason).
     """
 
     vn_i: float
@@ -315,6 +317,10 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     DEFAULT_STEPS_PER_CONTACT) or an explicit ``dt`` [s]. scheme: "located" (separation located inside
     the last step) or "standard" (the contact ends at the first step without overlap, as in LIGGGHTS and
     LAMMPS). series: also return the time histories.
+
+    Raises InputError for invalid input and NumericalError when the integration fails: no separation, a
+    non-finite state, or an e_n that no passive normal law gives (a contact that ends while the bodies
+    still approach, or e_n above 1 by more than E_N_EXCESS_TOL: a time step too coarse for the laws).
     """
     if not isinstance(scene, Scene):
         raise InputError(f"scene must be a Scene, got {type(scene).__name__}")

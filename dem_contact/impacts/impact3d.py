@@ -269,6 +269,10 @@ class Impact3DResult:
     and rebound slip in the tangent plane, from e1 towards e2; rebound_angle_deg: angle of the rebound
     centre velocity from the normal in the impact plane; out_of_plane_angle_deg: angle of the rebound
     centre velocity out of the impact plane.
+
+    Checks as ``ImpactResult``: energy_created, energy_gained and the warnings (|f| > mu with the whole
+    tangential impulse, energy balance, range of validity, calibration, coarse steps); an e_n outside
+    [0, 1 + E_N_EXCESS_TOL] raises NumericalError.
     """
 
     vn_i: float
