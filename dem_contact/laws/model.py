@@ -18,7 +18,7 @@ from . import closed_forms as cf
 from . import contact as C
 from .normal_impact import normal_impact
 from .slots import (N_HIST_BASE, N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT,
-                         P_MDR_PROFILE, P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW,
+                    P_MDR_PROFILE, P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW,
                     P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 
 NORMAL_LAWS = MappingProxyType({
@@ -76,9 +76,10 @@ MDR_PROFILES = MappingProxyType({"truncated": 0.0, "scaled": 1.0})
 #: tangential law. Their time step is not given in terms we can reproduce; it is assumed fine enough for
 #: converged results: 1000 steps per elastic contact time, where md is within 1e-3 of its converged f/mu.
 MODELS = MappingProxyType({
-    "thornton2001": MappingProxyType(dict(normal="thornton", normal_elastic="hertz", tangential="md", steps_per_contact=1000.0,
-                         source="Thornton et al. (2001), Contact mechanics and coefficients of restitution, "
-                                "in Granular Gases (Lecture Notes in Physics 564): thornton + md")),
+    "thornton2001": MappingProxyType(dict(
+        normal="thornton", normal_elastic="hertz", tangential="md", steps_per_contact=1000.0,
+        source="Thornton et al. (2001), Contact mechanics and coefficients of restitution, "
+               "in Granular Gases (Lecture Notes in Physics 564): thornton + md")),
 })
 
 #: Largest friction coefficient accepted (the failure map runs to 1e4).
