@@ -610,3 +610,16 @@ def test_atoms_renumbered_between_runs_are_refused():
     with pytest.raises(InputError, match="reset_atoms id"):
         bridge.run(10)
     lmp.close()
+
+
+def test_refuses_a_periodic_box_in_which_a_sphere_touches_its_own_image():
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary p f f", "atom_modify map array",
+              "region box block 0 0.0019 -0.01 0.01 -0.01 0.01", "create_box 1 box", "create_atoms 1 single 0.001 0 0",
+              "set type 1 diameter 2e-3", f"set type 1 density {GLASS.rho!r}", "timestep 1e-7",
+              "fix nve all nve/sphere"):
+        lmp.command(c)
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    with pytest.raises(InputError, match="its own image"):
+        bridge.run(1)
+    lmp.close()

