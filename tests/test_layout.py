@@ -1,5 +1,6 @@
 """The package's rooms and the direction of their imports: laws <- impacts <- studies <- commands, with
-rebound/ (pure functions of numbers) and dem/ (what DEM codes call) beside them."""
+rebound/ (pure functions of numbers) and dem/ (what DEM codes call) beside them; kernel_cache (numba's cache
+locators) below everything, set up first by the package's __init__."""
 import ast
 import importlib
 import pathlib
@@ -12,6 +13,7 @@ PKG = pathlib.Path(dem_contact.__file__).parent
 #: What each room may import from the package (besides itself). Lazy imports inside functions count too.
 ALLOWED = {
     "errors": set(),
+    "kernel_cache": set(),
     "materials": {"errors"},
     "laws": {"errors", "materials"},
     "rebound": {"errors"},
@@ -23,7 +25,7 @@ ALLOWED = {
     "lammps": {"errors", "materials", "laws", "dem"},
     "commands": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "studies", "dem"},
     "cli": {"errors", "commands"},
-    "__init__": {"errors", "materials", "laws", "impacts"},
+    "__init__": {"kernel_cache", "errors", "materials", "laws", "impacts"},
     "__main__": {"cli"},
 }
 
