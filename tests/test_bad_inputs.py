@@ -380,3 +380,14 @@ def test_chart_csv_with_byte_order_mark(tmp_path):
     (tmp_path / "bom.csv").write_text(text, encoding="utf-8-sig")
     back = chart.read_csv(tmp_path / "bom.csv")
     assert [r.tangential for r in back] == ["md"] and back[0].err_f_over_mu == 0.1
+
+
+def test_csv_outputs_hold_no_nan(capsys, tmp_path):
+    """Undefined quantities are empty cells in every CSV a command writes (sweep, impact3d --angles)."""
+    for args in (["sweep", "--no-progress", "--no-plot", "--angles", "0:20:20", *QUICK],
+                 ["impact3d", "--mu", "0", "--angles", "0:20:20", *QUICK]):
+        csv_path = tmp_path / f"{args[0]}.csv"
+        rc, out, err = run_cli(capsys, *args, "--csv", str(csv_path))
+        assert rc == 0, err
+        text = csv_path.read_text().lower()
+        assert "nan" not in text and "inf" not in text and ",," in text     # (e_t at 0 deg is undefined)

@@ -117,9 +117,12 @@ def _num(x: float, width: int = 0) -> str:
 
 
 def _row(theta, r) -> dict:
+    """One CSV row; an undefined quantity (NaN: e_t at vt = 0, the groups at mu = 0) is an empty cell, as in
+    the CSV of ``sweep``."""
     d = {"theta_deg": float(theta)}
     for c in COLUMNS[1:]:
-        d[c] = getattr(r, c)
+        v = getattr(r, c)
+        d[c] = "" if v != v else v
     return d
 
 

@@ -423,7 +423,10 @@ def derived_arrays(scene, out, vn, vt, spin, spin2, spc) -> dict:
                   | (np.sqrt(dmax / scene.pair.R_star) > VALIDITY_A_OVER_R) | (spc < 10))
         c = scene_constants(scene)
         if c.e_target is not None:
-            warned |= np.abs(e_n - c.e_target) > c.e_tol
+            miss = np.abs(e_n - c.e_target) > c.e_tol
+            if c.e_target_vn is not None:           # a calibration that holds at one speed only
+                miss &= np.abs(vn - c.e_target_vn) <= 1e-9 * vn
+            warned |= miss
         if mu > 0:
             warned |= np.abs(f) > mu * (1.0 + 1e-9)
         theta_deg = np.degrees(np.arctan2(vt, vn))
