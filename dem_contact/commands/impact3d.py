@@ -9,8 +9,8 @@ import warnings
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
 from ..impacts.sweep import merge_warnings
-from .common import (add_scene_options, check_output_file, dump_json, model_line, print_energy_and_warnings, scene_from_args,
-                     time_options)
+from .common import (add_scene_options, check_output_file, dump_json, model_line, print_energy_and_warnings,
+                     scene_from_args, time_options)
 from .sweep import parse_angles
 
 ORDER = 2
