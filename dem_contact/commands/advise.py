@@ -1,6 +1,7 @@
 """``dem-contact advise``: the cheapest model of the rebound that meets a tolerance, from measured data."""
 from __future__ import annotations
 
+import argparse
 import math
 
 from ..errors import InputError
@@ -20,8 +21,12 @@ def add_parser(sub):
                                    "step as a candidate; --scheme sets the integrator end of the law "
                                    "candidates.")
     add_scene_options(p)
-    # options of one impact that advise takes otherwise: None marks "not given" (see run)
+    # options of one impact that advise takes otherwise: None marks "not given" (see run); --vn and --dt
+    # cannot act (refused in run) and are not listed in the help
     p.set_defaults(vn=None, dt=None, scheme=None)
+    for a in p._actions:
+        if a.dest in ("vn", "dt"):
+            a.help = argparse.SUPPRESS
     p.add_argument("--vn-range", nargs=2, type=float, default=[1.0, 5.0], metavar=("MIN", "MAX"),
                    help="normal speed range [m/s] (default 1 5)")
     p.add_argument("--angle-range", nargs=2, type=float, default=[0.0, 60.0], metavar=("MIN", "MAX"),
