@@ -4,7 +4,8 @@ from __future__ import annotations
 import warnings
 
 from ..errors import InputError
-from ..impacts.impact import impact
+from ..impacts.impact import impact, scene_constants
+from ..impacts.sweep import compile_notice
 from .common import (add_scene_options, angle_to_vt, dump_json, model_line, print_energy_and_warnings,
                      scene_from_args, time_options)
 
@@ -35,6 +36,8 @@ def run(args) -> int:
         raise InputError("give either --vt or --angle, not both")
     scene = scene_from_args(args)
     vt = args.vt if args.vt is not None else angle_to_vt(args.vn, 20.0 if args.angle is None else args.angle)
+    with compile_notice():
+        scene_constants(scene)      # loads the integrator of the scene's laws from numba's cache, or compiles it
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the warnings are reported in the result
         r = impact(scene, args.vn, vt, args.spin, series=args.series, **time_options(args))
