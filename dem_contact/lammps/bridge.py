@@ -147,6 +147,10 @@ FIXES_MOVING_SUBDOMAINS = frozenset("""
     """.split())
 
 
+def _by(x):
+    return "more than the tolerance (on another rank)" if x == math.inf else f"{x:.3g}"
+
+
 class FixOrderError(InputError):
     """A fix that reads or overwrites the total force is defined before the bridge's contact forces."""
 
@@ -346,15 +350,20 @@ class LammpsContacts:
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
-        self.col_stat = K.atom_columns(self.slots)      # keys, then separations and marks
-        self.ncols = self.col_stat + K.N_STAT + K.N_SAVED
-        self.col_saved = self.col_stat + K.N_STAT
+        # per-atom arrays: d2_<prefix> the keys and the statistics (read at every step: kept narrow),
+        # d2_<prefix>s the separations and marks of the rows and the saved forces (rebuilds, set-ups, run
+        # ends), d2_<prefix>h the histories
+        self.col_stat = K.atom_columns(self.slots)
+        self.ncols = self.col_stat + K.N_STAT
+        self.col_saved = 4 * self.slots
+        self.ncols_side = self.col_saved + K.N_SAVED
         p = prefix
         for cmd in (
             f"neighbor {self.skin!r} bin",
             "neigh_modify delay 0 every 1 check yes",
             f"comm_modify vel yes cutoff {self.ghost_cutoff!r}",
             f"fix {p}_data all property/atom d2_{p} {self.ncols} ghost no",
+            f"fix {p}_side all property/atom d2_{p}s {self.ncols_side} ghost no",
             f"fix {p}_hist all property/atom d2_{p}h {self.slots * self.hs} ghost no",
         ):
             lmp.command(cmd)
@@ -430,18 +439,26 @@ class LammpsContacts:
             m_err = np.abs(mass / self.masses[typ - 1] - 1.0)
         else:
             r_err = m_err = np.zeros(0)
-        last_id = self._data()[:nlocal, self.col_saved + K.SF_ID]
+        last_id = self._side()[:nlocal, self.col_saved + K.SF_ID]
         renumbered = ((last_id != 0.0) & (last_id != ids)).astype(float)
-        worst = self._global_max([r_err, m_err, renumbered])
+        worst = [float(a.max()) if nlocal else 0.0 for a in (r_err, m_err, renumbered)]
+        # (which check fails anywhere: an MPI reduction of three flags; the values of another rank are not
+        # needed to say what is wrong; without MPICH, LAMMPS's own reduction of the per-atom values)
+        told = [max_rank(lmp, int(w > tol)) for w, tol in zip(worst, (SIZE_TOL, SIZE_TOL, 0.0))]
+        if None in told:
+            worst = self._global_max([r_err, m_err, renumbered])
+        else:
+            worst = [w if w > tol else (math.inf if t else 0.0)
+                     for w, t, tol in zip(worst, told, (SIZE_TOL, SIZE_TOL, 0.0))]
         if worst[2] > 0.0:
             raise InputError("atom ids changed since the last run (reset_atoms id?): the contact histories are "
                              "kept by the partner's atom id, so they would be lost or given to other contacts; "
                              "renumber the atoms before attaching the bridge, or not at all")
         if worst[0] > SIZE_TOL:
-            raise InputError(f"an atom's radius differs from its type's Sphere radius by {worst[0]:.3g} "
+            raise InputError(f"an atom's radius differs from its type's Sphere radius by {_by(worst[0])} "
                              f"(relative): set the diameter of type k to 2 spheres[k - 1].radius")
         if worst[1] > SIZE_TOL:
-            raise InputError(f"an atom's mass differs from its type's Sphere mass by {worst[1]:.3g} "
+            raise InputError(f"an atom's mass differs from its type's Sphere mass by {_by(worst[1])} "
                              f"(relative): set the density of type k to that of spheres[k - 1]")
         g = lmp.extract_global
         for d, lo, hi, periodic in zip("xyz", g("boxlo"), g("boxhi"), g("periodicity")):
@@ -511,11 +528,11 @@ class LammpsContacts:
             # spins after the step's final integration (the callback saw those of its half-step)
             nlocal = self.lmp.extract_setting("nlocal")
             ex = self.lmp.numpy.extract_atom
-            saved = self._data()[:nlocal, self.col_saved:self.col_saved + K.N_SAVED]
+            saved = self._side()[:nlocal, self.col_saved:self.col_saved + K.N_SAVED]
             saved[:, K.SF_V:K.SF_V + 3] = ex("v")[:nlocal]
             saved[:, K.SF_W:K.SF_W + 3] = ex("omega")[:nlocal]
         nlocal = self.lmp.extract_setting("nlocal")
-        self._data()[:nlocal, self.col_saved + K.SF_ID] = self.lmp.numpy.extract_atom("id")[:nlocal]
+        self._side()[:nlocal, self.col_saved + K.SF_ID] = self.lmp.numpy.extract_atom("id")[:nlocal]
         error, self._error = self._error, None
         # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
         kind = max_rank(self.lmp, 0 if error is None else 2 if isinstance(error, StaleHistoryError) else 1)
@@ -592,6 +609,10 @@ class LammpsContacts:
         nmax = self.lmp.extract_setting("nmax")
         return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
 
+    def _side(self):
+        nmax = self.lmp.extract_setting("nmax")
+        return self.lmp.numpy.extract_atom(f"d2_{self.prefix}s", nelem=nmax, dim=self.ncols_side)
+
     def _views(self, nall):
         """numpy views of LAMMPS's per-atom arrays (x, v, omega, radius, rmass, id, type, f, torque, keys, sep,
         H, stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
@@ -601,6 +622,7 @@ class LammpsContacts:
         if self._view_key != (nmax, nall):
             ex = lmp.numpy.extract_atom
             data = self._data()
+            side = self._side()
             H = ex(f"d2_{self.prefix}h", nelem=nmax, dim=self.slots * self.hs).view()
             H.shape = (nmax * self.slots, self.hs)       # a view of LAMMPS's memory (never a copy)
             if self.huge_pages:
@@ -609,9 +631,9 @@ class LammpsContacts:
             self._view = (ex("x", nelem=nall, dim=3), ex("v", nelem=nall, dim=3), ex("omega", nelem=nall, dim=3),
                           ex("radius", nelem=nall), ex("rmass", nelem=nall), ex("id", nelem=nall),
                           ex("type", nelem=nall), ex("f", nelem=nall, dim=3), ex("torque", nelem=nall, dim=3),
-                          data[:, :self.slots], data[:, self.slots:self.col_stat], H,
+                          data[:, :self.slots], side[:, :self.col_saved], H,
                           data[:, self.col_stat:self.col_stat + K.N_STAT],
-                          data[:, self.col_saved:self.col_saved + K.N_SAVED])
+                          side[:, self.col_saved:self.col_saved + K.N_SAVED])
             self._view_key = (nmax, nall)
             self._n_prev = -1          # new views: every local atom is visited at the next step
         return self._view

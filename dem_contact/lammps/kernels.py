@@ -2,12 +2,11 @@
 atoms, history lookup by partner atom id, the contact laws, forces and torques. No LAMMPS import here:
 the kernels take numpy views of LAMMPS's per-atom arrays.
 
-History storage. Every atom carries ``slots`` history rows in one per-atom array (LAMMPS
-``fix property/atom d2_...``, which migrates with the atom between ranks and survives neighbour-list
-rebuilds and atom sorting): the keys of its rows, ``keys`` (nmax, slots), and for each row the separation
-of its contact when it was last matched and a mark of an out-of-date second copy (see below), ``sep``
-(nmax, 4 slots), in one array, and the rows in another,
-viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
+History storage. Every atom carries ``slots`` history rows in per-atom arrays (LAMMPS ``fix
+property/atom d2_...``, which migrate with the atom between ranks and survive neighbour-list rebuilds and
+atom sorting): the keys of its rows, ``keys`` (nmax, slots), in a narrow array read at every step; for
+each row the separation of its contact when it was last matched and a mark of an out-of-date second copy
+(see below), ``sep`` (nmax, 4 slots), in another; and the rows in a third, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
 partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. A contact is the partner and the
 periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
 two images of one partner, each its own contact with its own row, told apart by the separation
@@ -78,9 +77,8 @@ N_SUMMARY = 4
 
 
 def atom_columns(slots: int) -> int:
-    """Columns of the per-atom array before the statistics: the keys (slots), then the separations and
-    out-of-date marks (4 slots)."""
-    return 5 * slots
+    """Columns of the per-atom array before the statistics: the keys."""
+    return slots
 
 
 @njit(cache=True)
@@ -448,9 +446,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     nt = 0              # atoms listed in touched
     n = 0
     late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
-    left_out = 0        # contacts with no free history row
     ended = 0           # candidates whose contact ended (work[:ended, 2])
-    stale = 0           # contacts whose history read is a second copy marked out of date
     for c in range(npc + nwc):
         dx = dy = dz = r2 = rs = delta = nx = ny = nz = 0.0
         w = -1
@@ -555,6 +551,67 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     for k in range(nt):
         i = touched[k]
         stat[i, ST_NEED] = max(stat[i, ST_NEED], stat[i, ST_PAIRS] + stat[i, ST_WALLS])
+    left_out, stale = _rows_of_late_contacts(
+        nlocal, x, radius, tag, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full, used, near,
+        work, body, src, dst, hrow, late, ended)
+    if left_out:
+        # drop the contacts left out
+        k = 0
+        for q in range(n):
+            if body[q, 0] >= 0:
+                body[k, 0] = body[q, 0]
+                body[k, 1] = body[q, 1]
+                src[k] = src[q]
+                dst[k] = dst[q]
+                hrow[k] = hrow[q]
+                pair_rows[k] = pair_rows[q]
+                overlaps[k] = overlaps[q]
+                wn[k] = wn[q]
+                for d in range(3):
+                    normals[k, d] = normals[q, d]
+                    velocities[k, d] = velocities[q, d]
+                k += 1
+        n = k
+    if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
+        # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
+        for k in range(n):
+            a = body[k, 0]
+            b = body[k, 1]
+            inv_m = 1.0 / rmass[a] + 1.0 / rmass[b] if b >= 0 else 1.0 / rmass[a]
+            kick = 0.5 * dt * (H[hrow[k], V_N] if hrow[k] >= 0 else 0.0) * inv_m
+            for d in range(3):
+                velocities[k, d] -= kick * normals[k, d]
+    return n, nt, stale
+
+
+@njit(cache=True)
+def near_boundary(nlocal, x, sublo, subhi, open_lo, open_hi, reach, near):
+    """near[i] := local atom i lies within ``reach`` of a face of its subdomain that an atom can cross
+    (open_lo, open_hi: bool[3], the faces shared with another subdomain or a periodic boundary). Between
+    two rebuilds of the Verlet lists an atom moves less than skin from where it was at the last one (LAMMPS
+    exchanges atoms when one moved skin/2 since its own last build), so with reach >= skin the atoms that
+    can change rank before the next rebuild are all marked."""
+    for i in range(nlocal):
+        f = False
+        for d in range(3):
+            if (open_lo[d] and x[i, d] - sublo[d] < reach) or (open_hi[d] and subhi[d] - x[i, d] < reach):
+                f = True
+        near[i] = f
+
+
+@njit(cache=True)
+def _rows_of_late_contacts(nlocal, x, radius, tag, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full,
+                           used, near, work, body, src, dst, hrow, late, ended):
+    """The history rows of the contacts of ``gather_contacts`` whose rows are not cached (work[:late, :2]:
+    contact, candidate) and of the candidates whose contact ended (work[:ended, 2]): rows freed, found by
+    key, taken, the rows a contact reads and keeps (src, dst, hrow). A function of its own, so that the
+    loop over the candidates, at every step, is compiled without this work of the rebuilds and of new
+    contacts. Returns (contacts left out for want of a free row, contacts whose history read is a second
+    copy marked out of date)."""
+    hs = H.shape[1]
+    slots = keys.shape[1]
+    left_out = 0
+    stale = 0
     for k in range(ended):
         # contacts that ended free their rows (reset)
         c = work[k, 2]
@@ -649,49 +706,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             c = work[k, 1]
             cand_rows[c, 0] = -1
             cand_rows[c, 1] = -1
-    if left_out:
-        # drop the contacts left out
-        k = 0
-        for q in range(n):
-            if body[q, 0] >= 0:
-                body[k, 0] = body[q, 0]
-                body[k, 1] = body[q, 1]
-                src[k] = src[q]
-                dst[k] = dst[q]
-                hrow[k] = hrow[q]
-                pair_rows[k] = pair_rows[q]
-                overlaps[k] = overlaps[q]
-                wn[k] = wn[q]
-                for d in range(3):
-                    normals[k, d] = normals[q, d]
-                    velocities[k, d] = velocities[q, d]
-                k += 1
-        n = k
-    if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
-        # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
-        for k in range(n):
-            a = body[k, 0]
-            b = body[k, 1]
-            inv_m = 1.0 / rmass[a] + 1.0 / rmass[b] if b >= 0 else 1.0 / rmass[a]
-            kick = 0.5 * dt * (H[hrow[k], V_N] if hrow[k] >= 0 else 0.0) * inv_m
-            for d in range(3):
-                velocities[k, d] -= kick * normals[k, d]
-    return n, nt, stale
-
-
-@njit(cache=True)
-def near_boundary(nlocal, x, sublo, subhi, open_lo, open_hi, reach, near):
-    """near[i] := local atom i lies within ``reach`` of a face of its subdomain that an atom can cross
-    (open_lo, open_hi: bool[3], the faces shared with another subdomain or a periodic boundary). Between
-    two rebuilds of the Verlet lists an atom moves less than skin from where it was at the last one (LAMMPS
-    exchanges atoms when one moved skin/2 since its own last build), so with reach >= skin the atoms that
-    can change rank before the next rebuild are all marked."""
-    for i in range(nlocal):
-        f = False
-        for d in range(3):
-            if (open_lo[d] and x[i, d] - sublo[d] < reach) or (open_hi[d] and subhi[d] - x[i, d] < reach):
-                f = True
-        near[i] = f
+    return left_out, stale
 
 
 def contact_buffers(n):
