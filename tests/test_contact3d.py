@@ -20,6 +20,7 @@ from dem_contact.laws import closed_forms as cf
 from dem_contact.dem.contact3d import (batch_loop, check_contacts, contact_force, contact_forces,
                                        contact_forces_batch, contact_forces_serial, history_size, new_histories,
                                        peek_force, reset_contact, rotate_history, swap_bodies, tangential_work)
+from dem_contact.dem import contact3d as C3
 from dem_contact.errors import InputError, NumericalError
 from dem_contact.impacts.impact import body_inertia
 from dem_contact.impacts.integrator import (N_OUT, N_SERIES, O_STATUS, O_VN, O_VT, O_W1, TOUCH_OVERLAP,
@@ -696,6 +697,9 @@ def test_contact_force_runs_in_a_users_prange_loop():
                               a["overlaps"], a["velocities"], a["dt"], f)
     (sig,) = _user_prange_loop.signatures
     assert len(_user_prange_loop.overloads[sig].metadata["parfors"]) == 1
+    # the prange index (uint64) reaches the kernels as int64: no second compilation of them
+    for leaf in (C3._leaf_md, C3._leaf_spring, C3._leaf_mdr):
+        assert all(str(s[3]) == str(s[5]) == "int64" for s in leaf.signatures)
     for _ in range(3):
         contact_forces_serial(tab.normal_id, tab.tangential_id, tab.params, a["pair_rows"], Hb, a["normals"],
                               a["overlaps"], a["velocities"], a["wn"], a["dt"], a["forces"], a["tforces"])

@@ -452,7 +452,9 @@ def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn
     runs in parallel: unknown law ids give NaN forces and leave H unchanged."""
     if nid < HERTZ or nid > LINEAR_NORMAL or tid < MD or tid > MDR_ADAPTIVE:
         return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
-    return _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    # int64 indices whatever the caller's (a prange index is uint64): the leaves compiled for serial loops
+    # serve parallel ones too
+    return _dispatch(nid, tid, params, np.int64(row), H, np.int64(c), nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 # The contact helpers: a jitted kernel each (``_peek_force`` ...), called unchecked from jitted code (the
