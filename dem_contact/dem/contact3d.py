@@ -458,8 +458,9 @@ def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn
 
 
 # The contact helpers: a jitted kernel each (``_peek_force`` ...), called unchecked from jitted code (the
-# ``overload`` of the public name), and a Python function of that name that checks its arguments first, so
-# that a call from Python cannot write outside H.
+# ``overload`` of the public name, indices as int64 so that serial and prange loops share one compilation),
+# and a Python function of that name that checks its arguments first, so that a call from Python cannot
+# write outside H.
 
 @njit(**JIT)
 def _peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
@@ -566,27 +567,27 @@ def tangential_work(nid, tid, H, c):
 @overload(peek_force)
 def _peek_force_jit(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     return lambda nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt: _peek_force(
-        nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+        nid, tid, params, np.int64(row), H, np.int64(c), nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 @overload(reset_contact)
 def _reset_contact_jit(H, c):
-    return lambda H, c: _reset_contact(H, c)
+    return lambda H, c: _reset_contact(H, np.int64(c))
 
 
 @overload(swap_bodies)
 def _swap_bodies_jit(nid, tid, H, c):
-    return lambda nid, tid, H, c: _swap_bodies(nid, tid, H, c)
+    return lambda nid, tid, H, c: _swap_bodies(nid, tid, H, np.int64(c))
 
 
 @overload(rotate_history)
 def _rotate_history_jit(nid, tid, H, c, Q):
-    return lambda nid, tid, H, c, Q: _rotate_history(nid, tid, H, c, Q)
+    return lambda nid, tid, H, c, Q: _rotate_history(nid, tid, H, np.int64(c), Q)
 
 
 @overload(tangential_work)
 def _tangential_work_jit(nid, tid, H, c):
-    return lambda nid, tid, H, c: _tangential_work(nid, tid, H, c)
+    return lambda nid, tid, H, c: _tangential_work(nid, tid, H, np.int64(c))
 
 
 def _family(tid):
