@@ -40,7 +40,7 @@ Checks: ``contact_force`` (and the helpers called from jitted code) check nothin
 user's ``prange`` loop around them runs in parallel (unknown law ids give NaN forces). Called from Python,
 the helpers (``peek_force``, ``reset_contact``, ``swap_bodies``, ``rotate_history``, ``tangential_work``)
 check their arguments; ``contact_forces_batch`` / ``contact_forces_serial`` check what could make the loop
-write outside its arrays, race or compile another variant; ``check_contacts`` and ``contact_forces`` check
+write outside its arrays, race or compute in float32; ``check_contacts`` and ``contact_forces`` check
 the values too (``debug=True``: a bounds-checked loop). Every parameter row records the laws it was built
 for, and all of these refuse a table used with other law ids. Law ids always come first, (nid, tid).
 """
@@ -779,7 +779,7 @@ def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velo
     for contact c.
 
     Checked here (``InputError``), in O(1) per array and O(n) over the row indices: everything that could
-    make the loop read or write outside the arrays, race, or compile another variant (law ids, dtypes,
+    make the loop read or write outside the arrays, race, or compute in float32 (law ids, dtypes,
     shapes, C order, writeable H, forces and tforces, rows in range, distinct history rows, history rows
     long enough, a table built for these laws, dt > 0). The values of the contacts (finite inputs, unit
     normals) are checked by ``check_contacts`` / ``contact_forces``."""
@@ -881,7 +881,7 @@ def _check_table(nid, tid, params):
 
 def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
                   history_rows):
-    """What the loops need not to read or write outside the arrays, race or compile another variant:
+    """What the loops need not to read or write outside the arrays, race or compute in float32:
     O(1) per array, O(rows of params), O(n) over the row indices. Returns the checked (nid, tid)."""
     nid, tid = _valid_ids(nid, tid)
     need = _check_table(nid, tid, params)
