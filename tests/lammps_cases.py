@@ -96,15 +96,14 @@ def hold(how, ours, before=False):
     if ours:
         if before:
             lmp.command(f"fix hold base {fix}")
-        bridge = LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
-        if before:
             try:
-                bridge.run(1)
+                LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
                 out["refused"] = None
             except FixOrderError as e:
                 out["refused"] = str(e)
             lmp.close()
             return out
+        bridge = LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
         lmp.command(f"fix hold base {fix}")
         step = bridge.run
     else:

@@ -497,8 +497,8 @@ def test_a_hold_acts_on_the_total_force_or_is_refused(cases, ranks, how):
     """A base sphere held by fix freeze or fix setforce 0 0 0, a sphere dropped on it with spin. Defined
     after attaching the bridge, the hold acts on the total force, contact forces included, as after a pair
     style: the held sphere stays where it was (to 1e-12 m) and the dropped one follows LAMMPS's pair granular
-    (to 1e-9). Defined before (the bridge's fix external would add the contact forces after it), the run is
-    refused, with what to do."""
+    (to 1e-9). Defined before (the bridge's fix external would add the contact forces after it), attaching
+    the bridge is refused, with what to do."""
     out, ref = cases[ranks]["hold"][how], cases[1]["hold_native"][how]
     assert "'hold'" in out["refused"] and "after attaching LammpsContacts" in out["refused"]
     ours = out["ours"]

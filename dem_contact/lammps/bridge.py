@@ -400,6 +400,10 @@ class LammpsContacts:
         self._sync_all = False         # atoms may change rank otherwise during this run: write every copy
         self._fix_key = None           # the fix ids at the last check of their order, and its outcome
         self._sep_tol2 = math.inf      # (half the shortest box period)^2: tells two images of one partner
+        # the fixes defined so far come before the bridge's: refused here if one may read or overwrite the
+        # total force (a fix defined later comes after it, so a run started otherwise than by run() is in
+        # order too)
+        self._check_fixes()
         self.dt = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
