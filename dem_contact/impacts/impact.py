@@ -86,9 +86,10 @@ class EnergyBudget:
 class ImpactResult:
     """Outcome of one impact. Velocities in m/s, spins in rad/s, times in s, lengths in m, forces in N.
 
-    Sign conventions (Wu, Thornton & Li 2009, section 2): vn > 0 towards the wall; v_t = V_t + R omega; e_t and
-    Theta use the contact-patch velocity when there is initial spin (eq. 7.1). rebound_angle_deg is
-    the angle of the rebound velocity of the centre from the normal, positive in the direction of the
+    Sign conventions (Wu, Thornton & Li 2009, section 2): vn > 0 towards the wall; v_t = V_t + R omega; e_t
+    is the ratio of the centre velocities, V_tr / V_ti (eq. 2.1b); Theta and Psi_r use the contact-patch
+    velocity (eq. 7.1: Theta = 2 v_ti / ((1 + e_n) mu V_ni), where the rebound models read f/mu).
+    rebound_angle_deg is the angle of the rebound velocity of the centre from the normal, positive in the direction of the
     incident tangential velocity; patch_rebound_angle_deg the same for the contact-patch velocity.
 
     persistent_sliding: |T| >= (1 - SLIDE_TOL) mu N at every step until the last SLIDE_IMPULSE_TOL of the

@@ -167,7 +167,7 @@ def advise(scene: Scene, vn_range, angle_range, spin: float = 0.0, tol: float = 
     x = np.linspace(0.0, 10.0, 1000)
     err = float(np.max(np.abs(1.0 - f_ref)))
     cands.append(Candidate("sliding", "rigid-body persistent sliding, f/mu = 1 (Omega_r = Omega_i - 1, "
-                           "e_t = 1 - 2/Theta)", err, _time_closed_form(np.ones_like, x)))
+                           "e_t = 1 - 2/(Theta - 5 Omega_i))", err, _time_closed_form(np.ones_like, x)))
     notes = []
     if spin == 0.0:
         try:
