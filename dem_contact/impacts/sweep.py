@@ -16,7 +16,6 @@ import dataclasses
 import math
 import re
 import sys
-import threading
 import time
 import warnings
 from collections.abc import Sequence
@@ -24,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit, prange, types
+from numba.core import event as numba_event
 
 from ..errors import InputError, NumericalError
 from .impact import (MAX_CONTACT_TIMES, SCALE_RANGE, SCHEMES, body_row, build_result, check_incident,
@@ -42,38 +42,35 @@ PROGRESS_UPDATES = 20
 
 _SWEEP = []
 
-#: Loading the kernels from numba's cache takes well under a second; a load that takes longer than this
-#: is a compilation (the first run after installing or after an update, tens of seconds): it is announced.
-COMPILE_NOTICE_AFTER_S = 2.0
 
-
-class compile_notice:
-    """Context manager: when ``on`` and the block (loading or compiling kernels) is still running after
-    COMPILE_NOTICE_AFTER_S, say on stderr that kernels are being compiled, and when it ends how long it took.
-    Nothing is printed when the kernels come from numba's cache (or are already loaded)."""
+class compile_notice(numba_event.Listener):
+    """Context manager: when ``on``, say on stderr that kernels are being compiled when numba compiles one
+    inside the block (its "numba:compile" event, which a kernel loaded from numba's cache does not raise),
+    and at the end how long it took. Nothing is printed when the kernels come from the cache or are
+    already loaded."""
 
     def __init__(self, on: bool = True):
         self.on = on
-        self.said = threading.Event()
+        self.compiled = False
 
-    def _say(self):
-        self.said.set()
-        print("compiling kernels (stored in numba's cache for later runs) ...", file=sys.stderr, flush=True)
+    def on_start(self, event):
+        if not self.compiled:
+            self.compiled = True
+            print("compiling kernels (stored in numba's cache for later runs) ...", file=sys.stderr, flush=True)
+
+    def on_end(self, event):
+        pass
 
     def __enter__(self):
         self.t0 = time.perf_counter()
-        self.timer = None
         if self.on:
-            self.timer = threading.Timer(COMPILE_NOTICE_AFTER_S, self._say)
-            self.timer.daemon = True
-            self.timer.start()
+            numba_event.register("numba:compile", self)
         return self
 
     def __exit__(self, *exc):
-        if self.timer is not None:
-            self.timer.cancel()
-            self.timer.join()
-            if self.said.is_set() and exc[0] is None:
+        if self.on:
+            numba_event.unregister("numba:compile", self)
+            if self.compiled and exc[0] is None:
                 print(f"kernels compiled in {time.perf_counter() - self.t0:.0f} s", file=sys.stderr, flush=True)
         return False
 
