@@ -8,7 +8,7 @@ import warnings
 
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
-from ..impacts.sweep import merge_warnings
+from ..impacts.sweep import compile_notice, merge_warnings
 from .common import (add_scene_options, check_output_file, dump_json, model_line, print_energy_and_warnings,
                      scene_from_args, time_options)
 from .sweep import parse_angles
@@ -70,7 +70,7 @@ def run(args) -> int:
         raise InputError("--series applies to one impact with --json")
     opts = dict(time_options(args), frame_spin=not args.fixed_frame)
     direction = 0.0 if args.direction is None else args.direction
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), compile_notice():
         warnings.simplefilter("ignore")  # the warnings are reported in the result
         if args.angles is not None:
             opts.pop("dt")

@@ -129,7 +129,10 @@ def run(args) -> int:
         N, Tx, Ty = reference_path(scene, delta, ux, uy, n_across=args.n_across)
         law = f"boundary-element reference ({args.n_across} elements across)"
     else:
-        N, Tx, Ty = run_path(scene, delta, ux, uy)
+        from ..impacts.sweep import compile_notice
+
+        with compile_notice():
+            N, Tx, Ty = run_path(scene, delta, ux, uy)
         law = f"{scene.normal} / {scene.tangential}"
     if args.csv:
         write_path_csv(args.csv, delta, ux, uy, N, Tx, Ty)

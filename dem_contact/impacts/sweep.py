@@ -46,23 +46,29 @@ _SWEEP = []
 class compile_notice(numba_event.Listener):
     """Context manager: when ``on``, say on stderr that kernels are being compiled when numba compiles one
     inside the block (its "numba:compile" event, which a kernel loaded from numba's cache does not raise),
-    and at the end how long it took. Nothing is printed when the kernels come from the cache or are
-    already loaded."""
+    and at the end how long the compilations took. Nothing is printed when the kernels come from the cache
+    or are already loaded, so the block may hold the computation too."""
 
     def __init__(self, on: bool = True):
         self.on = on
         self.compiled = False
+        self.depth = 0
+        self.seconds = 0.0
 
     def on_start(self, event):
         if not self.compiled:
             self.compiled = True
             print("compiling kernels (stored in numba's cache for later runs) ...", file=sys.stderr, flush=True)
+        if self.depth == 0:
+            self.t0 = time.perf_counter()
+        self.depth += 1
 
     def on_end(self, event):
-        pass
+        self.depth -= 1
+        if self.depth == 0:
+            self.seconds += time.perf_counter() - self.t0
 
     def __enter__(self):
-        self.t0 = time.perf_counter()
         if self.on:
             numba_event.register("numba:compile", self)
         return self
@@ -71,7 +77,7 @@ class compile_notice(numba_event.Listener):
         if self.on:
             numba_event.unregister("numba:compile", self)
             if self.compiled and exc[0] is None:
-                print(f"kernels compiled in {time.perf_counter() - self.t0:.0f} s", file=sys.stderr, flush=True)
+                print(f"kernels compiled in {self.seconds:.0f} s", file=sys.stderr, flush=True)
         return False
 
 
