@@ -1,6 +1,7 @@
 """``dem-contact impact``: one oblique impact of a sphere on a wall."""
 from __future__ import annotations
 
+import sys
 import warnings
 
 from ..errors import InputError
@@ -36,7 +37,7 @@ def run(args) -> int:
         raise InputError("give either --vt or --angle, not both")
     scene = scene_from_args(args)
     vt = args.vt if args.vt is not None else angle_to_vt(args.vn, 20.0 if args.angle is None else args.angle)
-    with compile_notice():
+    with compile_notice(sys.stderr.isatty()):     # (a terminal only: a log or a pipe gets no notice)
         scene_constants(scene)      # loads the integrator of the scene's laws from numba's cache, or compiles it
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the warnings are reported in the result

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import math
+import sys
 import warnings
 
 from ..errors import InputError
@@ -70,7 +71,7 @@ def run(args) -> int:
         raise InputError("--series applies to one impact with --json")
     opts = dict(time_options(args), frame_spin=not args.fixed_frame)
     direction = 0.0 if args.direction is None else args.direction
-    with warnings.catch_warnings(), compile_notice():
+    with warnings.catch_warnings(), compile_notice(sys.stderr.isatty()):     # (the notice: in a terminal)
         warnings.simplefilter("ignore")  # the warnings are reported in the result
         if args.angles is not None:
             opts.pop("dt")

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import sys
 
 from ..errors import InputError
 from ..laws.model import TANGENTIAL_LAWS
@@ -131,7 +132,7 @@ def run(args) -> int:
     else:
         from ..impacts.sweep import compile_notice
 
-        with compile_notice():
+        with compile_notice(sys.stderr.isatty()):      # (the notice: in a terminal only)
             N, Tx, Ty = run_path(scene, delta, ux, uy)
         law = f"{scene.normal} / {scene.tangential}"
     if args.csv:
