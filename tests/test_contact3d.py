@@ -671,7 +671,7 @@ def test_unknown_law_ids_give_nan_and_leave_the_history_in_the_jitted_kernel():
         assert np.array_equal(H, H0)
 
 
-@njit(parallel=True, cache=True)
+@njit(parallel=True)    # not cached: the test reads the compilation's metadata (parfors), which a cache load lacks
 def _user_prange_loop(nid, tid, params, pair_rows, H, normals, overlaps, velocities, dt, forces):
     """A user's parallel loop over contacts calling the per-contact kernel."""
     for c in prange(overlaps.shape[0]):
