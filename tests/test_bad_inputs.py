@@ -9,6 +9,7 @@ import pytest
 
 import dem_contact as dc
 from dem_contact.cli import main
+from dem_contact.commands.common import explained_paths, null_paths
 from dem_contact.impacts.impact import MAX_STEPS_PER_CONTACT, build_result
 from dem_contact.impacts.integrator import N_OUT, O_PN, O_STATUS, O_TC, O_VN, integrator_for
 from dem_contact.impacts.presets import preset_scene
@@ -214,31 +215,6 @@ def _strict(text):
     return json.loads(text, parse_constant=refuse)
 
 
-def _null_paths(x, path=""):
-    if isinstance(x, dict):
-        for k, v in x.items():
-            if k != "null_values":
-                yield from _null_paths(v, f"{path}.{k}" if path else k)
-    elif isinstance(x, list):
-        for i, v in enumerate(x):
-            yield from _null_paths(v, f"{path}[{i}]")
-    elif x is None:
-        yield path
-
-
-def _explained(x, path=""):
-    """Paths that a null_values entry (of the object at ``path`` or of one inside it) explains."""
-    if isinstance(x, dict):
-        for k in x.get("null_values", {}):
-            yield f"{path}.{k}" if path else k
-        for k, v in x.items():
-            if k != "null_values":
-                yield from _explained(v, f"{path}.{k}" if path else k)
-    elif isinstance(x, list):
-        for i, v in enumerate(x):
-            yield from _explained(v, f"{path}[{i}]")
-
-
 JSON_RUNS = {
     "impact": ["impact", "--mu", "0", "--vt", "0"],
     "impact3d": ["impact3d", "--mu", "0", "--vt", "0", "0"],
@@ -265,8 +241,8 @@ def test_json_is_strict_and_every_null_has_a_reason(capsys, args):
     rc, out, err = run_cli(capsys, *args, "--json")
     assert rc == 0, err
     data = _strict(out)
-    nulls = set(_null_paths(data))
-    assert nulls <= set(_explained(data)), nulls - set(_explained(data))
+    nulls = set(null_paths(data))
+    assert nulls <= explained_paths(data), nulls - explained_paths(data)
 
 
 def test_json_of_a_non_finite_number_is_null_with_a_reason():

@@ -96,30 +96,26 @@ def strict_json(obj, nulls: dict | None = None, path: str = ""):
     return obj
 
 
-def _null_paths(x, path=""):
+def _nodes(x, path=""):
+    """(path, value) of JSON data ``x`` and of every value inside it, outside the ``null_values`` entries."""
+    yield path, x
+    if isinstance(x, dict):
+        for k, v in x.items():
+            if k != "null_values":
+                yield from _nodes(v, f"{path}.{k}" if path else k)
+    elif isinstance(x, list):
+        for i, v in enumerate(x):
+            yield from _nodes(v, f"{path}[{i}]")
+
+
+def null_paths(x) -> list:
     """Paths of the nulls in JSON data ``x`` (outside the ``null_values`` entries)."""
-    if isinstance(x, dict):
-        for k, v in x.items():
-            if k != "null_values":
-                yield from _null_paths(v, f"{path}.{k}" if path else k)
-    elif isinstance(x, list):
-        for i, v in enumerate(x):
-            yield from _null_paths(v, f"{path}[{i}]")
-    elif x is None:
-        yield path
+    return [p for p, v in _nodes(x) if v is None]
 
 
-def _explained(x, path=""):
-    """Paths that a ``null_values`` entry explains (of the object at ``path`` or of one inside it)."""
-    if isinstance(x, dict):
-        for k in x.get("null_values", {}):
-            yield f"{path}.{k}" if path else k
-        for k, v in x.items():
-            if k != "null_values":
-                yield from _explained(v, f"{path}.{k}" if path else k)
-    elif isinstance(x, list):
-        for i, v in enumerate(x):
-            yield from _explained(v, f"{path}[{i}]")
+def explained_paths(x) -> set:
+    """Paths that a ``null_values`` entry explains (of the object at that path or of one inside it)."""
+    return {f"{p}.{k}" if p else k for p, v in _nodes(x) if isinstance(v, dict) for k in v.get("null_values", {})}
 
 
 def dump_json(obj) -> str:
@@ -132,8 +128,8 @@ def dump_json(obj) -> str:
     targets = [(data, "")] if isinstance(data, dict) else [
         (d, f"[{i}]") for i, d in enumerate(data) if isinstance(d, dict)] if isinstance(data, list) else []
     for d, prefix in targets:
-        explained = set(_explained(d))
-        for p in list(_null_paths(d)):
+        explained = explained_paths(d)
+        for p in null_paths(d):
             if p not in explained:
                 full = f"{prefix}.{p}" if prefix else p
                 d.setdefault("null_values", {})[p] = (f"not a finite number ({nonfinite[full]})" if full in nonfinite
