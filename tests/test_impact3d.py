@@ -8,6 +8,7 @@ import pytest
 import dem_contact as dc
 from dem_contact.errors import InputError
 from dem_contact.impacts.impact3d import impact3d, sweep3d
+from dem_contact.impacts.presets import preset_scene
 
 LAWS = ["mdr_adaptive", "md", "mindlin_incremental"]
 R = 0.01
@@ -236,3 +237,19 @@ def test_impact3d_has_the_checks_of_impact(case):
     kinds = lambda ws: sorted(_NUMBER.sub("#", w) for w in ws)  # noqa: E731
     assert r.warnings and kinds(q.warnings) == kinds(r.warnings)
     assert q.energy_gained == r.energy_gained and q.energy_created == r.energy_created
+
+
+def test_traction_yield_is_refused_where_the_3d_kernels_would_ignore_it(capsys):
+    """The 3D kernels do not carry the traction-coupled Thornton law: impact3d, pair_table (and so the batch
+    loops and the LAMMPS bridge) and the CLI refuse it instead of computing Thornton's uncoupled law."""
+    from dem_contact.cli import main
+    from dem_contact.dem.pairs import pair_table
+
+    sc = preset_scene("PE", 5.0, traction_yield=True)
+    with pytest.raises(InputError, match="traction_yield"):
+        impact3d(sc, 5.0, (2.0, 0.0))
+    with pytest.raises(InputError, match="traction_yield"):
+        pair_table([sc.sphere], [sc.body2], normal="thornton", traction_yield=True)
+    assert main(["impact3d", "--case", "PE", "--traction-yield", "--angle", "30"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "traction_yield" in err

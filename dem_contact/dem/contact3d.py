@@ -61,7 +61,7 @@ from ..laws import vector as V
 from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
                             MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
 from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MDR_PROFILE,
-                          P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW)
+                          P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW, P_TY_NODES)
 from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
                            tangential_base)
 
@@ -848,6 +848,11 @@ def _law_names(nid, tid):
     return f"{_NORMAL_BY_ID.get(nid, '?')} + {_TANGENTIAL_BY_ID.get(tid, '?')}"
 
 
+#: Why a row with the traction-coupled Thornton law (Scene(traction_yield=True)) is refused in 3D.
+TRACTION_YIELD_REFUSED = ("has traction_yield on (a thornton limiting pressure coupled to the traction), which the 3D "
+                          "kernels do not carry (the planar impact and sweep do): build it without traction_yield")
+
+
 def _check_table(nid, tid, params):
     """The laws recorded in every row of ``params`` (P_NORMAL_LAW, P_TANGENTIAL_LAW) must be (nid, tid);
     MDR rows need a cell count (and width). Returns the history row length the table needs. O(rows)."""
@@ -865,6 +870,7 @@ def _check_table(nid, tid, params):
         raise InputError(f"params[{r}] was built for the laws nid = {bn}, tid = {bt} ({_law_names(bn, bt)}), "
                          f"not for nid = {nid}, tid = {tid} ({_law_names(nid, tid)}): pass the table's own "
                          f"PairTable.normal_id and tangential_id, or build a table for these laws")
+    _first_bad("params", params[:, P_TY_NODES] != 0.0, lambda r: TRACTION_YIELD_REFUSED)
     if tid not in (MDR, MDR_ADAPTIVE):
         return history_size(nid, tid)
     cells = params[:, P_NSPRING]
