@@ -60,3 +60,13 @@ def test_spin_reference_round_trip_and_chart(tmp_path):
     assert back == ref
     rows = c.spin_impact_chart(back, laws=(("mdr_adaptive", "mdr_adaptive", {}),), repeats=1)
     assert rows[0].law == "mdr_adaptive" and rows[0].error < 0.05 and rows[0].time_per_impact_us > 0
+
+
+def test_law_scenes_keep_every_setting_but_the_law():
+    """The spin study's law comparison changes the tangential law and the reference speed only."""
+    from dem_contact.impacts.presets import preset_scene
+    from dem_contact.studies.spin import law_scenes
+
+    base = preset_scene("EE", 5.0, normal="hertz_damped", e_n=0.7, mdr_profile="scaled")
+    for law, sc in law_scenes(base, ("md", "mdr_adaptive"), 3.0).items():
+        assert sc.arguments == {**base.arguments, "tangential": law, "v_ref": 3.0}

@@ -122,9 +122,9 @@ def bem_spin_reference(scene: Scene, cases, vn: float = 5.0, *, n_across: int = 
 
 
 def law_scenes(scene: Scene, laws, vn: float) -> dict:
-    """law -> the scene with that tangential law."""
-    return {law: Scene(scene.sphere, scene.body2, mu=scene.mu, normal=scene.normal, tangential=law, v_ref=vn)
-            for law in laws}
+    """law -> the scene with that tangential law and every other setting of ``scene`` (``Scene.replace``), its
+    reference speed (the placement of the mdr springs, the calibrations) at the study's ``vn``."""
+    return {law: scene.replace(tangential=law, v_ref=vn) for law in laws}
 
 
 def compare_spin_cases(scenes: dict, reference, vn: float = 5.0, *, steps_per_contact: float | None = None) -> list:
