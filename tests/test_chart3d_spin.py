@@ -68,5 +68,6 @@ def test_law_scenes_keep_every_setting_but_the_law():
     from dem_contact.studies.spin import law_scenes
 
     base = preset_scene("EE", 5.0, normal="hertz_damped", e_n=0.7, mdr_profile="scaled")
-    for law, sc in law_scenes(base, ("md", "mdr_adaptive"), 3.0).items():
-        assert sc.arguments == {**base.arguments, "tangential": law, "v_ref": 3.0}
+    scenes = law_scenes(base, ("md", "mdr_adaptive"), 3.0)
+    assert scenes["mdr_adaptive"].arguments == {**base.arguments, "tangential": "mdr_adaptive", "v_ref": 3.0}
+    assert scenes["md"].arguments == {**base.arguments, "tangential": "md", "v_ref": 3.0, "mdr_profile": "truncated"}
