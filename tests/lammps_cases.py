@@ -101,6 +101,13 @@ def hold(how, ours, before=False):
                 out["refused"] = None
             except FixOrderError as e:
                 out["refused"] = str(e)
+            # as the message says: the hold defined again after attaching (the refused bridge left nothing)
+            lmp.command("unfix hold")
+            bridge = LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
+            lmp.command(f"fix hold base {fix}")
+            x0 = gather(lmp, "x")[0]
+            bridge.run(100)
+            out["reattached_drift"] = float(np.abs(np.subtract(gather(lmp, "x")[0], x0)).max())
             lmp.close()
             return out
         bridge = LammpsContacts(lmp, table(), slots=2, v_max=1.0, frame_spin=False)
@@ -307,7 +314,7 @@ def main():
     ranks, rank = probe.extract_setting("world_size"), probe.extract_setting("world_rank")
     probe.close()
     res = {"ranks": ranks}
-    res["hold"] = {how: {"ours": hold(how, True), "refused": hold(how, True, before=True)["refused"]}
+    res["hold"] = {how: {"ours": hold(how, True), **hold(how, True, before=True)}
                    for how in ("freeze", "setforce")}
     res["split"] = {how: split(how, os.path.join(OUT, "split.restart"))
                     for how in ("restart", "restart during a run", "balance", "fix balance", "displace")}

@@ -498,9 +498,11 @@ def test_a_hold_acts_on_the_total_force_or_is_refused(cases, ranks, how):
     after attaching the bridge, the hold acts on the total force, contact forces included, as after a pair
     style: the held sphere stays where it was (to 1e-12 m) and the dropped one follows LAMMPS's pair granular
     (to 1e-9). Defined before (the bridge's fix external would add the contact forces after it), attaching
-    the bridge is refused, with what to do."""
+    the bridge is refused, with what to do; done as it says (unfix, attach, define the hold again) in the same
+    LAMMPS, the hold holds."""
     out, ref = cases[ranks]["hold"][how], cases[1]["hold_native"][how]
     assert "'hold'" in out["refused"] and "after attaching LammpsContacts" in out["refused"]
+    assert out["reattached_drift"] <= 1e-12
     ours = out["ours"]
     assert ours["f_max"] > 0.05                                       # (a contact, not a miss)
     assert ours["held_drift"] <= 1e-12 and ref["held_drift"] <= 1e-12

@@ -358,6 +358,12 @@ class LammpsContacts:
         self.col_saved = 4 * self.slots
         self.ncols_side = self.col_saved + K.N_SAVED
         p = prefix
+        # the fixes defined so far will all come before the bridge's: refused here, before anything of the
+        # bridge is defined (so that it can be attached again once the user moved them), if one may read or
+        # overwrite the total force (a fix defined later comes after it, so a run started otherwise than by
+        # run() is in order too)
+        self._fix_key = None           # the fix ids at the last check of their order, and its outcome
+        self._check_fixes()
         for cmd in (
             f"neighbor {self.skin!r} bin",
             "neigh_modify delay 0 every 1 check yes",
@@ -398,12 +404,8 @@ class LammpsContacts:
         self._near = None              # local atoms that may change rank before the next rebuild
         self._near_all = None          # every local atom (a step at which every second copy is written)
         self._sync_all = False         # atoms may change rank otherwise during this run: write every copy
-        self._fix_key = None           # the fix ids at the last check of their order, and its outcome
+        self._fix_key = None           # the fix order is checked again at the next run (the bridge's fixes now exist)
         self._sep_tol2 = math.inf      # (half the shortest box period)^2: tells two images of one partner
-        # the fixes defined so far come before the bridge's: refused here if one may read or overwrite the
-        # total force (a fix defined later comes after it, so a run started otherwise than by run() is in
-        # order too)
-        self._check_fixes()
         self.dt = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
@@ -583,7 +585,8 @@ class LammpsContacts:
                     lmp.command(f"info fixes out overwrite {path}")
                     text = open(path).read()
                 styles = dict(re.findall(r"Fix\[\s*\d+\]:\s*(\S+),\s*style = (\S+),", text))
-                ours = ids.index(f"{self.prefix}_ext")
+                ext = f"{self.prefix}_ext"
+                ours = ids.index(ext) if ext in ids else len(ids)     # not yet defined: after every fix
                 bad = next((k for k in range(ours) if styles.get(ids[k]) not in FIXES_BEFORE_OK), -1)
                 moving = any(st in FIXES_MOVING_SUBDOMAINS for st in styles.values())
                 code = 2 * (bad + 1) + int(moving)
@@ -712,10 +715,10 @@ class LammpsContacts:
         same = False
         try:
             self._zero_fext(fext_address, nlocal)
+            self.dt = self.lmp.extract_global("dt")     # at every step: fix dt/reset may change it in a run
             if setup:
                 # a new run: arrays may have been reallocated, atoms changed between runs
                 self._view_key = None
-                self.dt = self.lmp.extract_global("dt")
                 same = self._error is None and self._saved_match(nlocal)
         except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
             self._error = e
