@@ -63,11 +63,16 @@ def test_spin_reference_round_trip_and_chart(tmp_path):
 
 
 def test_law_scenes_keep_every_setting_but_the_law():
-    """The spin study's law comparison changes the tangential law and the reference speed only."""
+    """The spin study's law comparison changes the tangential law and the reference speed only (and the
+    mdr-only settings where the law does not take them)."""
     from dem_contact.impacts.presets import preset_scene
     from dem_contact.studies.spin import law_scenes
 
-    base = preset_scene("EE", 5.0, normal="hertz_damped", e_n=0.7, mdr_profile="scaled")
-    scenes = law_scenes(base, ("md", "mdr_adaptive"), 3.0)
-    assert scenes["mdr_adaptive"].arguments == {**base.arguments, "tangential": "mdr_adaptive", "v_ref": 3.0}
-    assert scenes["md"].arguments == {**base.arguments, "tangential": "md", "v_ref": 3.0, "mdr_profile": "truncated"}
+    base = preset_scene("EE", 5.0, normal="hertz_damped", e_n=0.7, tangential="mdr",
+                        mdr_profile="scaled").replace(mdr_springs=64)
+    scenes = law_scenes(base, ("md", "mdr_adaptive", "mdr"), 3.0)
+    assert scenes["mdr"].arguments == {**base.arguments, "v_ref": 3.0}
+    assert scenes["mdr_adaptive"].arguments == {**base.arguments, "tangential": "mdr_adaptive", "v_ref": 3.0,
+                                                "mdr_springs": None}
+    assert scenes["md"].arguments == {**base.arguments, "tangential": "md", "v_ref": 3.0, "mdr_profile": "truncated",
+                                      "mdr_springs": None}

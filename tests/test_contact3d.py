@@ -698,6 +698,7 @@ def test_contact_force_runs_in_a_users_prange_loop():
     (sig,) = _user_prange_loop.signatures
     assert len(_user_prange_loop.overloads[sig].metadata["parfors"]) == 1
     # the prange index (uint64) reaches the kernels as int64: no second compilation of them
+    assert C3._leaf_spring.signatures                                   # mindlin_total's family ran
     for leaf in (C3._leaf_md, C3._leaf_spring, C3._leaf_mdr):
         assert all(str(s[3]) == str(s[5]) == "int64" for s in leaf.signatures)
     for _ in range(3):

@@ -7,6 +7,7 @@ with one setting changed, validated and calibrated again like a new one.
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 from types import MappingProxyType
 
@@ -321,6 +322,16 @@ class Scene:
         return Scene(**{**self._args, **changes})
 
     __replace__ = replace           # copy.replace (Python 3.13)
+
+    def with_tangential(self, tangential: str, **changes) -> "Scene":
+        """``replace(tangential=..., **changes)`` for another tangential law: the settings that only the mdr
+        laws take (mdr_springs, mdr_max_radius, mdr_profile) go back to their defaults where the new law does
+        not take them (a cell count of mdr is not one of mdr_adaptive); every other setting is kept."""
+        defaults = inspect.signature(Scene).parameters
+        drop = [] if tangential == self.tangential else (
+            ["mdr_springs", "mdr_max_radius"] + ([] if tangential in ("mdr", "mdr_adaptive") else ["mdr_profile"]))
+        reset = {k: defaults[k].default for k in drop if k not in changes}
+        return self.replace(tangential=tangential, **{**reset, **changes})
 
     @property
     def arguments(self) -> dict:

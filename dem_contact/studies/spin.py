@@ -8,7 +8,6 @@ Theta_across = 2 s_y / ((1 + e_n) mu V_n) as Theta measures the in-plane one.
 """
 from __future__ import annotations
 
-import inspect
 import math
 import time
 import warnings
@@ -123,13 +122,10 @@ def bem_spin_reference(scene: Scene, cases, vn: float = 5.0, *, n_across: int = 
 
 
 def law_scenes(scene: Scene, laws, vn: float) -> dict:
-    """law -> the scene with that tangential law and every other setting of ``scene`` (``Scene.replace``), its
-    reference speed (the placement of the mdr springs, the calibrations) at the study's ``vn``; mdr_profile goes
-    back to its default for a law outside the mdr family, which has no cells to profile."""
-    default = inspect.signature(Scene).parameters["mdr_profile"].default
-    return {law: scene.replace(tangential=law, v_ref=vn,
-                               **({} if law in ("mdr", "mdr_adaptive") else {"mdr_profile": default}))
-            for law in laws}
+    """law -> the scene with that tangential law and every other setting of ``scene``
+    (``Scene.with_tangential``), its reference speed (the placement of the mdr springs, the calibrations) at
+    the study's ``vn``."""
+    return {law: scene.with_tangential(law, v_ref=vn) for law in laws}
 
 
 def compare_spin_cases(scenes: dict, reference, vn: float = 5.0, *, steps_per_contact: float | None = None) -> list:
