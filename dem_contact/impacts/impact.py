@@ -556,7 +556,8 @@ def impact_warnings(c, scene, *, e_n, f_abs, energy, minwt, coul, fmax, dmax, sp
                     f"theory assumes a small contact, a <= {VALIDITY_A_OVER_R:g} R*")
     if c.e_target is not None and c.calibration_missed(e_n, vn):
         msgs.append(f"e_n = {e_n:.6g} misses the target {c.e_target:g} of {c.e_target_what} by "
-                    f"{abs(e_n - c.e_target) / c.e_target:.3g} of it (tolerance {CALIBRATION_RTOL:g}): the "
+                    f"{abs(e_n - c.e_target) / c.e_target:.3g} of it (tolerance {CALIBRATION_RTOL:g} of it and "
+                    f"{CALIBRATION_ATOL:g}): the "
                     f"calibration holds as dt -> 0; refine the time step")
     if spc < 10:
         msgs.append(f"only {spc:.3g} steps per contact: results are coarse")

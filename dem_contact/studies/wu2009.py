@@ -287,7 +287,7 @@ def run_validation(outdir: str, log=print, grids: ValidationGrids = FULL) -> str
       f"within {THETA_C_TOL:.0%} of the published curve's crossing ({ee_cross:.3f}); the direct estimate is "
       "also compared with eq. 4.1.")
     w("")
-    w("| law | max diff | Theta_c fit | Theta_c sim | sim vs eq. 4.1 | fit vs pub. crossing | energy warnings | accepted |")
+    w("| law | max diff | Theta_c fit | Theta_c sim | sim vs criterion | fit vs pub. crossing | energy warnings | accepted |")
     w("|---|---|---|---|---|---|---|---|")
     accepted = []
     for name, c, err in law_rows:
