@@ -413,25 +413,6 @@ class LammpsContacts:
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
 
     # -- set-up -------------------------------------------------------------------------------------
-    def _global_max(self, values):
-        """Global maxima of up to 4 per-atom columns (written into the statistics columns of the local
-        atoms, which are zero after; collective: every rank must call it). Computes made for the call
-        (LAMMPS's keep their result for the rest of a time step)."""
-        lmp = self.lmp
-        nlocal = lmp.extract_setting("nlocal")
-        data = self._data()
-        st = data[:nlocal, self.col_stat:self.col_stat + K.N_STAT]
-        st[:] = 0.0
-        for k, v in enumerate(values):
-            st[:, k] = v
-        p = f"{self.prefix}_chk"
-        _stat_computes(lmp, p, self.prefix, self.col_stat)
-        out = _reduce(lmp, p, "max")
-        for c in ("max", "sum", "stat"):
-            lmp.command(f"uncompute {p}_{c}")
-        st[:] = 0.0
-        return out
-
     def check(self):
         """The checks that need the atoms and the time step (collective; ``run`` calls it before every run)."""
         lmp = self.lmp
@@ -449,13 +430,10 @@ class LammpsContacts:
         renumbered = ((last_id != 0.0) & (last_id != ids)).astype(float)
         worst = [float(a.max()) if nlocal else 0.0 for a in (r_err, m_err, renumbered)]
         # (which check fails anywhere: an MPI reduction of three flags; the values of another rank are not
-        # needed to say what is wrong; without MPICH, LAMMPS's own reduction of the per-atom values)
+        # needed to say what is wrong; several ranks without MPICH were refused at attach)
         told = [max_rank(lmp, int(w > tol)) for w, tol in zip(worst, (SIZE_TOL, SIZE_TOL, 0.0))]
-        if None in told:
-            worst = self._global_max([r_err, m_err, renumbered])
-        else:
-            worst = [w if w > tol else (math.inf if t else 0.0)
-                     for w, t, tol in zip(worst, told, (SIZE_TOL, SIZE_TOL, 0.0))]
+        worst = [w if w > tol else (math.inf if t else 0.0)
+                 for w, t, tol in zip(worst, told, (SIZE_TOL, SIZE_TOL, 0.0))]
         if worst[2] > 0.0:
             raise InputError("atom ids changed since the last run (reset_atoms id?): the contact histories are "
                              "kept by the partner's atom id, so they would be lost or given to other contacts; "
@@ -542,7 +520,7 @@ class LammpsContacts:
         error, self._error = self._error, None
         # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
         kind = max_rank(self.lmp, 0 if error is None else 2 if isinstance(error, StaleHistoryError) else 1)
-        elsewhere = None if kind is None else kind > 0
+        elsewhere = kind > 0            # (several ranks without MPICH were refused at attach)
         need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
         if error is not None or elsewhere or not need <= self.slots:
             # the checks stopped the run through LAMMPS's timer timeout (fix halt ... error soft), which
