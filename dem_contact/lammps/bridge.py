@@ -563,6 +563,8 @@ class LammpsContacts:
                     lmp.command(f"info fixes out overwrite {path}")
                     text = open(path).read()
                 styles = dict(re.findall(r"Fix\[\s*\d+\]:\s*(\S+),\s*style = (\S+),", text))
+                # accelerated variants (nve/sphere/omp, .../kk) do what their base style does
+                styles = {k: re.sub(r"/(omp|kk|kk/host|kk/device|gpu|intel|opt)$", "", v) for k, v in styles.items()}
                 ext = f"{self.prefix}_ext"
                 ours = ids.index(ext) if ext in ids else len(ids)     # not yet defined: after every fix
                 bad = next((k for k in range(ours) if styles.get(ids[k]) not in FIXES_BEFORE_OK), -1)
