@@ -794,7 +794,7 @@ def test_debug_mode_reports_the_first_bad_contact():
     """The debug loop (bounds-checked) names the contact whose force is not finite: a fixed mdr grid
     outgrown by the contact."""
     tab, args = _checked_setup("mdr")
-    args["overlaps"][1] = 1e-3                      # far beyond the grid placed for v_ref = 1 m/s
+    args["overlaps"][1] = 2e-4                      # below R* but far beyond the grid placed for v_ref = 1 m/s
     with pytest.raises(NumericalError, match="^contact 1: the force is not finite"):
         contact_forces(**args, debug=True)
 
@@ -1007,3 +1007,20 @@ def test_no_energy_created_on_closed_loops_at_constant_load(tangential):
         w_slot, w = closed_loop_work(sc.normal_id, sc.tangential_id, P, H, -n, e1, e2, ux, uy, dn, delta0, 1e-7)
         assert w >= -1e-12 * muN * slip, (seed, w)
         assert abs(w_slot - w) <= 1e-9 * max(abs(w), muN * slip * 1e-3), (seed, w_slot, w)
+
+
+def test_checked_entry_refuses_an_overlap_beyond_the_laws_and_reports_a_non_finite_force():
+    """An overlap not below R* (1e300 m, or a sphere pushed through its partner) is an InputError naming the
+    contact; a force that is not finite after the step (here a history carrying 1e308) is a NumericalError,
+    never returned."""
+    tab, a = _checked_setup("mindlin_total", n=4)
+    args = [a[k] for k in ("nid", "tid", "params", "pair_rows", "H", "normals", "overlaps", "velocities", "wn",
+                           "dt", "forces", "tforces")]
+    big = a["overlaps"].copy()
+    big[2] = 1e300
+    with pytest.raises(InputError, match=r"^overlaps\[2\] = 1e\+300 m is not below"):
+        contact_forces(*args[:6], big, *args[7:])
+    H = a["H"].copy()
+    H[1, :] = 1e308
+    with pytest.raises(NumericalError, match=r"^contact 1: the force is not finite"):
+        contact_forces(*args[:4], H, *args[5:])

@@ -139,3 +139,15 @@ def test_command(tmp_path, capsys):
                  ["path", "--shape", "circle", "--reference", "--normal", "thornton", "--yield-stress", "1e9"]):
         assert main(argv) == 2, argv
         assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_a_path_deeper_than_the_laws_is_refused(capsys):
+    """An overlap not below R* (1e300 m) is an InputError naming the row, from Python and as one line with
+    exit code 2 from the CLI, instead of a non-finite force."""
+    from dem_contact.impacts.presets import preset_scene
+
+    with pytest.raises(InputError, match=r"^delta\[1\] = 1e\+300 m is not below"):
+        run_path(preset_scene("EE", 5.0), [1e-6, 1e300], [0.0, 0.0], [0.0, 0.0])
+    assert main(["path", "--shape", "circle", "--overlap", "1e300"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "not below the pair's effective radius" in err

@@ -932,7 +932,8 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
     ``contact_force`` call that uses the same arrays): law ids, a table built for them, dtypes, shapes,
     C-contiguity, writeable H (and forces, tforces), row indices in range (``history_rows`` distinct rows
-    of H), history rows long enough for the laws, unit normals (within 1e-6), dt > 0 and finite inputs.
+    of H), history rows long enough for the laws, unit normals (within 1e-6), dt > 0, finite inputs and
+    overlaps below the pair's R*.
     Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
     again when they are reallocated); the jitted kernels themselves do not check."""
     _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
@@ -948,6 +949,10 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     _first_bad("normals", np.abs(length - 1.0) > UNIT_TOL,
                lambda c: f"has length {length[c]:.9g} (a unit vector is needed, within {UNIT_TOL:g})")
     _first_bad("overlaps", ~np.isfinite(overlaps), lambda c: "is not finite")
+    r_star = params[pair_rows, P_RSTAR]
+    _first_bad("overlaps", ~(overlaps < r_star),
+               lambda c: f"= {overlaps[c]:.6g} m is not below the pair's effective radius R* = {r_star[c]:.6g} m "
+                         f"(the contact laws hold for overlaps far below it)")
     _first_bad("velocities", ~np.all(np.isfinite(velocities), axis=1), lambda c: "is not finite")
     _first_bad("wn", ~np.isfinite(wn), lambda c: "is not finite")
 
@@ -984,6 +989,11 @@ _DEBUG_REASONS = {1: "pair_rows[{c}] is not a row of params", 2: "H rows are too
                   3: "normals[{c}] is not a unit vector", 4: "an input of contact {c} is not finite"}
 
 
+def _nonfinite_force(c, overlap, tid) -> NumericalError:
+    return NumericalError(f"contact {c}: the force is not finite (overlap {overlap:.6g} m"
+                          f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
+
+
 def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, *,
                    history_rows=None, parallel=True, debug=None):
     """Checked batch step: ``check_contacts``, then ``contact_forces_batch`` (``parallel``) or
@@ -1006,10 +1016,14 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
         c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn,
                                   float(dt), forces, tforces, need)
         if reason == 5:
-            raise NumericalError(f"contact {c}: the force is not finite (overlap {overlaps[c]:.6g} m"
-                                 f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
+            raise _nonfinite_force(c, overlaps[c], tid)
         if reason:
             raise InputError(_DEBUG_REASONS[reason].format(c=c))
     else:
         _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, hrows, normals, overlaps,
                                                    velocities, wn, float(dt), forces, tforces)
+        n = len(overlaps)
+        bad = ~(np.all(np.isfinite(forces[:n]), axis=1) & np.all(np.isfinite(tforces[:n]), axis=1))
+        if np.any(bad):
+            c = int(np.argmax(bad))
+            raise _nonfinite_force(c, overlaps[c], tid)

@@ -107,7 +107,7 @@ def force_error(N, Tx, Ty, ref, mu: float) -> float:
 
 def time_per_update(scene: Scene, delta, ux, uy, repeats: int = 5) -> float:
     """Best time of one kernel update along the path [s] (warm JIT; the loop of ``run_path``)."""
-    delta, ux, uy = check_path(delta, ux, uy)
+    delta, ux, uy = check_path(delta, ux, uy, scene)
     sc = path_scene(scene, float(delta.max()))
     params = np.ascontiguousarray(sc.params[None, :])
     n = delta.size

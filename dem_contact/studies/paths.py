@@ -55,8 +55,9 @@ def _drive(nid, tid, params, H, delta, ux, uy, dt, N, Tx, Ty):
         y0 = uy[k]
 
 
-def check_path(delta, ux, uy):
-    """The path as three float64 arrays of equal length (InputError naming the bad value)."""
+def check_path(delta, ux, uy, scene: Scene | None = None):
+    """The path as three float64 arrays of equal length (InputError naming the bad value); with ``scene``,
+    every overlap below its effective radius R* (the contact laws hold for overlaps far below it)."""
     arrs = []
     for name, x in zip(COLUMNS, (delta, ux, uy)):
         a = np.ascontiguousarray(np.atleast_1d(np.asarray(x, dtype=float)))
@@ -69,6 +70,11 @@ def check_path(delta, ux, uy):
     if not arrs[0].size == arrs[1].size == arrs[2].size:
         raise InputError(f"delta, ux and uy must have the same length (got {arrs[0].size}, {arrs[1].size}, "
                          f"{arrs[2].size})")
+    if scene is not None:
+        deep = np.flatnonzero(arrs[0] >= scene.pair.R_star)
+        if deep.size:
+            raise InputError(f"delta[{deep[0]}] = {arrs[0][deep[0]]:g} m is not below the pair's effective radius "
+                             f"R* = {scene.pair.R_star:g} m (the contact laws hold for overlaps far below it)")
     return arrs
 
 
@@ -90,7 +96,7 @@ def run_path(scene: Scene, delta, ux, uy, *, dt: float = 1.0):
     quasi-static). For the ``mdr`` law the springs are placed for the path's largest overlap."""
     if not isinstance(scene, Scene):
         raise InputError("scene must be a Scene")
-    delta, ux, uy = check_path(delta, ux, uy)
+    delta, ux, uy = check_path(delta, ux, uy, scene)
     dt = check_finite("dt (time per row, s)", dt, lo=0.0)
     sc = path_scene(scene, float(delta.max()))
     H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs))
@@ -110,7 +116,7 @@ def reference_path(scene: Scene, delta, ux, uy, *, n_across: int = 64):
     Cattaneo-Mindlin tangential problem solved on ``n_across`` elements across the largest contact)."""
     from ..reference.bem import bem_path_scene
 
-    delta, ux, uy = check_path(delta, ux, uy)
+    delta, ux, uy = check_path(delta, ux, uy, scene)
     return bem_path_scene(scene, delta, ux, uy, n_across=n_across)
 
 
