@@ -424,10 +424,7 @@ def derived_arrays(scene, out, vn, vt, spin, spin2, spc) -> dict:
                   | (np.sqrt(dmax / scene.pair.R_star) > VALIDITY_A_OVER_R) | (spc < 10))
         c = scene_constants(scene)
         if c.e_target is not None:
-            miss = np.abs(e_n - c.e_target) > c.e_tol
-            if c.e_target_vn is not None:           # a calibration that holds at one speed only
-                miss &= np.abs(vn - c.e_target_vn) <= 1e-9 * vn
-            warned |= miss
+            warned |= c.calibration_missed(e_n, vn)
         if mu > 0:
             warned |= np.abs(f) > mu * (1.0 + 1e-9)
         theta_deg = np.degrees(np.arctan2(vt, vn))
@@ -484,10 +481,13 @@ class SceneConstants:
         self.e_tol = (math.inf if self.e_target is None else
                       max(CALIBRATION_RTOL * self.e_target, CALIBRATION_ATOL))
 
-    def calibration_missed(self, e_n: float, vn: float) -> bool:
-        """e_n misses the calibration's target (see CALIBRATION_RTOL) at an impact of normal speed vn."""
-        return abs(e_n - self.e_target) > self.e_tol and (
-            self.e_target_vn is None or abs(vn - self.e_target_vn) <= 1e-9 * vn)
+    def calibration_missed(self, e_n, vn):
+        """e_n misses the calibration's target (see CALIBRATION_RTOL) at an impact of normal speed vn (numbers
+        or arrays); a calibration that holds at one speed only is judged at that speed only."""
+        miss = np.abs(e_n - self.e_target) > self.e_tol
+        if self.e_target_vn is not None:
+            miss = miss & (np.abs(vn - self.e_target_vn) <= 1e-9 * vn)
+        return miss
 
 
 def calibration_target(scene: Scene) -> tuple:
