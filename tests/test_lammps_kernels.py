@@ -3,6 +3,7 @@ a brute-force search, and the atoms marked as able to change rank."""
 import numpy as np
 
 from dem_contact.lammps import kernels as K
+from dem_contact.walls import PlaneWall, pack
 
 
 def _points(n, seed, box=1.0):
@@ -14,7 +15,8 @@ def test_candidates_are_every_close_pair_once_lower_id_first():
     nall, nlocal, skin = 400, 300, 0.01
     x, radius = _points(nall, 1)
     tag = np.random.default_rng(2).permutation(nall).astype(np.int64) + 1     # ids unrelated to indices
-    walls = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0, 0.0, -1.0]])
+    planes = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0, 0.0, -1.0]])
+    walls, _ = pack([PlaneWall(tuple(p[:3]), tuple(p[3:])) for p in planes])
     pairs, wall_pairs = K.candidates(nlocal, nall, x, radius, tag, walls, radius.max(), skin)
     got = {(int(i), int(j)) for i, j in pairs}
     assert len(got) == len(pairs)                                   # no pair twice
@@ -27,9 +29,9 @@ def test_candidates_are_every_close_pair_once_lower_id_first():
                 want.add((i, j))
     assert got == want
     assert np.all(np.diff(pairs[:, 0]) >= 0)                        # in the order of i
-    gap = np.stack([(x[:nlocal] - w[:3]) @ w[3:] for w in walls], axis=1)
-    want_w = {(i, w) for i in range(nlocal) for w in range(2) if gap[i, w] < radius[i] + skin}
-    assert {(int(i), int(w)) for i, w in wall_pairs} == want_w
+    gap = np.stack([(x[:nlocal] - p[:3]) @ p[3:] for p in planes], axis=1)
+    want_w = {(i, w, 0) for i in range(nlocal) for w in range(2) if gap[i, w] < radius[i] + skin}
+    assert {(int(i), int(w), int(e)) for i, w, e in wall_pairs} == want_w     # (a plane: one element, 0)
 
 
 def test_near_boundary_marks_atoms_within_reach_of_open_faces_only():
@@ -82,7 +84,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
     v = rng.normal(0.0, 1.0, (n, 3))
     g = dict(table=table, n=n, x=x, v=v, omega=rng.normal(0.0, 50.0, (n, 3)), radius=np.full(n, 1e-3),
              rmass=np.full(n, mat.rho * 4.0 / 3.0 * np.pi * 1e-9), tag=np.arange(1, n + 1, dtype=np.int64),
-             typ=np.ones(n, dtype=np.int64), walls=np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]),
+             typ=np.ones(n, dtype=np.int64), walls=pack([PlaneWall.axis("z", 0.0, "lo")])[0],
              wall_mat=np.zeros(1, dtype=np.int64), dt=2e-6, near=np.zeros(n, dtype=np.bool_))
 
     def state():

@@ -1,6 +1,7 @@
 """The package's rooms and the direction of their imports: laws <- impacts <- studies <- commands, with
-rebound/ (pure functions of numbers) and dem/ (what DEM codes call) beside them; kernel_cache (numba's cache
-locators) below everything, set up first by the package's __init__."""
+rebound/ (pure functions of numbers) and dem/ (what DEM codes call) beside them; walls/ (the kinds of wall,
+under dem/ and lammps/); kernel_cache (numba's cache locators) below everything, set up first by the
+package's __init__."""
 import ast
 import importlib
 import pathlib
@@ -18,11 +19,12 @@ ALLOWED = {
     "laws": {"errors", "materials"},
     "rebound": {"errors"},
     "reference": {"errors", "materials", "laws"},
-    "dem": {"errors", "materials", "laws"},
+    "walls": {"errors", "materials", "laws"},
+    "dem": {"errors", "materials", "laws", "walls"},
     "impacts": {"errors", "materials", "laws", "dem"},
     "plots": {"errors", "rebound"},
     "studies": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "dem"},
-    "lammps": {"errors", "materials", "laws", "dem"},
+    "lammps": {"errors", "materials", "laws", "dem", "walls"},
     "commands": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "studies", "dem"},
     "cli": {"errors", "commands"},
     "__init__": {"kernel_cache", "errors", "materials", "laws", "impacts"},

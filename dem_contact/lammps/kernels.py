@@ -7,7 +7,8 @@ property/atom d2_...``, which migrate with the atom between ranks and survive ne
 atom sorting): the keys of its rows, ``keys`` (nmax, slots), in a narrow array read at every step; for
 each row the separation of its contact when it was last matched and a mark of an out-of-date second copy
 (see below), ``sep`` (nmax, 4 slots), in another; and the rows in a third, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
-partner's atom id (> 0), -(w + 1) for wall w, or 0 for a free row. A contact is the partner and the
+partner's atom id (> 0), the wall's key (< 0, ``walls.contract.history_key``: -(w + 1) for wall w when
+every wall has one element, as planes) for a wall, or 0 for a free row. A contact is the partner and the
 periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
 two images of one partner, each its own contact with its own row, told apart by the separation
 (x_partner - x_atom, continuous in time whatever the atoms' wraps), which is stored with the row when it
@@ -41,6 +42,11 @@ ghost position is x + L, rounded: there the two sides agree to rounding error on
 Kinematics follow LAMMPS's granular models (``pair granular``, ``fix wall/gran``): the slip velocity
 uses the full radii, v = v1 - v2 + (R1 w1 + R2 w2) x n; the torque arm is R - delta/2 for a sphere pair
 and R for a wall.
+
+Walls: packed rows of ``walls.table.pack`` (float64[n_walls, walls.ROW_SIZE]), read only through the wall
+kernels of ``walls.table`` (``contact``: distance and normal; ``velocity``: the wall's velocity at the
+contact point, subtracted from the sphere's; ``element`` and ``history_key``: the key of the contact's
+history), so that every kind of wall of the table works here.
 """
 import math
 
@@ -49,6 +55,7 @@ from numba import njit
 
 from ..laws.contact import HERTZ_DAMPED, LINEAR_NORMAL
 from ..laws.vector import V_N
+from ..walls import table as W
 
 # columns of the per-atom statistics array (d2 property, written for local atoms every step)
 ST_PAIRS = 0     # sphere-sphere contacts of the atom
@@ -144,10 +151,10 @@ _AHEAD = np.array([[1, -1], [1, 0], [1, 1], [0, 1]], dtype=np.int64)
 @njit(cache=True)
 def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
     """Verlet lists of the local atoms: sphere pairs (i local; j local with a higher atom id, or ghost) closer
-    than r_i + r_j + skin, in the order of i, and wall pairs (i, w) closer than r_i + skin. walls:
-    float64[n_walls, 6], a point and the unit normal pointing into the domain. Valid while no atom has moved
+    than r_i + r_j + skin, in the order of i, and wall pairs (i, w, element e) whose surface is closer to
+    the centre than r_i + skin. walls: the packed rows (``walls.table.pack``). Valid while no atom has moved
     more than skin / 2 and the local and ghost atoms keep their indices. Returns (pairs int64[m, 2],
-    wall_pairs int64[k, 2]).
+    wall_pairs int64[k, 3]).
 
     Cell lists of side 2 r_max + skin (Allen & Tildesley, Computer Simulation of Liquids, 1987, sec. 5.3.2),
     local atoms and ghosts in separate lists on one grid: a pair of local atoms is found once, from the
@@ -236,15 +243,15 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         pairs[q, 0] = first[c]
         pairs[q, 1] = second[c]
     nw = walls.shape[0]
-    hits = np.empty((max(nlocal * nw, 1), 2), dtype=np.int64)
+    hits = np.empty((max(nlocal * nw, 1), 3), dtype=np.int64)
     kw = 0
     for i in range(nlocal):
         for w in range(nw):
-            gap = ((x[i, 0] - walls[w, 0]) * walls[w, 3] + (x[i, 1] - walls[w, 1]) * walls[w, 4]
-                   + (x[i, 2] - walls[w, 2]) * walls[w, 5])
+            gap, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
             if gap < radius[i] + skin:
                 hits[kw, 0] = i
                 hits[kw, 1] = w
+                hits[kw, 2] = W.element(walls, w, x[i, 0], x[i, 1], x[i, 2])
                 kw += 1
     return pairs, hits[:kw]
 
@@ -260,7 +267,8 @@ def _separation(x, radius, i, j):
 
 @njit(cache=True)
 def overlapping(x, radius, walls, cand, cand_walls):
-    """The candidates in contact now: (pairs, deltas, wall_hits, wall_deltas), deltas > 0 the overlaps."""
+    """The candidates in contact now: (pairs, deltas, wall_hits (i, w, element), wall_deltas), deltas > 0 the
+    overlaps."""
     m = 0
     keep = np.empty(cand.shape[0], dtype=np.int64)
     deltas = np.empty(cand.shape[0])
@@ -282,17 +290,16 @@ def overlapping(x, radius, walls, cand, cand_walls):
     for c in range(cand_walls.shape[0]):
         i = cand_walls[c, 0]
         w = cand_walls[c, 1]
-        gap = ((x[i, 0] - walls[w, 0]) * walls[w, 3] + (x[i, 1] - walls[w, 1]) * walls[w, 4]
-               + (x[i, 2] - walls[w, 2]) * walls[w, 5])
+        gap, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
         d = radius[i] - gap
         if d > 0.0:
             wkeep[kw] = c
             wdel[kw] = d
             kw += 1
-    hits = np.empty((kw, 2), dtype=np.int64)
+    hits = np.empty((kw, 3), dtype=np.int64)
     for k in range(kw):
-        hits[k, 0] = cand_walls[wkeep[k], 0]
-        hits[k, 1] = cand_walls[wkeep[k], 1]
+        for q in range(3):
+            hits[k, q] = cand_walls[wkeep[k], q]
     return pairs, deltas[:m], hits, wdel[:kw]
 
 
@@ -339,14 +346,15 @@ def _free_row(keys, i):
 
 
 @njit(inline="always", cache=True)
-def _candidate(cand, cand_walls, c, tag, nlocal):
+def _candidate(cand, cand_walls, walls, c, tag, nlocal):
     """Candidate c of the lists (sphere pairs, then wall pairs): (i, j, key of j in atom i's rows, whether
-    j is a local atom); j = -1 for a wall."""
+    j is a local atom); j = -1 for a wall, keyed by its wall and element."""
     npc = cand.shape[0]
     if c < npc:
         j = cand[c, 1]
         return cand[c, 0], j, float(tag[j]), j < nlocal
-    return cand_walls[c - npc, 0], -1, -(cand_walls[c - npc, 1] + 1.0), False
+    k = c - npc
+    return cand_walls[k, 0], -1, W.history_key(walls, cand_walls[k, 1], cand_walls[k, 2]), False
 
 
 @njit(inline="always", cache=True)
@@ -394,7 +402,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     (``dem.contact3d.batch_loop``), with the H rows of their histories.
 
     x, v, omega: float64[nall, 3]; radius, rmass: float64[nall]; tag: int[nall] atom ids; typ: int[nall]
-    atom types (1-based, as LAMMPS); walls: float64[n_walls, 6]; wall_mat: int64[n_walls] column of
+    atom types (1-based, as LAMMPS); walls: the packed rows (``walls.table.pack``); wall_mat: int64[n_walls] column of
     wall_row; cand, cand_walls: the Verlet lists (``candidates``); cand_rows: int64[len(cand) +
     len(cand_walls), 2] the history slots of both atoms of each candidate found at earlier steps (-1: none;
     all -1 when the lists were rebuilt): a continuing contact finds its rows without a search; keys:
@@ -448,7 +456,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
     ended = 0           # candidates whose contact ended (work[:ended, 2])
     for c in range(npc + nwc):
-        dx = dy = dz = r2 = rs = delta = nx = ny = nz = 0.0
+        dx = dy = dz = r2 = rs = delta = nx = ny = nz = gap = 0.0
         w = -1
         if c < npc:
             i = cand[c, 0]
@@ -460,11 +468,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             i = cand_walls[c - npc, 0]
             w = cand_walls[c - npc, 1]
             j = -1
-            nx = -walls[w, 3]
-            ny = -walls[w, 4]
-            nz = -walls[w, 5]
-            delta = radius[i] + ((x[i, 0] - walls[w, 0]) * nx + (x[i, 1] - walls[w, 1]) * ny
-                                 + (x[i, 2] - walls[w, 2]) * nz)
+            gap, nx, ny, nz = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            delta = radius[i] - gap
             touch = delta > 0.0
             local_j = False
         ri = cand_rows[c, 0]
@@ -524,16 +529,18 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 wn[n] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
                                + (omega[a, 2] + omega[b, 2]) * nz)
         else:
-            # body 1: the sphere; n from the sphere to the wall; the wall is at rest
+            # body 1: the sphere; n from the sphere to the wall; minus the wall's velocity at the contact
+            # point c = x + gap n on its surface
             a = i
             b = -(w + 1)
             ra = radius[i]
+            uwx, uwy, uwz = W.velocity(walls, w, x[i, 0] + gap * nx, x[i, 1] + gap * ny, x[i, 2] + gap * nz)
             wx = ra * omega[i, 0]
             wy = ra * omega[i, 1]
             wz = ra * omega[i, 2]
-            vx = v[i, 0] + (wy * nz - wz * ny)
-            vy = v[i, 1] + (wz * nx - wx * nz)
-            vz = v[i, 2] + (wx * ny - wy * nx)
+            vx = v[i, 0] - uwx + (wy * nz - wz * ny)
+            vy = v[i, 1] - uwy + (wz * nx - wx * nz)
+            vz = v[i, 2] - uwz + (wx * ny - wy * nx)
             pair_rows[n] = wall_row[typ[i] - 1, wall_mat[w]]
             wn[n] = 0.0
             if frame_spin:
@@ -552,7 +559,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
         i = touched[k]
         stat[i, ST_NEED] = max(stat[i, ST_NEED], stat[i, ST_PAIRS] + stat[i, ST_WALLS])
     left_out, stale = _rows_of_late_contacts(
-        nlocal, x, radius, tag, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full, used, near,
+        nlocal, x, radius, tag, walls, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full, used, near,
         work, body, src, dst, hrow, late, ended)
     if left_out:
         # drop the contacts left out
@@ -600,7 +607,7 @@ def near_boundary(nlocal, x, sublo, subhi, open_lo, open_hi, reach, near):
 
 
 @njit(cache=True)
-def _rows_of_late_contacts(nlocal, x, radius, tag, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full,
+def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full,
                            used, near, work, body, src, dst, hrow, late, ended):
     """The history rows of the contacts of ``gather_contacts`` whose rows are not cached (work[:late, :2]:
     contact, candidate) and of the candidates whose contact ended (work[:ended, 2]): rows freed, found by
@@ -615,7 +622,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, cand, cand_walls, cand_rows, 
     for k in range(ended):
         # contacts that ended free their rows (reset)
         c = work[k, 2]
-        i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
+        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
         r = cand_rows[c, 0]
         if r >= 0 and keys[i, r] == key_i:
             _release(keys, H, i, r)
@@ -627,7 +634,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, cand, cand_walls, cand_rows, 
     for k in range(late):
         # rows not cached: found by their keys (first step after a rebuild) or none yet (a new contact)
         c = work[k, 1]
-        i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
+        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
         dx = dy = dz = 0.0
         if j >= 0:
             dx, dy, dz, _, _ = _separation(x, radius, i, j)
@@ -652,7 +659,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, cand, cand_walls, cand_rows, 
         # the next check); the law reads atom i's row, else atom j's, else none (zeros)
         n_ = work[k, 0]
         c = work[k, 1]
-        i, j, key_i, local_j = _candidate(cand, cand_walls, c, tag, nlocal)
+        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
         ri = cand_rows[c, 0]
         rj = cand_rows[c, 1] if local_j else -1
         # the history read: the current copy (``_copies``), else the other, else none (a new contact)
