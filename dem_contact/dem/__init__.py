@@ -1,2 +1,3 @@
-"""What a DEM code calls: 3D per-contact and batch kernels (``contact3d``) and parameter tables for many
-materials (``pairs``). Uses ``laws`` and the materials only."""
+"""What a DEM code calls: 3D per-contact and batch kernels (``contact3d``), parameter tables for many
+materials (``pairs``) and the contacts of spheres with walls for the batch kernels (``walls``, on the wall
+kinds of ``dem_contact.walls``). Uses ``laws``, ``walls`` and the materials only."""

@@ -1,0 +1,177 @@
+"""Contacts of spheres with walls for the 3D batch kernels (``contact3d``): the same wall kernels as the
+LAMMPS bridge (``dem_contact.walls``), so a DEM code gets the normals, overlaps and wall velocities that the
+bridge computes, for any kind of wall of the table.
+
+    contacts = wall_contacts(centres, radii, walls)
+    rows = contacts.pair_rows(table, types)                  # table.wall_row[type, wall material]
+    v = contacts.relative_velocities(velocities, spins)      # v_i + R_i w_i x n - v_wall
+    contact_forces(nid, tid, table.params, rows, H, contacts.normals, contacts.overlaps, v,
+                   contacts.frame_spin(spins), dt, forces, tforces, history_rows=...)
+
+Body 1 is the sphere, body 2 the wall: ``normals`` point from the sphere toward the wall, ``forces`` is the
+force on the sphere; its torque is R n x F_t (the arm of a wall contact is the full radius, as in LAMMPS's
+``fix wall/gran``). ``keys`` identify each contact's history (one per wall and element) from one step to
+the next.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ..errors import InputError
+from ..walls import table as W
+
+
+@njit(cache=True)
+def _find(x, radius, walls):
+    """The sphere-wall pairs in contact (overlap > 0), in the order of the spheres, then the walls."""
+    n = x.shape[0]
+    nw = walls.shape[0]
+    m = 0
+    for i in range(n):
+        for w in range(nw):
+            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            if radius[i] - s > 0.0:
+                m += 1
+    ids = np.empty((m, 3), dtype=np.int64)
+    keys = np.empty(m)
+    normals = np.empty((m, 3))
+    overlaps = np.empty(m)
+    points = np.empty((m, 3))
+    vel = np.empty((m, 3))
+    curv = np.empty(m)
+    k = 0
+    for i in range(n):
+        for w in range(nw):
+            s, nx, ny, nz = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            delta = radius[i] - s
+            if not delta > 0.0:
+                continue
+            cx = x[i, 0] + s * nx
+            cy = x[i, 1] + s * ny
+            cz = x[i, 2] + s * nz
+            e = W.element(walls, w, x[i, 0], x[i, 1], x[i, 2])
+            ids[k, 0] = i
+            ids[k, 1] = w
+            ids[k, 2] = e
+            keys[k] = W.history_key(walls, w, e)
+            normals[k, 0] = nx
+            normals[k, 1] = ny
+            normals[k, 2] = nz
+            overlaps[k] = delta
+            points[k, 0] = cx
+            points[k, 1] = cy
+            points[k, 2] = cz
+            vel[k, 0], vel[k, 1], vel[k, 2] = W.velocity(walls, w, cx, cy, cz)
+            curv[k] = W.curvature(walls, w, cx, cy, cz)
+            k += 1
+    return ids, keys, normals, overlaps, points, vel, curv
+
+
+def _points(name, a, n=None):
+    try:
+        arr = np.array(a, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be an array of numbers, got {type(a).__name__}") from None
+    if n is None:
+        if arr.ndim != 2 or arr.shape[1] != 3:
+            raise InputError(f"{name} must have shape (n, 3) (one row per sphere), got {arr.shape}")
+    elif arr.shape != (n, 3):
+        raise InputError(f"{name} must have shape ({n}, 3) (one row per sphere), got {arr.shape}")
+    bad = ~np.isfinite(arr).all(axis=1)
+    if bad.any():
+        raise InputError(f"{name}[{int(np.argmax(bad))}] must be finite, got {arr[np.argmax(bad)].tolist()}")
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class WallContacts:
+    """The sphere-wall contacts of ``wall_contacts`` (m of them), body 1 the sphere, body 2 the wall.
+
+    sphere, wall, element: int64[m] the sphere's index, the wall's index in the list, and the element of
+    the wall touched (0 for a plane); material: int64[m] the wall's material (its ``wall``: the column of
+    ``PairTable.wall_row``); keys: float64[m] the key of the contact's history (negative, one per wall and
+    element; with the sphere's index it names the contact); normals: float64[m, 3] unit, from the sphere
+    toward the wall; overlaps: float64[m] > 0 [m]; points: float64[m, 3] the contact points on the wall's
+    surface [m]; wall_velocities: float64[m, 3] the wall's velocity there [m/s]; curvature: float64[m]
+    1 / R2 of the wall there [1/m] (0 for a plane: R* = R of the sphere, as ``pairs.pair_table``'s
+    sphere-wall rows); radii: float64[m] the spheres' radii."""
+
+    sphere: np.ndarray
+    wall: np.ndarray
+    element: np.ndarray
+    material: np.ndarray
+    keys: np.ndarray
+    normals: np.ndarray
+    overlaps: np.ndarray
+    points: np.ndarray
+    wall_velocities: np.ndarray
+    curvature: np.ndarray
+    radii: np.ndarray
+    n_spheres: int
+
+    def __len__(self):
+        return len(self.overlaps)
+
+    def relative_velocities(self, velocities, spins) -> np.ndarray:
+        """float64[m, 3]: the sphere's velocity at the contact relative to the wall's, v + R w x n - v_wall
+        (the full radius, as LAMMPS's ``fix wall/gran`` and the bridge). velocities, spins: float64[n, 3] of
+        every sphere [m/s], [rad/s]."""
+        v = _points("velocities", velocities, self.n_spheres)[self.sphere]
+        w = _points("spins", spins, self.n_spheres)[self.sphere] * self.radii[:, None]
+        n = self.normals
+        out = np.empty((len(self), 3))
+        out[:, 0] = v[:, 0] - self.wall_velocities[:, 0] + (w[:, 1] * n[:, 2] - w[:, 2] * n[:, 1])
+        out[:, 1] = v[:, 1] - self.wall_velocities[:, 1] + (w[:, 2] * n[:, 0] - w[:, 0] * n[:, 2])
+        out[:, 2] = v[:, 2] - self.wall_velocities[:, 2] + (w[:, 0] * n[:, 1] - w[:, 1] * n[:, 0])
+        return out
+
+    def frame_spin(self, spins) -> np.ndarray:
+        """float64[m]: wn = 0.5 w . n, the spin of the contact frame about the normal (the wall does not
+        turn); pass zeros instead to keep the history fixed in space (LAMMPS's granular models)."""
+        w = _points("spins", spins, self.n_spheres)[self.sphere]
+        n = self.normals
+        return 0.5 * (w[:, 0] * n[:, 0] + w[:, 1] * n[:, 1] + w[:, 2] * n[:, 2])
+
+    def pair_rows(self, table, types) -> np.ndarray:
+        """int64[m]: the parameter row of each contact, table.wall_row[types[sphere], material]. types: the
+        sphere type (0-based: the table's spheres[k]) of every sphere."""
+        wall_row = getattr(table, "wall_row", None)
+        if not (isinstance(wall_row, np.ndarray) and wall_row.ndim == 2):
+            raise InputError(f"table must be a PairTable (dem.pairs.pair_table), got {type(table).__name__}")
+        nt, nm = wall_row.shape
+        t = np.asarray(types)
+        if t.shape != (self.n_spheres,) or not np.issubdtype(t.dtype, np.integer):
+            raise InputError(f"types must be {self.n_spheres} integers (one per sphere), got shape {t.shape}, "
+                             f"dtype {t.dtype}")
+        if len(t) and (t.min() < 0 or t.max() >= nt):
+            k = int(np.argmax((t < 0) | (t >= nt)))
+            raise InputError(f"types[{k}] = {int(t[k])} must index the table's spheres (0 ... {nt - 1})")
+        if len(self) and self.material.max() >= nm:
+            k = int(np.argmax(self.material >= nm))
+            raise InputError(f"walls[{int(self.wall[k])}].wall = {int(self.material[k])} must index the "
+                             f"table's walls (0 ... {nm - 1})")
+        return np.ascontiguousarray(wall_row[t[self.sphere], self.material], dtype=np.int64)
+
+
+def wall_contacts(centres, radii, walls) -> WallContacts:
+    """The contacts of spheres (centres float64[n, 3] [m], radii float64[n] > 0 [m]) with ``walls`` (a list
+    of walls of ``dem_contact.walls``: ``PlaneWall``), as the batch kernels take them (``WallContacts``).
+    Checked: ``InputError`` naming the parameter and its valid range. O(n x number of walls)."""
+    x = _points("centres", centres)
+    try:
+        r = np.array(radii, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InputError(f"radii must be an array of numbers, got {type(radii).__name__}") from None
+    if r.shape != (len(x),):
+        raise InputError(f"radii must have shape ({len(x)},) (one per sphere), got {r.shape}")
+    bad = ~(np.isfinite(r) & (r > 0.0))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise InputError(f"radii[{k}] = {float(r[k])!r} must be finite and > 0 [m]")
+    rows, mats = W.pack(walls)
+    ids, keys, normals, overlaps, points, vel, curv = _find(x, r, rows)
+    return WallContacts(ids[:, 0].copy(), ids[:, 1].copy(), ids[:, 2].copy(), mats[ids[:, 1]], keys, normals,
+                        overlaps, points, vel, curv, r[ids[:, 0]], len(x))

@@ -1,0 +1,288 @@
+"""Walls (``dem_contact.walls``): the plane's kernels against the closed form, the table's packing and
+history keys, the dispatch generated for several kinds, the 3D batch face (``dem.walls.wall_contacts``)
+against the LAMMPS bridge's kernels (no LAMMPS needed) and through ``contact3d.contact_forces``, and a wall
+sliding in its plane against LAMMPS's ``fix wall/gran ... shear`` (needs the lammps extra)."""
+import math
+import re
+import types
+
+import numpy as np
+import pytest
+from numba import njit
+
+from dem_contact.dem.contact3d import contact_forces
+from dem_contact.dem.pairs import pair_table
+from dem_contact.dem.walls import wall_contacts
+from dem_contact.errors import InputError
+from dem_contact.laws.slots import P_ESTAR, P_RSTAR
+from dem_contact.materials import Material, Sphere, Wall
+from dem_contact.walls import KINDS, ROW_SIZE, PlaneWall, pack
+from dem_contact.walls import plane
+from dem_contact.walls import table as T
+
+GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
+
+
+def _oblique(seed):
+    rng = np.random.default_rng(seed)
+    n = rng.normal(size=3)
+    return rng.uniform(-0.01, 0.01, 3), n / np.linalg.norm(n)
+
+
+@njit
+def _kernels(walls, w, x, y, z, r):
+    s, nx, ny, nz = T.contact(walls, w, x, y, z, r)
+    cx, cy, cz = x + s * nx, y + s * ny, z + s * nz
+    vx, vy, vz = T.velocity(walls, w, cx, cy, cz)
+    e = T.element(walls, w, x, y, z)
+    return s, nx, ny, nz, vx, vy, vz, T.curvature(walls, w, cx, cy, cz), e, T.history_key(walls, w, e)
+
+
+def test_plane_kernels_are_the_closed_form():
+    """Signed distance (x - p) . n, normal -n from the sphere toward the wall, the prescribed velocity at
+    the contact point, curvature 0, one element, history key -(w + 1)."""
+    p, n = _oblique(1)
+    t = np.cross(n, [1.0, 0.0, 0.0])
+    t /= np.linalg.norm(t)
+    walls = [PlaneWall.axis("z", 0.002, "hi", wall=1), PlaneWall(tuple(p), tuple(n), velocity=tuple(0.3 * t))]
+    rows, mats = pack(walls)
+    assert rows.shape == (2, ROW_SIZE) and mats.tolist() == [1, 0]
+    rng = np.random.default_rng(2)
+    for x in rng.uniform(-0.01, 0.01, (20, 3)):
+        for w, (q, m) in enumerate(((np.array([0.0, 0.0, 0.002]), np.array([0.0, 0.0, -1.0])), (p, n))):
+            s, nx, ny, nz, vx, vy, vz, k, e, key = _kernels(rows, w, *x, 1e-3)
+            assert s == (x[0] - q[0]) * m[0] + (x[1] - q[1]) * m[1] + (x[2] - q[2]) * m[2]
+            assert [nx, ny, nz] == (-m).tolist()
+            want_v = [0.0, 0.0, 0.0] if w == 0 else (0.3 * t).tolist()
+            assert np.allclose([vx, vy, vz], want_v, rtol=0, atol=1e-16)
+            assert (k, e, key) == (0.0, 0, -(w + 1.0))
+
+
+def test_pack_checks_every_wall():
+    ok = PlaneWall.axis("x", 0.0, "lo")
+    cases = [
+        ([ok, "floor"], "walls[1] must be a wall (PlaneWall)"),
+        ([PlaneWall((0, 0, 0), (0, 0, 2.0))], "walls[0].normal must be a unit vector"),
+        ([PlaneWall((0, 0, math.nan), (0, 0, 1.0))], "walls[0].point must be 3 finite numbers"),
+        ([PlaneWall((0, 0), (0, 0, 1.0))], "walls[0].point must be 3 finite numbers"),
+        ([ok, PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=(0.1, 0.0, 1e-3))],
+         "walls[1].velocity must lie in the wall's plane"),
+        ([PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=(0.1, "a", 0.0))], "walls[0].velocity must be 3 finite"),
+        ([PlaneWall((0, 0, 0), (0, 0, 1.0), wall=-1)], "walls[0].wall = -1 must index the table's walls"),
+        ([PlaneWall((0, 0, 0), (0, 0, 1.0), wall=True)], "walls[0].wall = True must index"),
+    ]
+    for walls, message in cases:
+        with pytest.raises(InputError, match=re.escape(message)):
+            pack(walls)
+    with pytest.raises(InputError, match=r"walls\[0\]\.wall = 2 must index the table's walls \(0 \.\.\. 1\)"):
+        pack([PlaneWall((0, 0, 0), (0, 0, 1.0), wall=2)], n_materials=2)
+    with pytest.raises(InputError, match="side must be 'lo' or 'hi'"):
+        PlaneWall.axis("z", 0.0, "up")
+    # a normal part within the tolerance is removed: the surface stays where it is
+    rows, _ = pack([PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=(0.1, 0.0, 1e-12))])
+    assert rows[0, -3:].tolist() == [0.1, 0.0, 0.0]
+
+
+def test_the_dispatch_of_several_kinds_calls_each_kinds_kernel():
+    """With two kinds in the table, the generated dispatch calls the kernel of each row's kind (a second,
+    made-up kind that reports its own distance); a kernel without the contract's signature is refused."""
+    other = types.ModuleType("other_kind")
+
+    @njit(inline="always")
+    def contact(walls, w, x, y, z, r):
+        return -7.0, 0.0, 0.0, 1.0
+
+    other.contact = contact
+    assert len(KINDS) == 1 and "if" not in T.contact.py_func.source        # one kind: a direct call
+    two = T._dispatch("contact", ((0, plane), (1, other)))
+    assert "if walls[w, KIND] == 0.0:" in two.py_func.source
+    rows, _ = pack([PlaneWall.axis("z", 0.0, "lo"), PlaneWall.axis("z", 0.0, "lo")])
+    rows[1, 0] = 1.0                                                        # the second row: kind 1
+
+    @njit
+    def both(walls):
+        return two(walls, 0, 0.0, 0.0, 0.5, 1.0)[0], two(walls, 1, 0.0, 0.0, 0.5, 1.0)[0]
+
+    assert both(rows) == (0.5, -7.0)
+
+    @njit(inline="always")
+    def bad(walls, w, x, y, z):
+        return 0.0, 0.0, 0.0, 1.0
+
+    other.contact = bad
+    with pytest.raises(TypeError, match="does not keep the contract's signature"):
+        T._dispatch("contact", ((0, plane), (1, other)))
+
+
+# ------------------------------------------------------------------------------------ the 3D batch face
+
+def _scene(seed=3, n=60):
+    """Spheres in a box of side 8 mm near a floor, an oblique plane and a side wall sliding in its plane,
+    with velocities and spins."""
+    rng = np.random.default_rng(seed)
+    p, nrm = np.array([0.004, 0.004, 0.0]), np.array([1.0, 1.0, 2.0]) / math.sqrt(6.0)
+    walls = [PlaneWall.axis("z", 0.0, "lo"), PlaneWall(tuple(p), tuple(nrm), wall=1),
+             PlaneWall.axis("x", 0.008, "hi", velocity=(0.0, 0.2, -0.1))]
+    x = rng.uniform(0.0, 0.008, (20 * n, 3))
+    x[:, 2] *= 0.3
+    radius = rng.uniform(0.8e-3, 1.2e-3, 20 * n)
+    # overlaps with the walls below R* / 5 (the table's spheres: R = 1 mm)
+    gap = np.stack([(x - w.point) @ np.array(w.normal) for w in walls], axis=1)
+    keep = np.flatnonzero((gap > radius[:, None] - 2e-4).all(axis=1))[:n]
+    x, radius = x[keep], radius[keep]
+    v = rng.normal(0.0, 0.3, (n, 3))
+    omega = rng.normal(0.0, 50.0, (n, 3))
+    return x, radius, walls, v, omega
+
+
+def _bridge_wall_contacts(x, radius, walls, v, omega, table):
+    """The wall contacts of the LAMMPS bridge's kernels (``gather_contacts``, one rank, no LAMMPS) with their
+    law inputs: (sphere, wall, normals, overlaps, velocities, wn, pair_rows)."""
+    from dem_contact.lammps import kernels as K
+
+    n, slots = len(x), 64          # (enough rows: no contact is left out)
+    rows, mats = pack(walls, table.wall_row.shape[1])
+    tag = np.arange(1, n + 1, dtype=np.int64)
+    cand = K.candidates(n, n, x, radius, tag, rows, radius.max(), 1e-4)
+    cand_rows = np.full((len(cand[0]) + len(cand[1]), 2), -1, dtype=np.int64)
+    buf = K.contact_buffers(2 * len(cand_rows) + 16)
+    m, _, _ = K.gather_contacts(
+        n, x, v, omega, radius, np.ones(n), tag, np.ones(n, dtype=np.int64), rows, mats, *cand, cand_rows,
+        np.zeros((n, slots)), np.zeros((n, 4 * slots)), np.inf, np.zeros((n * slots, table.history_size)),
+        table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, np.zeros((n, K.N_STAT)),
+        np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
+        np.zeros(n, dtype=np.int64), *buf[:10])
+    _, body, _, _, _, prow, normals, overlaps, vel, wn = buf[:10]
+    k = np.flatnonzero(body[:m, 1] < 0)
+    return body[k, 0], -(body[k, 1] + 1), normals[k], overlaps[k], vel[k], wn[k], prow[k]
+
+
+def test_wall_contacts_are_the_lammps_paths_to_the_bit_and_give_its_forces():
+    x, radius, walls, v, omega = _scene()
+    table = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS), Wall(Material(2e8, 0.3, 7800.0))], mu=0.4,
+                       tangential="mindlin_total")
+    c = wall_contacts(x, radius, walls)
+    assert len(c) >= 10 and set(c.wall.tolist()) == {0, 1, 2}
+    # the closed form: overlap r - (x - p) . n, normal -n, a key per wall, the wall's velocity
+    for k in range(len(c)):
+        i, w = c.sphere[k], c.wall[k]
+        p, nrm = np.array(walls[w].point), np.array(walls[w].normal)
+        assert abs(c.overlaps[k] - (radius[i] - (x[i] - p) @ nrm)) <= 1e-18
+        assert c.overlaps[k] > 0 and c.normals[k].tolist() == (-nrm).tolist()
+        assert c.keys[k] == -(w + 1.0) and c.element[k] == 0 and c.curvature[k] == 0.0
+        assert np.allclose(c.points[k], x[i] + (radius[i] - c.overlaps[k]) * (-nrm), rtol=0, atol=1e-18)
+        assert c.wall_velocities[k].tolist() == list(walls[w].velocity)
+    types_ = np.zeros(len(x), dtype=np.int64)
+    rows = c.pair_rows(table, types_)
+    vel = c.relative_velocities(v, omega)
+    wn = c.frame_spin(omega)
+    # the LAMMPS bridge's kernels: the same contacts, in the same order, bit for bit
+    sphere, wall, normals, overlaps, bvel, bwn, brows = _bridge_wall_contacts(x, radius, walls, v, omega, table)
+    assert np.array_equal(sphere, c.sphere) and np.array_equal(wall, c.wall)
+    for ours, theirs in ((c.normals, normals), (c.overlaps, overlaps), (vel, bvel), (wn, bwn), (rows, brows)):
+        assert np.array_equal(ours, theirs)
+    # through the checked batch step: the same forces
+    out = []
+    for nv, vv, ww in ((c.normals, vel, wn), (normals, bvel, bwn)):
+        H = np.zeros((len(c), table.history_size))
+        f, ft = np.zeros((len(c), 3)), np.zeros((len(c), 3))
+        contact_forces(table.normal_id, table.tangential_id, table.params, rows, H, np.ascontiguousarray(nv),
+                       c.overlaps.copy(), np.ascontiguousarray(vv), np.ascontiguousarray(ww), 1e-6, f, ft)
+        out.append(f)
+    assert np.array_equal(out[0], out[1]) and np.abs(out[0]).max() > 0
+
+
+def test_one_wall_contact_through_contact_forces_is_hertz():
+    """A sphere pressed onto a floor at rest, no slip: the force on the sphere is Hertz's,
+    4/3 E* sqrt(R*) delta^1.5, along -n (away from the wall), with R* the sphere's radius."""
+    table = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], normal="hertz", tangential="mindlin_total")
+    c = wall_contacts([[0.1, -0.2, 0.99e-3]], [1e-3], [PlaneWall.axis("z", 0.0, "lo")])
+    assert len(c) == 1 and c.normals[0].tolist() == [-0.0, -0.0, -1.0]
+    assert abs(c.overlaps[0] - 1e-5) < 1e-18
+    rows = c.pair_rows(table, [0])
+    H = np.zeros((1, table.history_size))
+    f, ft = np.zeros((1, 3)), np.zeros((1, 3))
+    contact_forces(table.normal_id, table.tangential_id, table.params, rows, H, c.normals, c.overlaps,
+                   c.relative_velocities([[0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0]]), c.frame_spin([[0, 0, 0]]), 1e-6,
+                   f, ft)
+    row = table.params[rows[0]]
+    assert row[P_RSTAR] == 1e-3
+    want = 4.0 / 3.0 * row[P_ESTAR] * math.sqrt(row[P_RSTAR]) * c.overlaps[0] ** 1.5
+    assert abs(f[0, 2] - want) <= 1e-12 * want and f[0, 0] == 0.0 and f[0, 1] == 0.0
+
+
+def test_wall_contacts_checks_its_inputs():
+    floor = [PlaneWall.axis("z", 0.0, "lo")]
+    cases = [
+        (([[0, 0, 0]], [1e-3, 2e-3], floor), r"radii must have shape \(1,\)"),
+        (([[0, 0, 0]], [0.0], floor), r"radii\[0\] = 0\.0 must be finite and > 0"),
+        (([[0, 0, 0]], [math.inf], floor), r"radii\[0\] = inf must be finite and > 0"),
+        (([[0, 0]], [1e-3], floor), r"centres must have shape \(n, 3\)"),
+        (([[0, 0, 0], [0, math.nan, 0]], [1e-3, 1e-3], floor), r"centres\[1\] must be finite"),
+        (([[0, 0, 0]], [1e-3], [floor[0], None]), r"walls\[1\] must be a wall \(PlaneWall\)"),
+        (([[0, 0, 0]], [1e-3], 3), r"walls must be a list of walls"),
+    ]
+    for args, message in cases:
+        with pytest.raises(InputError, match=message):
+            wall_contacts(*args)
+    c = wall_contacts([[0, 0, 0.5e-3]], [1e-3], [PlaneWall.axis("z", 0.0, "lo", wall=1)])
+    table = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)])
+    with pytest.raises(InputError, match=r"walls\[0\]\.wall = 1 must index the table's walls \(0 \.\.\. 0\)"):
+        c.pair_rows(table, [0])
+    with pytest.raises(InputError, match=r"types\[0\] = 1 must index the table's spheres \(0 \.\.\. 0\)"):
+        c.pair_rows(pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS), Wall(GLASS)]), [1])
+    with pytest.raises(InputError, match=r"velocities must have shape \(1, 3\)"):
+        c.relative_velocities([[0, 0, 0], [0, 0, 0]], [[0, 0, 0]])
+    assert len(wall_contacts(np.zeros((0, 3)), [], floor)) == 0
+
+
+# ------------------------------------------------------------------------------------- LAMMPS, sliding
+
+def _have_lammps():
+    try:
+        from dem_contact.lammps import lammps_module
+        lammps_module()
+        return True
+    except ImportError:
+        return False
+
+
+def _sliding_floor_run(native, shear):
+    """Forces and torques on a sphere pressed onto a floor that slides along x at ``shear`` m/s, every
+    step: LAMMPS's fix wall/gran hertz/material + mindlin with ``shear x``, or the bridge's with a
+    PlaneWall of that velocity (hertz + mindlin_total, frame spin off)."""
+    from dem_contact.lammps import LammpsContacts, new_lammps
+
+    table = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.5, normal="hertz", tangential="mindlin_total")
+    lmp = new_lammps()
+    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+                "create_atoms 1 single 0 0 -0.003999", "set type 1 diameter 0.002",
+                f"set type 1 density {GLASS.rho!r}", "timestep 1e-6", "fix nve all nve/sphere"):
+        lmp.command(cmd)
+    lmp.numpy.extract_atom("v")[0] = (0.1, -0.2, -0.3)
+    lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
+    if native:
+        lmp.command(f"fix wz all wall/gran granular hertz/material {GLASS.E!r} 0.0 {GLASS.nu!r} tangential "
+                    f"mindlin NULL 0.0 0.5 damping viscoelastic zplane -0.005 NULL shear x {shear!r}")
+    else:
+        lmp.command("pair_style none")
+        bridge = LammpsContacts(lmp, table, [PlaneWall.axis("z", -0.005, "lo", velocity=(shear, 0.0, 0.0))],
+                                slots=2, v_max=1.0, frame_spin=False)
+    rows = []
+    for _ in range(60):
+        lmp.command("run 1") if native else bridge.run(1)
+        rows.append(np.concatenate([lmp.numpy.extract_atom("f")[0], lmp.numpy.extract_atom("torque")[0]]))
+    lmp.close()
+    return np.array(rows)
+
+
+@pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
+def test_a_floor_sliding_in_its_plane_is_lammps_wall_gran_shear():
+    """The wall's velocity acts in the bridge as in LAMMPS's fix wall/gran ``shear``: the same forces and
+    torques step for step, to rounding error, and not those of a floor at rest."""
+    ours, native = _sliding_floor_run(False, 0.4), _sliding_floor_run(True, 0.4)
+    assert np.count_nonzero(native[:, 0]) > 10
+    assert np.abs(ours - native).max() <= 1e-13 * np.abs(native).max()
+    at_rest = _sliding_floor_run(False, 0.0)
+    assert np.abs(at_rest - ours).max() > 1e-3 * np.abs(native).max()
