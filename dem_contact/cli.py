@@ -1,7 +1,9 @@
 """Command-line interface: ``dem-contact SUBCOMMAND`` (also ``python -m dem_contact``).
 
-Each subcommand lives in its own module ``dem_contact.commands.<name>`` with ``add_parser(subparsers)``
-(which sets ``run``) and ``run(args) -> int``; modules are found automatically and listed by ``ORDER``. Invalid input prints one line on stderr and exits with code 2,
+Each subcommand lives in its own module ``dem_contact.commands.<name>`` (the command's name) and states what is
+its own: ``HELP`` and ``DESCRIPTION`` (its --help), ``add_options(parser)`` and ``run(args) -> int``
+(``commands.common.add_command`` builds its parser); modules are found automatically and listed by ``ORDER``.
+Invalid input prints one line on stderr and exits with code 2,
 a numerical failure with code 3; any other failure is one line too (code 1), never a traceback.
 """
 from __future__ import annotations
@@ -12,7 +14,6 @@ import pkgutil
 import sys
 
 from .errors import InputError, NumericalError
-
 
 
 def command_modules():
@@ -33,6 +34,8 @@ class OneLineParser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from .commands.common import add_command
+
     parser = OneLineParser(
         prog="dem-contact",
         description="Validated, fast contact laws for spheres: Hertz, Thornton elastic-plastic and "
@@ -40,7 +43,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "fits. All quantities in SI units.")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
     for mod in command_modules():
-        mod.add_parser(sub)
+        add_command(sub, mod)
     return parser
 
 

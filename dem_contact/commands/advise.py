@@ -8,18 +8,18 @@ from ..errors import InputError
 from .common import add_scene_options, dump_json, scene_from_args
 
 ORDER = 5
+HELP = "recommend the cheapest model meeting a tolerance on the rebound"
+DESCRIPTION = ("Integrate a sample of the speed and angle ranges with the exact MDR "
+               "reference, measure the error in f/mu (= error in Omega_r; e_t and Psi_r "
+               "follow from it) and the time per impact of each candidate (rigid-body "
+               "sliding, the Wu et al. model fitted to the sample, cheap laws at coarse "
+               "steps, the reference itself) and recommend the cheapest within --tol. "
+               "--tangential, --steps-per-contact and --model add that law at that time "
+               "step as a candidate; --scheme sets the integrator end of the law "
+               "candidates.")
 
 
-def add_parser(sub):
-    p = sub.add_parser("advise", help="recommend the cheapest model meeting a tolerance on the rebound",
-                       description="Integrate a sample of the speed and angle ranges with the exact MDR "
-                                   "reference, measure the error in f/mu (= error in Omega_r; e_t and Psi_r "
-                                   "follow from it) and the time per impact of each candidate (rigid-body "
-                                   "sliding, the Wu et al. model fitted to the sample, cheap laws at coarse "
-                                   "steps, the reference itself) and recommend the cheapest within --tol. "
-                                   "--tangential, --steps-per-contact and --model add that law at that time "
-                                   "step as a candidate; --scheme sets the integrator end of the law "
-                                   "candidates.")
+def add_options(p):
     add_scene_options(p)
     # options of one impact that advise takes otherwise: None marks "not given" (see run); --vn and --dt
     # cannot act (refused in run) and are not listed in the help
@@ -35,7 +35,6 @@ def add_parser(sub):
     p.add_argument("--tol", type=float, default=0.01, help="tolerance on f/mu (default 0.01)")
     p.add_argument("--verify", action="store_true", help="run the recommendation against MDR on a random sample")
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(run=run)
 
 
 def run(args) -> int:

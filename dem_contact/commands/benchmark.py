@@ -11,12 +11,13 @@ ORDER = 6
 
 SUITES = ("chung-ooi",)
 
+HELP = "run published benchmark suites (Chung & Ooi 2011)"
+DESCRIPTION = ("Run the eight impact-level tests of Chung & Ooi (2011, Granular Matter "
+               "13:643) and print one line per check against its analytic answer "
+               "(pass/fail). SI units.")
 
-def add_parser(sub):
-    p = sub.add_parser("benchmark", help="run published benchmark suites (Chung & Ooi 2011)",
-                       description="Run the eight impact-level tests of Chung & Ooi (2011, Granular Matter "
-                                   "13:643) and print one line per check against its analytic answer "
-                                   "(pass/fail). SI units.")
+
+def add_options(p):
     p.add_argument("suite", choices=SUITES, help="benchmark suite")
     p.add_argument("--test", type=int, action="append", default=None, metavar="N",
                    help="run test N (1-8) only; repeat for several (default: all)")
@@ -26,7 +27,6 @@ def add_parser(sub):
     p.add_argument("--plot", metavar="DIR", default=None, help="write the figures (PNG) to DIR")
     p.add_argument("--report", metavar="FILE", default=None,
                    help="write a markdown report to FILE (with --plot: the figures are linked)")
-    p.set_defaults(run=run)
 
 
 def run(args) -> int:

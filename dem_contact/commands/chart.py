@@ -5,21 +5,21 @@ import os
 import sys
 
 from ..errors import InputError
-from .common import check_output_dir
+from .common import add_out_dir, check_output_dir
 
 ORDER = 4
+HELP = "speed-accuracy chart of the tangential laws (error vs time per impact)"
+DESCRIPTION = ("For every tangential law, the hertz and thornton normal laws and both "
+               "integrator ends, integrate a grid of Theta in [0, 10] (EE steel scene, "
+               "vn = 5 m/s) at several steps per contact; report the max error in f/mu, "
+               "e_t, Omega_r and e_n against converged MDR, split into model and "
+               "discretisation error, and the measured time per impact. Writes a CSV and "
+               "a PNG. The default is a quick subset (about a minute); --full runs the "
+               "whole chart.")
 
 
-def add_parser(sub):
-    p = sub.add_parser("chart", help="speed-accuracy chart of the tangential laws (error vs time per impact)",
-                       description="For every tangential law, the hertz and thornton normal laws and both "
-                                   "integrator ends, integrate a grid of Theta in [0, 10] (EE steel scene, "
-                                   "vn = 5 m/s) at several steps per contact; report the max error in f/mu, "
-                                   "e_t, Omega_r and e_n against converged MDR, split into model and "
-                                   "discretisation error, and the measured time per impact. Writes a CSV and "
-                                   "a PNG. The default is a quick subset (about a minute); --full runs the "
-                                   "whole chart.")
-    p.add_argument("--out", default="chart", help="output directory (default ./chart)")
+def add_options(p):
+    add_out_dir(p, "chart")
     p.add_argument("--full", action="store_true",
                    help="all steps per contact from 5 to 1e4 and 41 values of Theta")
     p.add_argument("--laws", nargs="+", default=None, help="tangential laws (default: all)")
@@ -32,7 +32,6 @@ def add_parser(sub):
     p.add_argument("--stability", action="store_true",
                    help="instead: the stability map (every law and integrator end at extreme settings: "
                         "blow-up, energy creation, Coulomb excess, accuracy loss); writes stability.csv/png")
-    p.set_defaults(run=run)
 
 
 def run(args) -> int:

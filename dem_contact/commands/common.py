@@ -14,65 +14,115 @@ from ..laws.model import MDR_PROFILES, MODELS, NORMAL_LAWS, TANGENTIAL_LAWS, Sce
 from ..materials import STEEL
 
 
+def add_command(sub, module):
+    """The subparser of a command module: its name (the module's), ``HELP``, ``DESCRIPTION``, the options of
+    ``add_options(p)`` and ``run``."""
+    p = sub.add_parser(module.__name__.rsplit(".", 1)[-1], help=module.HELP, description=module.DESCRIPTION)
+    module.add_options(p)
+    p.set_defaults(run=module.run)
+    return p
+
+
+def add_out_dir(p, default: str):
+    """The option --out: the directory a command writes its files to (checked by ``check_output_dir``)."""
+    p.add_argument("--out", default=default, help=f"output directory (default ./{default})")
+
+
+def _option(flag, **kwargs):
+    """One row of an option table: (flag, argparse keyword arguments)."""
+    return flag, kwargs
+
+
+#: The scene options, spelled once: the argparse options of ``add_scene_options`` and, by their names, the
+#: arguments of ``impacts.presets.preset_scene`` that ``scene_from_args`` passes (--case and --vn
+#: positionally, every other by keyword).
+SCENE_OPTIONS = (
+    _option("--case", choices=CASES, default="EE",
+            help="preset scene: RE rigid sphere on elastic steel (takes --nu), EE steel on steel, "
+                 "PE plastic steel sphere (Y = 1.85 GPa) on elastic steel with the thornton law "
+                 "(default EE)"),
+    _option("--radius", type=float, default=0.01, help="sphere radius [m] (default 0.01)"),
+    _option("--density", type=float, default=STEEL.rho, help="sphere density [kg/m^3] (default 7850)"),
+    _option("--E", type=float, default=None, help="sphere Young's modulus [Pa] (default 208e9)"),
+    _option("--nu", type=float, default=None, help="sphere Poisson ratio (-1, 0.5] (default 0.3); "
+            "for --case RE the Poisson ratio of the elastic wall"),
+    _option("--wall-E", type=float, default=None, help="wall Young's modulus [Pa] (default: steel)"),
+    _option("--wall-nu", type=float, default=None, help="wall Poisson ratio (default: steel, 0.3)"),
+    _option("--rigid-wall", action="store_true", help="the wall is rigid"),
+    _option("--rigid-sphere", action="store_true", help="the sphere is rigid"),
+    _option("--mu", type=float, default=0.3, help="friction coefficient >= 0 (default 0.3)"),
+    _option("--normal", choices=list(NORMAL_LAWS), default=None,
+            help="normal law (default hertz; thornton for --case PE)"),
+    _option("--tangential", choices=list(TANGENTIAL_LAWS), default=None,
+            help=f"tangential law (default {DEFAULT_TANGENTIAL}, the library default)"),
+    _option("--yield-pressure", type=float, default=None,
+            help="sphere's limiting contact pressure p_y [Pa] (thornton)"),
+    _option("--yield-stress", type=float, default=None,
+            help="sphere's uniaxial yield stress Y [Pa], p_y = 1.6 Y (thornton)"),
+    _option("--e-n", type=float, default=None,
+            help="target normal restitution: sets the dashpot of hertz_damped and linear, or "
+                 "calibrates p_y of thornton at --vn"),
+    _option("--model", choices=list(MODELS), default=None,
+            help="named model that sets the laws and the time step: thornton2001 = Thornton et al. "
+                 "(2001), thornton normal law (hertz if nothing yields) + md, 1000 steps per contact"),
+    _option("--traction-yield", action="store_true",
+            help="thornton: the limiting pressure falls with the traction |T|/N the contact carries, "
+                 "as the first-yield pressure of a Hertz contact under sliding traction (Hamilton 1983)"),
+    _option("--mdr-profile", choices=list(MDR_PROFILES), default="truncated",
+            help="Coulomb limit of mdr/mdr_adaptive in Thornton's plastic loading: truncated = Hertz "
+                 "pressure truncated at p_y (default), scaled = Hertz shape scaled to the force"),
+    _option("--vn", type=float, default=5.0,
+            help="normal impact speed towards the wall [m/s] (default {vn:g})"),
+)
+
+#: The time-step options (group "time step"): the keyword arguments of an impact (``time_options``).
+TIME_OPTIONS = (
+    _option("--steps-per-contact", type=float, default=None,
+            help="steps per elastic contact time (default: the library default)"),
+    _option("--dt", type=float, default=None, help="explicit time step [s] (instead of steps per contact)"),
+    _option("--scheme", choices=["located", "standard"], default="located",
+            help="located: separation located inside the last step (default); standard: the contact "
+                 "ends at the first step without overlap, as in LIGGGHTS and LAMMPS"),
+)
+
+
+def dest(flag: str) -> str:
+    """The attribute of the parsed options that ``flag`` sets (``--wall-E`` -> ``wall_E``)."""
+    return flag.lstrip("-").replace("-", "_")
+
+
+def default(kwargs: dict):
+    """The value that the option of a table row (its argparse keyword arguments) takes when not given."""
+    return kwargs.get("default", False if kwargs.get("action") == "store_true" else None)
+
+
+#: The arguments of ``preset_scene`` that the scene options give by keyword.
+SCENE_KEYWORDS = tuple(dest(flag) for flag, _ in SCENE_OPTIONS if flag not in ("--case", "--vn"))
+
+
 def add_scene_options(p, vn_default=5.0):
+    """The options of SCENE_OPTIONS (group "scene") and TIME_OPTIONS (group "time step"); vn_default: the
+    default of --vn."""
     g = p.add_argument_group("scene (SI units; defaults: the EE steel scene of Wu et al. 2009)")
-    g.add_argument("--case", choices=CASES, default="EE",
-                   help="preset scene: RE rigid sphere on elastic steel (takes --nu), EE steel on steel, "
-                        "PE plastic steel sphere (Y = 1.85 GPa) on elastic steel with the thornton law "
-                        "(default EE)")
-    g.add_argument("--radius", type=float, default=0.01, help="sphere radius [m] (default 0.01)")
-    g.add_argument("--density", type=float, default=STEEL.rho, help="sphere density [kg/m^3] (default 7850)")
-    g.add_argument("--E", type=float, default=None, help="sphere Young's modulus [Pa] (default 208e9)")
-    g.add_argument("--nu", type=float, default=None, help="sphere Poisson ratio (-1, 0.5] (default 0.3); "
-                   "for --case RE the Poisson ratio of the elastic wall")
-    g.add_argument("--wall-E", type=float, default=None, help="wall Young's modulus [Pa] (default: steel)")
-    g.add_argument("--wall-nu", type=float, default=None, help="wall Poisson ratio (default: steel, 0.3)")
-    g.add_argument("--rigid-wall", action="store_true", help="the wall is rigid")
-    g.add_argument("--rigid-sphere", action="store_true", help="the sphere is rigid")
-    g.add_argument("--mu", type=float, default=0.3, help="friction coefficient >= 0 (default 0.3)")
-    g.add_argument("--normal", choices=list(NORMAL_LAWS), default=None,
-                   help="normal law (default hertz; thornton for --case PE)")
-    g.add_argument("--tangential", choices=list(TANGENTIAL_LAWS), default=None,
-                   help=f"tangential law (default {DEFAULT_TANGENTIAL}, the library default)")
-    g.add_argument("--yield-pressure", type=float, default=None,
-                   help="sphere's limiting contact pressure p_y [Pa] (thornton)")
-    g.add_argument("--yield-stress", type=float, default=None,
-                   help="sphere's uniaxial yield stress Y [Pa], p_y = 1.6 Y (thornton)")
-    g.add_argument("--e-n", type=float, default=None,
-                   help="target normal restitution: sets the dashpot of hertz_damped and linear, or "
-                        "calibrates p_y of thornton at --vn")
-    g.add_argument("--model", choices=list(MODELS), default=None,
-                   help="named model that sets the laws and the time step: thornton2001 = Thornton et al. "
-                        "(2001), thornton normal law (hertz if nothing yields) + md, 1000 steps per contact")
-    g.add_argument("--traction-yield", action="store_true",
-                   help="thornton: the limiting pressure falls with the traction |T|/N the contact carries, "
-                        "as the first-yield pressure of a Hertz contact under sliding traction (Hamilton 1983)")
-    g.add_argument("--mdr-profile", choices=list(MDR_PROFILES), default="truncated",
-                   help="Coulomb limit of mdr/mdr_adaptive in Thornton's plastic loading: truncated = Hertz "
-                        "pressure truncated at p_y (default), scaled = Hertz shape scaled to the force")
-    g.add_argument("--vn", type=float, default=vn_default,
-                   help=f"normal impact speed towards the wall [m/s] (default {vn_default:g})")
+    for flag, kwargs in SCENE_OPTIONS:
+        if flag == "--vn":
+            kwargs = dict(kwargs, default=vn_default, help=kwargs["help"].format(vn=vn_default))
+        g.add_argument(flag, **kwargs)
     t = p.add_argument_group("time step")
-    t.add_argument("--steps-per-contact", type=float, default=None,
-                   help="steps per elastic contact time (default: the library default)")
-    t.add_argument("--dt", type=float, default=None, help="explicit time step [s] (instead of steps per contact)")
-    t.add_argument("--scheme", choices=["located", "standard"], default="located",
-                   help="located: separation located inside the last step (default); standard: the contact "
-                        "ends at the first step without overlap, as in LIGGGHTS and LAMMPS")
+    for flag, kwargs in TIME_OPTIONS:
+        t.add_argument(flag, **kwargs)
 
 
 def scene_from_args(args, v_ref: float | None = None) -> Scene:
     """Build the Scene that the options describe (validated); v_ref: the largest normal speed of the run
     (default --vn), which places the mdr springs and the calibrations."""
-    return preset_scene(args.case, args.vn if v_ref is None else v_ref, radius=args.radius, density=args.density, E=args.E, nu=args.nu,
-                        wall_E=args.wall_E, wall_nu=args.wall_nu, rigid_sphere=args.rigid_sphere,
-                        rigid_wall=args.rigid_wall, mu=args.mu, normal=args.normal, tangential=args.tangential,
-                        yield_pressure=args.yield_pressure, yield_stress=args.yield_stress, e_n=args.e_n,
-                        model=args.model, traction_yield=args.traction_yield, mdr_profile=args.mdr_profile)
+    return preset_scene(args.case, args.vn if v_ref is None else v_ref,
+                        **{k: getattr(args, k) for k in SCENE_KEYWORDS})
 
 
 def time_options(args) -> dict:
-    return {"steps_per_contact": args.steps_per_contact, "dt": args.dt, "scheme": args.scheme}
+    """The keyword arguments of an impact that the time-step options give."""
+    return {dest(flag): getattr(args, dest(flag)) for flag, _ in TIME_OPTIONS}
 
 
 def strict_json(obj, nulls: dict | None = None, path: str = ""):

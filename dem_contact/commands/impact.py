@@ -11,13 +11,13 @@ from .common import (add_scene_options, angle_to_vt, dump_json, model_line, prin
                      scene_from_args, time_options)
 
 ORDER = 1
+HELP = "simulate one oblique sphere-wall impact"
+DESCRIPTION = ("Simulate one impact of a sphere on a flat wall and print e_n, e_t, the "
+               "impulse ratio f, Theta, Psi_r, Omega_r, the contact time and the energy "
+               "budget. SI units.")
 
 
-def add_parser(sub):
-    p = sub.add_parser("impact", help="simulate one oblique sphere-wall impact",
-                       description="Simulate one impact of a sphere on a flat wall and print e_n, e_t, the "
-                                   "impulse ratio f, Theta, Psi_r, Omega_r, the contact time and the energy "
-                                   "budget. SI units.")
+def add_options(p):
     add_scene_options(p)
     g = p.add_argument_group("incident motion")
     g.add_argument("--vt", type=float, default=None,
@@ -27,7 +27,6 @@ def add_parser(sub):
     g.add_argument("--spin", type=float, default=0.0, help="initial angular velocity [rad/s] (default 0)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--series", action="store_true", help="with --json: include the time series")
-    p.set_defaults(run=run)
 
 
 def run(args) -> int:

@@ -23,15 +23,16 @@ COLUMNS = ("theta_deg", "Theta", "Theta_across", "e_n", "e_t", "f_over_mu", "f_a
            "Psi_r_across", "Omega_r", "Omega_across_r", "slip_angle_i_deg", "slip_angle_r_deg",
            "rebound_angle_deg", "out_of_plane_angle_deg")
 
+HELP = "sphere-wall impact with any tangential velocity and spin vector"
+DESCRIPTION = ("Simulate a 3D impact of a sphere on a flat wall with a tangential velocity "
+               "in the wall plane and an initial spin about any axis, and print the rebound "
+               "velocity and spin vectors and the in-plane quantities (e_n, e_t, f/mu, "
+               "Theta, Psi_r, Omega_r of the impact plane, spanned by the normal and the "
+               "incident tangential velocity) with their components across the plane. "
+               f"With --angles: a sweep at fixed --vn. {FRAME}. SI units.")
 
-def add_parser(sub):
-    p = sub.add_parser("impact3d", help="sphere-wall impact with any tangential velocity and spin vector",
-                       description="Simulate a 3D impact of a sphere on a flat wall with a tangential velocity "
-                                   "in the wall plane and an initial spin about any axis, and print the rebound "
-                                   "velocity and spin vectors and the in-plane quantities (e_n, e_t, f/mu, "
-                                   "Theta, Psi_r, Omega_r of the impact plane, spanned by the normal and the "
-                                   "incident tangential velocity) with their components across the plane. "
-                                   f"With --angles: a sweep at fixed --vn. {FRAME}. SI units.")
+
+def add_options(p):
     add_scene_options(p)
     g = p.add_argument_group("incident motion")
     g.add_argument("--vt", type=float, nargs=2, default=None, metavar=("VX", "VY"),
@@ -52,7 +53,6 @@ def add_parser(sub):
     p.add_argument("--json", action="store_true", help="print one JSON object (a list of them with --angles)")
     p.add_argument("--csv", default=None, metavar="FILE", help="with --angles: one row per impact to FILE")
     p.add_argument("--series", action="store_true", help="with --json (one impact): include the time series")
-    p.set_defaults(run=run)
 
 
 def run(args) -> int:

@@ -10,24 +10,23 @@ from ..materials import STEEL
 from .common import check_output_file, dump_json
 
 ORDER = 6
+HELP = "forces of a contact law along a prescribed path of overlap and tangential displacement"
+DESCRIPTION = ("Drive one contact (the 3D per-contact kernel, normal along z) along a path and print, per "
+               "row, the normal force N and the tangential force (Tx, Ty) on body 1 [N] (it opposes the "
+               "displacement). The path is a CSV with the header delta,ux,uy and one row per step: "
+               "overlap [m] (<= 0: no contact, the history is released) and the tangential displacement "
+               "of body 1 relative to body 2 at the contact point, components in the tangent plane [m]; "
+               "the contact starts unloaded before the first row. Or a named path at constant overlap "
+               "(--shape), sizes in units of the slip displacement mu delta / kappa. SI units.")
 
 
-def add_parser(sub):
+def add_options(p):
     from ..reference.paths import SHAPES
 
     shapes = ("circle: the circle through the origin of radius SIZE, centre (SIZE, 0); load-circle: along x "
               "to SIZE, then once round the circle of radius SIZE about the origin; l-turn: along x to SIZE, "
               "then along y by SIZE; figure-eight: u = SIZE (sin t, sin t cos t), t from 0 to 2 pi; "
               "load-unload: along x to SIZE, back to -SIZE and again to SIZE")
-    p = sub.add_parser(
-        "path", help="forces of a contact law along a prescribed path of overlap and tangential displacement",
-        description="Drive one contact (the 3D per-contact kernel, normal along z) along a path and print, per "
-                    "row, the normal force N and the tangential force (Tx, Ty) on body 1 [N] (it opposes the "
-                    "displacement). The path is a CSV with the header delta,ux,uy and one row per step: "
-                    "overlap [m] (<= 0: no contact, the history is released) and the tangential displacement "
-                    "of body 1 relative to body 2 at the contact point, components in the tangent plane [m]; "
-                    "the contact starts unloaded before the first row. Or a named path at constant overlap "
-                    "(--shape), sizes in units of the slip displacement mu delta / kappa. SI units.")
     p.add_argument("path_csv", nargs="?", default=None, metavar="PATH.csv",
                    help="the path (header delta,ux,uy); or use --shape")
     g = p.add_argument_group("named path (instead of PATH.csv)")
@@ -62,7 +61,6 @@ def add_parser(sub):
     o.add_argument("--csv", default=None, metavar="FILE", help="write delta, ux, uy, N, Tx, Ty per row to FILE")
     o.add_argument("--plot", default=None, metavar="FILE.png",
                    help="draw the path and the force (T/(mu N), both components and magnitude) to a PNG")
-    p.set_defaults(run=run)
 
 
 def _scene(args, delta_max: float):

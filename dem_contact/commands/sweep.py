@@ -10,10 +10,11 @@ import numpy as np
 
 from ..errors import InputError, NumericalError
 from ..rebound.fit import critical_theta, fit_wu
-from ..materials import STEEL, check_finite
+from ..materials import check_finite
 from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
 from ..impacts.sweep import critical_angle, sweep_angles, sweep_speed
-from .common import add_scene_options, check_output_file, dump_json, scene_from_args
+from .common import (SCENE_OPTIONS, add_scene_options, check_output_file, default, dest, dump_json,
+                     scene_from_args)
 
 ORDER = 2
 
@@ -23,15 +24,16 @@ MAX_IMPACTS = 100000
 CSV_COLUMNS = ("theta_deg", "vn_i", "vt_i", "Theta", "e_n", "e_t", "f_over_mu", "Psi_r", "Omega_r", "omega_r",
                "rebound_angle_deg", "contact_time", "max_force", "persistent_sliding")
 
+HELP = "sweep the impact angle, fit the Wu et al. model, find Theta_c"
+DESCRIPTION = ("Simulate impacts at a range of angles (at fixed normal speed --vn, the "
+               "protocol of Wu, Thornton & Li 2009, or at fixed total speed --speed), fit "
+               "f/mu = c1 + c2 tanh(c3 + c4 Theta) below persistent sliding, and report "
+               "Theta_c from the fit, from the simulation (bisection in angle) and from "
+               "eq. 4.1. Without options: the EE steel scene at 5 m/s, 0-85 deg, figure "
+               "written to sweep_EE.png.")
 
-def add_parser(sub):
-    p = sub.add_parser("sweep", help="sweep the impact angle, fit the Wu et al. model, find Theta_c",
-                       description="Simulate impacts at a range of angles (at fixed normal speed --vn, the "
-                                   "protocol of Wu, Thornton & Li 2009, or at fixed total speed --speed), fit "
-                                   "f/mu = c1 + c2 tanh(c3 + c4 Theta) below persistent sliding, and report "
-                                   "Theta_c from the fit, from the simulation (bisection in angle) and from "
-                                   "eq. 4.1. Without options: the EE steel scene at 5 m/s, 0-85 deg, figure "
-                                   "written to sweep_EE.png.")
+
+def add_options(p):
     add_scene_options(p)
     g = p.add_argument_group("sweep")
     g.add_argument("--angles", default=DEFAULT_ANGLES, metavar="START:STOP:STEP",
@@ -46,7 +48,7 @@ def add_parser(sub):
                         "sweep_<CASE>.png in the current directory)")
     o.add_argument("--no-plot", action="store_true", help="write no figure")
     o.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.set_defaults(run=run, vn=None)        # None: --vn not given (it cannot act with --speed)
+    p.set_defaults(vn=None)        # None: --vn not given (it cannot act with --speed)
 
 
 def parse_angles(text: str) -> np.ndarray:
@@ -68,12 +70,15 @@ def parse_angles(text: str) -> np.ndarray:
     return start + step * np.arange(n)
 
 
+#: Scene options that a published fit leaves free: the case, nu and vn are matched against its row, and the
+#: tangential settings are what a sweep compares with it; every other scene option must be at its default.
+PUBLISHED_FREE = ("--case", "--nu", "--vn", "--tangential", "--model", "--traction-yield", "--mdr-profile")
+
+
 def published_key(args):
     """The PUBLISHED_FITS row that the options reproduce (preset scene, defaults, a published speed)."""
-    if args.speed is not None or args.mu != 0.3 or args.radius != 0.01 or args.density != STEEL.rho:
-        return None
-    if any(v is not None for v in (args.E, args.wall_E, args.wall_nu, args.normal, args.yield_pressure,
-                                    args.yield_stress, args.e_n)) or args.rigid_wall or args.rigid_sphere:
+    if args.speed is not None or any(getattr(args, dest(flag)) != default(kwargs)
+                                     for flag, kwargs in SCENE_OPTIONS if flag not in PUBLISHED_FREE):
         return None
     for key, row in PUBLISHED_FITS.items():
         nu_ok = (args.nu is None and row["nu"] == 0.3) or (args.case == "RE" and args.nu == row["nu"])

@@ -4,18 +4,17 @@ from __future__ import annotations
 import time
 
 ORDER = 90
+HELP = "compile the impact and sweep kernels once (after installing)"
+DESCRIPTION = ("Compile the kernels of single impacts and sweeps and store them in numba's "
+               "cache, so that the first `dem-contact impact` or `sweep` starts at once. The "
+               "integrator is compiled per pair of laws (a run compiles only the laws it "
+               "uses): by default for the default laws (hertz + mdr_adaptive), with --all "
+               "for every normal x tangential pair (a few minutes). Run it once after "
+               "installing.")
 
 
-def add_parser(sub):
-    p = sub.add_parser("warmup", help="compile the impact and sweep kernels once (after installing)",
-                       description="Compile the kernels of single impacts and sweeps and store them in numba's "
-                                   "cache, so that the first `dem-contact impact` or `sweep` starts at once. The "
-                                   "integrator is compiled per pair of laws (a run compiles only the laws it "
-                                   "uses): by default for the default laws (hertz + mdr_adaptive), with --all "
-                                   "for every normal x tangential pair (a few minutes). Run it once after "
-                                   "installing.")
+def add_options(p):
     p.add_argument("--all", action="store_true", help="every normal x tangential law pair, not only the default")
-    p.set_defaults(run=run)
 
 
 def run(args) -> int:
