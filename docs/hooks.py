@@ -26,8 +26,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 LAW_MARKER = re.compile(r"<!--\s*law-table\s+([\w-]+)\s*-->")
 LAYOUT_MARKER = "<!-- layout-rules -->"
 API_MARKER = re.compile(r"<!--\s*api-modules\s+([\w. ]+?)\s*-->")
-#: columns of the law tables, in this order, each shown when a row has it
-COLUMNS = ("name", "id", "family", "source", "parameters", "state")
+#: columns of the law tables, in this order, each shown when a row has it (options: the Scene settings the law takes)
+COLUMNS = ("name", "id", "family", "source", "parameters", "state", "options")
 #: families in the order their tables appear in the "others" section
 FAMILY_ORDER = ("normal", "tangential", "twist", "rolling")
 
