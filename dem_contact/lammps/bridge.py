@@ -194,8 +194,8 @@ def _stats(lmp, prefix):
 class Census:
     """Global number of contacts and the largest overlap of a LAMMPS run with any pair style (LAMMPS's
     own granular styles included), found from the positions by the bridge's contact search.
-    walls: PlaneWall list; rmax: the largest radius [m]; the ghost cutoff must be >= 2 rmax.
-    Calling it is collective (every rank calls it)."""
+    walls: a list of walls (``dem_contact.walls``: PlaneWall); rmax: the largest radius [m]; the ghost
+    cutoff must be >= 2 rmax. Calling it is collective (every rank calls it)."""
 
     def __init__(self, lmp, rmax: float, walls=(), prefix: str = "dcc"):
         self.lmp = lmp
@@ -244,8 +244,9 @@ class LammpsContacts:
 
     lmp: a ``lammps.lammps`` instance with the box, the atom types and (usually) the atoms created;
     table: ``dem.pairs.pair_table(spheres, walls, ...)``, atom type k is spheres[k - 1];
-    walls: PlaneWall list; slots: history rows per atom; v_max: largest normal impact speed expected
-    [m/s] (time-step check); skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
+    walls: a list of walls (``dem_contact.walls``: PlaneWall), each with a wall material of the table;
+    slots: history rows per atom; v_max: largest normal impact speed expected [m/s] (time-step check);
+    skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
     ghost cutoff [m] (default and minimum 2 r_max + skin); frame_spin: pass the spin of the contact
     frame about the normal to the laws (False: zero, as LAMMPS's granular models do, for comparisons
     with them); check_every: steps between the global checks of the history slots (each is a

@@ -10,8 +10,9 @@ cylinders and meshes later) is one module of this package that provides:
 - ``N_DATA``: how many numbers its row holds;
 - ``ELEMENTS``: how many elements each wall of the kind has (the parts whose contacts keep histories of
   their own: a plane has one; a mesh would have one per triangle);
-- the kernels below, ``@njit(inline="always", cache=True)``, which read only the wall's row (``walls[w]``
-  of the float64[n_walls, ROW_SIZE] table that ``table.pack`` builds) and never raise:
+- the kernels below, ``@njit(inline="always", cache=True)``, with exactly these parameter names (the table
+  checks them), which read only the wall's row (``walls[w]`` of the float64[n_walls, ROW_SIZE] table that
+  ``table.pack`` builds) and never raise:
 
   ``contact(walls, w, x, y, z, r) -> (s, nx, ny, nz)``
       for a sphere of centre (x, y, z) and radius r [m]: s the signed distance from the centre to the
@@ -23,11 +24,15 @@ cylinders and meshes later) is one module of this package that provides:
       sphere's at c minus this one (zero for a wall at rest);
   ``curvature(walls, w, cx, cy, cz) -> k``
       1 / R2 [1/m] of the wall's surface at c, for R* = 1 / (1 / R1 + k): 0 for a plane, > 0 convex,
-      < 0 concave (the inside of a cylinder). A kind with k != 0 needs pair rows with that R*: the
-      ``PairTable`` builds sphere-wall rows with R* = R1 (k = 0), so the table of kinds refuses nothing yet,
-      but a curved kind must bring its own rows;
+      < 0 concave (the inside of a cylinder). ``pairs.pair_table`` builds its sphere-wall rows with
+      R* = R1, that is k = 0: a curved kind must come with sphere-wall rows built with its R*;
   ``element(walls, w, x, y, z) -> e``
-      the element (0 ... ELEMENTS - 1) of the wall that a sphere centred at (x, y, z) touches.
+      the element (0 ... ELEMENTS - 1) of the wall that a sphere centred at (x, y, z) touches (one contact
+      per sphere and wall: a kind whose walls a sphere can touch at several elements at once, as a mesh,
+      will need the contact searches to list each (sphere, wall, element)).
+
+Users of the contract: the LAMMPS bridge (``lammps.kernels``: its Verlet lists hold (sphere, wall,
+element)) and the 3D batch face (``dem.walls.wall_contacts``).
 
 The history of a wall contact is keyed per wall and element: ``history_key(walls, w, e)`` (here, the same
 for every kind) = -(first key of wall w + e + 1), a negative number (sphere partners are keyed by their
