@@ -10,7 +10,7 @@ import functools
 import math
 import warnings
 import weakref
-from dataclasses import asdict, dataclass, field
+from dataclasses import MISSING, asdict, dataclass, field, fields
 
 import numpy as np
 
@@ -136,9 +136,9 @@ class ImpactResult:
     energy: EnergyBudget
     energy_created: bool
     coulomb_violation: float
-    warnings: list = field(default_factory=list)
-    model: dict = field(default_factory=dict)
-    settings: dict = field(default_factory=dict)
+    warnings: list          # (built whole by ``build_result``: no defaults but for the fields added last)
+    model: dict
+    settings: dict
     omega2_r: float = 0.0
     series: dict | None = None
     energy_gained: bool = False
@@ -162,6 +162,27 @@ class ImpactResult:
 #: The dimensionless quantities that divide by mu (undefined at mu = 0).
 _PER_MU = ("f_over_mu", "f_across_over_mu", "Theta", "Theta_across", "Psi_r", "Psi_r_across", "Omega_i",
            "Omega_r", "Omega_across_i", "Omega_across_r")
+
+
+#: The fields of ImpactResult that every impact result reports after its own (``with_outcome``): the step
+#: count, time step, energy budget and its checks, warnings, model, settings, time series.
+OUTCOME_FIELDS = ("steps", "dt", "energy", "energy_created", "coulomb_violation", "warnings", "model", "settings",
+                  "series", "energy_gained")
+
+
+def with_outcome(cls):
+    """Class decorator: the dataclass of ``cls`` (its own fields annotated) with the OUTCOME_FIELDS of
+    ImpactResult after its own, declared once there (type and default)."""
+    own = dict(cls.__dict__.get("__annotations__", {}))
+    for f in fields(ImpactResult):
+        if f.name in OUTCOME_FIELDS:
+            own[f.name] = f.type
+            if f.default_factory is not MISSING:
+                setattr(cls, f.name, field(default_factory=f.default_factory))
+            elif f.default is not MISSING:
+                setattr(cls, f.name, f.default)
+    cls.__annotations__ = own
+    return dataclass(cls)
 
 
 def _undefined_reason(key: str, r) -> str:

@@ -41,24 +41,22 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
 
 from ..dem.contact3d import TRACTION_YIELD_REFUSED, contact_force, history_size, new_histories
 from ..errors import InputError, NumericalError, kernel_failed
-from ..laws.contact import normal_force, normal_gap
 from ..laws.model import Scene
-from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
-from ..laws.slots import H_A, H_N, P_MU
+from ..laws.normal_impact import drift, eval_overlap, normal_close, normal_start, step_status
+from ..laws.slots import H_A, P_MU
 from ..materials import Wall, check_finite
 from .impact import (ENERGY_CREATION_TOL, KE_ROUNDING_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget,
                      ImpactResult, _raise_failed, body_inertia, check_scales, impact_warnings, raise_if_no_impulse,
-                     raise_if_restitution_impossible, scene_constants, time_step)
-from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK
+                     raise_if_restitution_impossible, scene_constants, time_step, with_outcome)
+from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_OK, put
 
-# slots of the output row of integrate_impact3d
+# slots of the output row of integrate_impact3d, in the order of the values it writes
 Q_VX, Q_VY, Q_VN = 0, 1, 2            # final relative velocity of the centres (V_n: + towards body 2) [m/s]
 Q_W1 = 3                              # final spin of body 1, 3 slots [rad/s]
 Q_W2 = 6                              # final spin of body 2, 3 slots [rad/s]
@@ -136,41 +134,22 @@ def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, 
     p = params[0]
     mu = p[P_MU]
     hn = _normal_history(H)
-    delta = 0.0
-    vn = vn0
     vx = vx0
     vy = vy0
     w1x, w1y, w1z = w10[0], w10[1], w10[2]
     w2x, w2y, w2z = w20[0], w20[1], w20[2]
     Fx = 0.0
     Fy = 0.0
-    t = 0.0
-    PN = 0.0
     PX = 0.0
     PY = 0.0
-    WN = 0.0
     WT = 0.0
     minWT = 0.0
-    dmax = 0.0
-    fmax = 0.0
     slid = 1.0
     coulomb = -np.inf
-    N = normal_force(nid, p, hn, TOUCH_OVERLAP, vn0)[0]
-    hn[H_N] = N if N > 0.0 else 0.0
-    status = STATUS_MAX_STEPS
+    delta, vn, N, t, PN, WN, dmax, fmax, steps, status = normal_start(nid, p, hn, vn0)
     nser = series.shape[0]
-    steps = 0
     for k in range(max_steps):
-        hdt = dt
-        kick = 0.5 * hdt * N * inv_m
-        vn_h = vn - kick
-        delta_new = delta + vn_h * hdt
-        ended = normal_gap(nid, p, hn, delta_new, vn_h - kick) <= 0.0
-        if ended and locate:
-            hdt = dt * end_fraction(nid, p, hn, delta, vn, N, inv_m, dt)
-            kick = 0.5 * hdt * N * inv_m
-            vn_h = vn - kick
-            delta_new = delta + vn_h * hdt
+        hdt, kick, vn_h, delta_new, ended = drift(nid, p, hn, delta, vn, N, inv_m, dt, locate)
         # half kick of the tangential force
         vx_h, vy_h, w1x_h, w1y_h, w2x_h, w2y_h = _half_kick(vx, vy, w1x, w1y, w2x, w2y, Fx, Fy, hdt, inv_m, R1, R2,
                                                             inv_I1, inv_I2)
@@ -185,76 +164,36 @@ def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, 
             Fxn = 0.0
             Fyn = 0.0
         else:
-            d_eval = delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
-            Nn, Fxn, Fyn = _contact(nid, tid, params, H, d_eval, sx, sy, vn_h - kick, wn, hdt)
-        PN += 0.5 * hdt * (N + Nn)
+            Nn, Fxn, Fyn = _contact(nid, tid, params, H, eval_overlap(delta_new, ended), sx, sy, vn_h - kick, wn, hdt)
         PX += 0.5 * hdt * (Fx + Fxn)
         PY += 0.5 * hdt * (Fy + Fyn)
-        WN += 0.5 * (N + Nn) * (delta_new - delta)
         WT -= 0.5 * ((Fx + Fxn) * ddx + (Fy + Fyn) * ddy)
         if WT < minWT:
             minWT = WT
-        vn = vn_h - 0.5 * hdt * Nn * inv_m
         vx, vy, w1x, w1y, w2x, w2y = _half_kick(vx_h, vy_h, w1x_h, w1y_h, w2x_h, w2y_h, Fxn, Fyn, hdt, inv_m, R1, R2,
                                                 inv_I1, inv_I2)
-        t += hdt
-        delta = delta_new
-        N = Nn
         Fx = Fxn
         Fy = Fyn
-        steps += 1
+        delta, vn, N, t, PN, WN, dmax, fmax, steps = normal_close(N, Nn, hdt, delta, delta_new, vn_h, inv_m, t, PN,
+                                                                  WN, dmax, fmax, steps)
         Np = N if N > 0.0 else 0.0
         Ft = math.sqrt(Fx * Fx + Fy * Fy)
-        if delta > dmax:
-            dmax = delta
-        if N > fmax:
-            fmax = N
         if Ft < mu * Np * (1.0 - SLIDE_TOL):
             slid = 0.0
         if Ft - mu * Np > coulomb:
             coulomb = Ft - mu * Np
-        if k < nser:
-            series[k, 0] = t
-            series[k, 1] = delta
-            series[k, 2] = N
-            series[k, 3] = Fx
-            series[k, 4] = Fy
-            series[k, 5] = vn
-            series[k, 6] = vx + R1 * w1y + R2 * w2y
-            series[k, 7] = vy - R1 * w1x - R2 * w2x
-            series[k, 8] = w1z
-        if not (math.isfinite(vn) and math.isfinite(vx) and math.isfinite(vy) and math.isfinite(w1x)
-                and math.isfinite(w1y) and math.isfinite(delta) and math.isfinite(Ft) and math.isfinite(N)):
-            status = STATUS_NONFINITE
+        if k < nser:        # columns SERIES3
+            put(series[k], 0, (t, delta, N, Fx, Fy, vn, vx + R1 * w1y + R2 * w2y, vy - R1 * w1x - R2 * w2x, w1z))
+        status = step_status(math.isfinite(vn) and math.isfinite(vx) and math.isfinite(vy) and math.isfinite(w1x)
+                             and math.isfinite(w1y) and math.isfinite(delta) and math.isfinite(Ft)
+                             and math.isfinite(N), ended)
+        if status != STATUS_MAX_STEPS:
             break
-        if ended:
-            status = STATUS_OK
-            break
-    out[Q_VX] = vx
-    out[Q_VY] = vy
-    out[Q_VN] = vn
-    out[Q_W1] = w1x
-    out[Q_W1 + 1] = w1y
-    out[Q_W1 + 2] = w1z
-    out[Q_W2] = w2x
-    out[Q_W2 + 1] = w2y
-    out[Q_W2 + 2] = w2z
-    out[Q_PN] = PN
-    out[Q_PX] = PX
-    out[Q_PY] = PY
-    out[Q_TC] = t
-    out[Q_DMAX] = dmax
-    out[Q_FMAX] = fmax
-    out[Q_SLID] = slid
-    out[Q_STEPS] = steps
-    out[Q_WN] = WN
-    out[Q_WT] = WT
-    out[Q_COULOMB] = coulomb
-    out[Q_STATUS] = status
-    out[Q_MINWT] = minWT
+    put(out, Q_VX, (vx, vy, vn, w1x, w1y, w1z, w2x, w2y, w2z, PN, PX, PY, t, dmax, fmax, slid, float(steps), WN, WT,
+                    coulomb, float(status), minWT))
 
 
-@dataclass
+@with_outcome
 class Impact3DResult:
     """Outcome of one 3D impact (frame and conventions: module docstring). Vectors are lists in the
     frame's axes: tangential ones (x, y), spins (x, y, z). Velocities in m/s, spins in rad/s.
@@ -309,16 +248,7 @@ class Impact3DResult:
     max_overlap: float
     max_force: float
     persistent_sliding: bool
-    steps: int
-    dt: float
-    energy: EnergyBudget
-    energy_created: bool
-    coulomb_violation: float
-    warnings: list = field(default_factory=list)
-    model: dict = field(default_factory=dict)
-    settings: dict = field(default_factory=dict)
-    series: dict | None = None
-    energy_gained: bool = False
+    # then the OUTCOME_FIELDS of ImpactResult (steps ... energy_gained)
 
     to_dict = ImpactResult.to_dict
 

@@ -27,12 +27,13 @@ from numba.core import cgutils, types
 from numba.extending import intrinsic
 
 from ..errors import InputError
-from ..laws.contact import contact_step, normal_force, normal_gap
-from ..laws.normal_impact import TOUCH_OVERLAP, end_fraction
-from ..laws.slots import H_N, P_MU
+from ..laws.contact import contact_step
+from ..laws.normal_impact import (STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK, drift, eval_overlap,  # noqa: F401
+                                  normal_close, normal_start, step_status)
+from ..laws.slots import P_MU
 from ..laws.vector import NORMAL_IDS, TANGENTIAL_IDS
 
-# slots of the output row
+# slots of the output row, in the order of the values that ``integrate_inlined`` writes
 O_VN = 0        # final normal approach velocity, V_nr (negative: moving away) [m/s]
 O_VT = 1        # final tangential velocity of the centre of body 1 relative to body 2 [m/s]
 O_W1 = 2        # final spin of body 1 [rad/s]
@@ -56,9 +57,6 @@ N_OUT = 16
 S_T, S_DELTA, S_N, S_TANG, S_A, S_VN, S_VSLIP = range(7)
 N_SERIES = 7
 
-STATUS_OK = 0
-STATUS_MAX_STEPS = 1
-STATUS_NONFINITE = 2
 
 #: Persistent sliding (the direct criterion of Theta_c): |T| >= (1 - SLIDE_TOL) mu N at every step until
 #: the last SLIDE_IMPULSE_TOL of the normal impulse. A contact that sticks anywhere falls below the limit by
@@ -94,6 +92,14 @@ def borrowed(typingctx, arr):
 
 
 @njit(inline="always", cache=True)
+def put(row, at, values):
+    """Write the floats ``values`` (a tuple) to slots at, at + 1, ... of ``row`` (an output row, or a row of
+    the time series)."""
+    for j in range(len(values)):
+        row[at + j] = values[j]
+
+
+@njit(inline="always", cache=True)
 def integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1, inv_I2, dt, max_steps, locate, out,
                series):
     """Integrate one impact from first touch (delta = 0) to separation. Inlined into its callers: a caller
@@ -109,41 +115,19 @@ def integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1,
     p = borrowed(p)     # the laws take these rows at every step: uncounted views cost no atomic operations
     h = borrowed(h)
     mu = p[P_MU]
-    delta = 0.0
-    vn = vn0
     vt = vt0
     w1 = w10
     w2 = w20
-    N = 0.0
     T = 0.0
-    t = 0.0
-    PN = 0.0
     PT = 0.0
-    WN = 0.0
     WT = 0.0
     minWT = 0.0
-    dmax = 0.0
-    fmax = 0.0
     pn_stick = -1.0     # normal impulse before the first step below the Coulomb limit (-1: none)
     coulomb = -np.inf
-    # force just after first touch (non-zero only for a dashpot acting at zero overlap)
-    N = normal_force(nid, p, h, TOUCH_OVERLAP, vn0)[0]
-    h[H_N] = N if N > 0.0 else 0.0
-    status = STATUS_MAX_STEPS
+    delta, vn, N, t, PN, WN, dmax, fmax, steps, status = normal_start(nid, p, h, vn0)
     nser = series.shape[0]
-    steps = 0
     for k in range(max_steps):
-        hdt = dt
-        kick = 0.5 * hdt * N * inv_m
-        vn_h = vn - kick
-        delta_new = delta + vn_h * hdt
-        # velocity-dependent forces see the end-of-step velocity predicted with the old force
-        ended = normal_gap(nid, p, h, delta_new, vn_h - kick) <= 0.0
-        if ended and locate:
-            hdt = dt * end_fraction(nid, p, h, delta, vn, N, inv_m, dt)
-            kick = 0.5 * hdt * N * inv_m
-            vn_h = vn - kick
-            delta_new = delta + vn_h * hdt
+        hdt, kick, vn_h, delta_new, ended = drift(nid, p, h, delta, vn, N, inv_m, dt, locate)
         vt_h = vt - 0.5 * hdt * T * inv_m
         w1_h = w1 - 0.5 * hdt * R1 * T * inv_I1
         w2_h = w2 - 0.5 * hdt * R2 * T * inv_I2
@@ -154,68 +138,31 @@ def integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, inv_m, R1, R2, inv_I1,
             a = 0.0
             Tn = 0.0
         else:
-            # at a located end the force is the limit from inside the contact
-            d_eval = delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
-            Nn, a, Tn = contact_step(nid, tid, p, h, d_eval, vn_h - kick, dd)
+            Nn, a, Tn = contact_step(nid, tid, p, h, eval_overlap(delta_new, ended), vn_h - kick, dd)
         PN_before = PN
-        PN += 0.5 * hdt * (N + Nn)
         PT += 0.5 * hdt * (T + Tn)
-        WN += 0.5 * (N + Nn) * (delta_new - delta)
         WT += 0.5 * (T + Tn) * dd
         if WT < minWT:
             minWT = WT
-        vn = vn_h - 0.5 * hdt * Nn * inv_m
         vt = vt_h - 0.5 * hdt * Tn * inv_m
         w1 = w1_h - 0.5 * hdt * R1 * Tn * inv_I1
         w2 = w2_h - 0.5 * hdt * R2 * Tn * inv_I2
-        t += hdt
-        delta = delta_new
-        N = Nn
         T = Tn
-        steps += 1
+        delta, vn, N, t, PN, WN, dmax, fmax, steps = normal_close(N, Nn, hdt, delta, delta_new, vn_h, inv_m, t, PN,
+                                                                  WN, dmax, fmax, steps)
         Np = N if N > 0.0 else 0.0
-        if delta > dmax:
-            dmax = delta
-        if N > fmax:
-            fmax = N
         if pn_stick < 0.0 and abs(T) < mu * Np * (1.0 - SLIDE_TOL):
             pn_stick = PN_before
         if abs(T) - mu * Np > coulomb:
             coulomb = abs(T) - mu * Np
-        if k < nser:
-            series[k, S_T] = t
-            series[k, S_DELTA] = delta
-            series[k, S_N] = N
-            series[k, S_TANG] = T
-            series[k, S_A] = a
-            series[k, S_VN] = vn
-            series[k, S_VSLIP] = vt + R1 * w1 + R2 * w2
-        if not (math.isfinite(vn) and math.isfinite(vt) and math.isfinite(w1) and math.isfinite(delta)
-                and math.isfinite(T) and math.isfinite(N)):
-            status = STATUS_NONFINITE
+        if k < nser:        # columns S_T ... S_VSLIP
+            put(series[k], 0, (t, delta, N, T, a, vn, vt + R1 * w1 + R2 * w2))
+        status = step_status(math.isfinite(vn) and math.isfinite(vt) and math.isfinite(w1) and math.isfinite(delta)
+                             and math.isfinite(T) and math.isfinite(N), ended)
+        if status != STATUS_MAX_STEPS:
             break
-        if ended:
-            status = STATUS_OK
-            break
-    out[O_VN] = vn
-    out[O_VT] = vt
-    out[O_W1] = w1
-    out[O_W2] = w2
-    out[O_PN] = PN
-    out[O_PT] = PT
-    out[O_TC] = t
-    out[O_DMAX] = dmax
-    out[O_FMAX] = fmax
-    if pn_stick < 0.0:
-        out[O_SLID] = 1.0
-    else:
-        out[O_SLID] = pn_stick / PN if PN > 0.0 else 0.0
-    out[O_STEPS] = steps
-    out[O_WN] = WN
-    out[O_WT] = WT
-    out[O_COULOMB] = coulomb
-    out[O_STATUS] = status
-    out[O_MINWT] = minWT
+    slid = 1.0 if pn_stick < 0.0 else (pn_stick / PN if PN > 0.0 else 0.0)
+    put(out, O_VN, (vn, vt, w1, w2, PN, PT, t, dmax, fmax, slid, float(steps), WN, WT, coulomb, float(status), minWT))
 
 
 @njit(cache=True)

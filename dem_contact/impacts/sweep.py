@@ -355,12 +355,18 @@ def scene_with(scene: Scene, *, mu: float | None = None, nu: float | None = None
     """A copy of ``scene`` with another friction coefficient ``mu`` and/or Poisson ratio ``nu``.
 
     body: which material takes ``nu``: "sphere", "wall" (body 2), "both", or "elastic" (every non-rigid
-    body; the default). Other keyword arguments (normal, tangential, e_n, v_ref, model, mdr_profile,
-    traction_yield) replace the scene's."""
+    body; the default). Other keyword arguments (any argument of ``Scene``: normal, tangential, e_n, v_ref,
+    model, mdr_profile, traction_yield, mdr_springs, ...) replace the scene's; every other setting is kept
+    (``Scene.replace``; another tangential law: ``Scene.with_tangential``). A normal or tangential law other
+    than those of the scene's named ``model`` leaves the model: its laws stay where not given."""
     if body not in ("sphere", "wall", "both", "elastic"):
         raise InputError(f"body {body!r} is unknown; choose one of: sphere, wall, both, elastic")
-    sphere, body2 = scene.sphere, scene.body2
+    changes = dict(kwargs)
+    if mu is not None:
+        changes["mu"] = mu
     if nu is not None:
+        sphere, body2 = scene.sphere, scene.body2
+
         def swap(mat: Material, wanted: bool) -> Material:
             if not wanted or mat.is_rigid:
                 return mat
@@ -370,19 +376,15 @@ def scene_with(scene: Scene, *, mu: float | None = None, nu: float | None = None
         m2 = swap(body2.material, body in ("wall", "both", "elastic"))
         if m1 is sphere.material and m2 is body2.material:
             raise InputError(f"nu cannot be set on body {body!r}: it is rigid")
-        sphere = Sphere(sphere.radius, m1)
-        body2 = Sphere(body2.radius, m2) if isinstance(body2, Sphere) else Wall(m2)
-    opts = dict(mu=scene.mu if mu is None else mu, e_n=scene.e_n, v_ref=scene.v_ref)
-    if scene.model is not None and "normal" not in kwargs and "tangential" not in kwargs:
-        opts["model"] = scene.model
-    else:
-        opts.update(normal=scene.normal, tangential=scene.tangential)
-    if scene.traction_yield:
-        opts["traction_yield"] = True
-    if scene.mdr_profile != "truncated":
-        opts["mdr_profile"] = scene.mdr_profile
-    opts.update(kwargs)
-    return Scene(sphere, body2, **opts)
+        changes["sphere"] = Sphere(sphere.radius, m1)
+        changes["body2"] = Sphere(body2.radius, m2) if isinstance(body2, Sphere) else Wall(m2)
+    if scene.model is not None and "model" not in changes and any(
+            changes.get(k, getattr(scene, k)) != getattr(scene, k) for k in ("normal", "tangential")):
+        changes = {"model": None, "normal": scene.normal, **changes}
+    elif scene.model is not None and "model" not in changes:
+        changes.pop("normal", None)         # the model's own laws: the model stays
+        changes.pop("tangential", None)
+    return scene.with_tangential(changes.pop("tangential", scene.tangential), **changes)
 
 
 def sweep_scenes(scenes: dict, angles_deg=None, vn: float = 5.0, *, Theta=None, **kwargs) -> dict:

@@ -1,10 +1,13 @@
 """Head-on impact under a normal law alone: the calibrations of ``model`` (damped-Hertz dashpot,
-contact time, largest contact radius) and the located end of contact that the impact integrator shares.
+contact time, largest contact radius), and the normal motion that the impact integrators share.
 
 Velocity Verlet with constant dt from first touch (delta = 0) to separation: the normal motion of
-``impacts.integrator.integrate_impact`` (which takes ``TOUCH_OVERLAP`` and ``end_fraction`` from here and
-repeats the arithmetic of ``drift`` inline: calling it from that hot loop costs about 15% per impact), so
-a calibration and an impact of the same law agree to the last bit.
+``impacts.integrator.integrate_impact`` and ``impacts.impact3d.integrate_impact3d``. Both take it from here,
+inlined into their loops (numba ``inline="always"``: no call in the hot loop): the first touch
+(``normal_start``), the half kick and drift of each step with the located end (``drift``), the overlap at
+which the force of a step is evaluated (``eval_overlap``), the second half kick with the records of the
+normal motion (``normal_close``) and the status of a step (``step_status``); so a calibration and an impact
+of the same law agree to the last bit.
 """
 import math
 
@@ -15,6 +18,11 @@ from .slots import H_A, H_N
 
 #: Overlap at which the force just after first touch is evaluated [m].
 TOUCH_OVERLAP = 1e-300
+
+# status of an impact (``step_status``)
+STATUS_OK = 0           # the contact ended
+STATUS_MAX_STEPS = 1    # the step limit was reached
+STATUS_NONFINITE = 2    # the state is not finite
 
 
 @njit(cache=True)
@@ -55,7 +63,46 @@ def end_fraction(nid, p, h, delta, vn, N, inv_m, dt):
     return s_lo
 
 
-@njit(cache=True)
+@njit(inline="always", cache=True)
+def normal_start(nid, p, h, vn0):
+    """The normal motion at first touch, at approach speed vn0, its records and status: (overlap 0, rate
+    vn0, force N, time 0, normal impulse 0, work of the normal force 0, largest overlap 0, largest force 0,
+    steps 0, STATUS_MAX_STEPS). N is the force just after touch (non-zero only for a dashpot acting at zero
+    overlap), written to the history's normal slot."""
+    N = normal_force(nid, p, h, TOUCH_OVERLAP, vn0)[0]
+    h[H_N] = N if N > 0.0 else 0.0
+    return 0.0, vn0, N, 0.0, 0.0, 0.0, 0.0, 0.0, 0, STATUS_MAX_STEPS
+
+
+@njit(inline="always", cache=True)
+def eval_overlap(delta_new, ended):
+    """The overlap at which the force of a step is evaluated: at a located end, the limit from inside the
+    contact."""
+    return delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
+
+
+@njit(inline="always", cache=True)
+def normal_close(N, Nn, hdt, delta, delta_new, vn_h, inv_m, t, PN, WN, dmax, fmax, steps):
+    """End of a step of length hdt from overlap delta to delta_new: the second half kick with the new force Nn
+    and the records (impulse and work of the normal force by the trapezoid rule, largest overlap and force,
+    steps). Returns the state and records of ``normal_start`` (without the status) at the end of the step."""
+    return (delta_new, vn_h - 0.5 * hdt * Nn * inv_m, Nn, t + hdt, PN + 0.5 * hdt * (N + Nn),
+            WN + 0.5 * (N + Nn) * (delta_new - delta), delta_new if delta_new > dmax else dmax,
+            Nn if Nn > fmax else fmax, steps + 1)
+
+
+@njit(inline="always", cache=True)
+def step_status(finite, ended):
+    """Status after a step: STATUS_NONFINITE where the state is not finite, STATUS_OK where the contact ended,
+    else STATUS_MAX_STEPS (the impact goes on; the status if the step limit ends it)."""
+    if not finite:
+        return STATUS_NONFINITE
+    if ended:
+        return STATUS_OK
+    return STATUS_MAX_STEPS
+
+
+@njit(inline="always", cache=True)
 def drift(nid, p, h, delta, vn, N, inv_m, dt, locate):
     """Half kick and drift of a velocity-Verlet step with the old normal force N. When the contact ends in
     this step and ``locate`` is set, the step is cut at the separation (``end_fraction``). Returns
@@ -78,26 +125,16 @@ def drift(nid, p, h, delta, vn, N, inv_m, dt, locate):
 def normal_impact(nid, p, h, vn0, inv_m, dt, max_steps):
     """Head-on impact at speed vn0 > 0 [m/s] with effective mass 1/inv_m, separation located inside the
     last step. h: zeroed history row. Returns (final normal velocity [m/s], contact time [s], maximum
-    overlap [m], status: 0 ended, 1 step limit, 2 non-finite)."""
-    delta = 0.0
-    vn = vn0
-    t = 0.0
-    dmax = 0.0
-    N = normal_force(nid, p, h, TOUCH_OVERLAP, vn0)[0]
-    h[H_N] = N if N > 0.0 else 0.0
+    overlap [m], status: STATUS_OK, STATUS_MAX_STEPS or STATUS_NONFINITE)."""
+    delta, vn, N, t, PN, WN, dmax, fmax, steps, status = normal_start(nid, p, h, vn0)
     for k in range(max_steps):
         hdt, kick, vn_h, delta_new, ended = drift(nid, p, h, delta, vn, N, inv_m, dt, True)
-        d_eval = delta_new if not ended or delta_new > TOUCH_OVERLAP else TOUCH_OVERLAP
-        N, a = normal_force(nid, p, h, d_eval, vn_h - kick)
-        h[H_N] = N if N > 0.0 else 0.0
+        Nn, a = normal_force(nid, p, h, eval_overlap(delta_new, ended), vn_h - kick)
+        h[H_N] = Nn if Nn > 0.0 else 0.0
         h[H_A] = a
-        vn = vn_h - 0.5 * hdt * N * inv_m
-        t += hdt
-        delta = delta_new
-        if delta > dmax:
-            dmax = delta
-        if not (math.isfinite(vn) and math.isfinite(delta) and math.isfinite(N)):
-            return vn, t, dmax, 2
-        if ended:
-            return vn, t, dmax, 0
-    return vn, t, dmax, 1
+        delta, vn, N, t, PN, WN, dmax, fmax, steps = normal_close(N, Nn, hdt, delta, delta_new, vn_h, inv_m, t, PN,
+                                                                  WN, dmax, fmax, steps)
+        status = step_status(math.isfinite(vn) and math.isfinite(delta) and math.isfinite(N), ended)
+        if status != STATUS_MAX_STEPS:
+            break
+    return vn, t, dmax, status

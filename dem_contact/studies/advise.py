@@ -30,6 +30,7 @@ from . import chart
 from ..errors import InputError, NumericalError
 from ..rebound.fit import fit_wu
 from ..impacts.impact import check_steps_per_contact
+from ..impacts.sweep import scene_with
 from ..materials import Wall, check_finite
 from ..laws.model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
 from ..rebound.models import wu_curve
@@ -85,14 +86,11 @@ class Advice:
 
 
 def _with_law(scene: Scene, tangential: str, vmax: float, **kw) -> Scene:
-    """The scene with another tangential law (same normal law and calibration); mdr springs cover vmax."""
+    """The scene with another tangential law, every other setting kept (``impacts.sweep.scene_with``: the
+    normal law and its calibration, e_n, mdr_profile, traction_yield, ...); mdr springs cover vmax."""
     if tangential == "mdr":
         kw["mdr_max_radius"] = MDR_RADIUS_MARGIN * scene.max_contact_radius(vmax)
-    if tangential in ("mdr", "mdr_adaptive"):
-        kw["mdr_profile"] = scene.mdr_profile
-    kw["traction_yield"] = scene.traction_yield
-    return Scene(scene.sphere, scene.body2, mu=scene.mu, normal=scene.normal, tangential=tangential,
-                 e_n=scene.e_n, v_ref=scene.v_ref, **kw)
+    return scene_with(scene, tangential=tangential, **kw)
 
 
 def _sample(vn_range, angle_range, n_speeds, n_angles, rng=None):
@@ -190,7 +188,7 @@ def advise(scene: Scene, vn_range, angle_range, spin: float = 0.0, tol: float = 
         cands.append(Candidate(f"{law}@{spc:g}", f"tangential law {law}, {spc:g} steps per contact{end}",
                                float(np.max(np.abs(f - f_ref))), t,
                                params={"law": law, "steps": spc, "scheme": scheme}))
-    sc = _with_law(scene, "mdr", vmax)
+    sc = _with_law(scene, "mdr", vmax, mdr_springs=MDR_SPRINGS)
     f, _, _, t = _evaluate(sc, sample, MDR_STEPS_PER_CONTACT, spin, repeats=1)
     cands.append(Candidate(f"mdr@{MDR_STEPS_PER_CONTACT}", f"exact reference mdr, {MDR_SPRINGS} springs, "
                            f"{MDR_STEPS_PER_CONTACT} steps per contact", float(np.max(np.abs(f - f_ref))), t,

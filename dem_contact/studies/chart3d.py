@@ -162,17 +162,19 @@ class SpinImpactRow:
     time_per_impact_us: float
 
 
-def spin_impact_chart(reference, laws=LAWS, vn: float = 5.0, repeats: int = 20) -> list:
-    """Every law on the spinning impacts of ``reference`` (``studies.spin.bem_spin_reference``, EE scene):
-    the largest error of the impulse-ratio vector and the time of one impact (bare kernel, warm JIT) at the
-    BEM's steps per contact, for the first case."""
+def spin_impact_chart(reference, laws=LAWS, vn: float = 5.0, repeats: int = 20, scene: Scene | None = None) -> list:
+    """Every law on the spinning impacts of ``reference`` (``studies.spin.bem_spin_reference``, of ``scene``,
+    default the EE scene): the largest error of the impulse-ratio vector and the time of one impact (bare
+    kernel, warm JIT) at the BEM's steps per contact, for the first case. Each law's scene is ``scene`` with
+    that law and its options, reference speed vn, every other setting kept."""
     from ..impacts.presets import preset_scene
+    from ..impacts.sweep import scene_with
     from .spin import compare_spin_cases, time_per_impact
 
-    base = preset_scene("EE", vn)
+    base = preset_scene("EE", vn) if scene is None else scene
     out = []
     for label, tangential, options in laws:
-        sc = Scene(base.sphere, base.body2, mu=base.mu, tangential=tangential, v_ref=vn, **options)
+        sc = scene_with(base, tangential=tangential, v_ref=vn, **options)
         err = max(r.error for r in compare_spin_cases({label: sc}, reference, vn))
         b = reference[0]
         t = time_per_impact(sc, vn, (b.vt, 0.0), (b.spin_x, 0.0, 0.0), b.steps, repeats)
