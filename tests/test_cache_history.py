@@ -106,7 +106,7 @@ from numba import njit
 
 from dem_contact import impact
 from dem_contact.impacts.presets import preset_scene
-from dem_contact.laws.normal import hertz
+from dem_contact.laws.normal.hertz import hertz
 
 
 @njit(cache=True)
@@ -144,7 +144,7 @@ def test_compiled_code_follows_the_law_sources_it_inlines(tmp_path):
 
     before = run()
     assert run() == before                               # loaded from the cache: the same numbers
-    law = pkg / "dem_contact" / "laws" / "normal.py"
+    law = pkg / "dem_contact" / "laws" / "normal" / "hertz.py"
     text = law.read_text()
     assert text.count("return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a") == 1
     law.write_text(text.replace("return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a",

@@ -8,7 +8,7 @@ import pytest
 
 import dem_contact as dc
 from dem_contact.errors import InputError, NumericalError
-from dem_contact.laws.mdr import mdr
+from dem_contact.laws.tangential.mdr import mdr
 from dem_contact.laws.slots import N_HIST_BASE, N_PARAMS, P_DX, P_ESTAR, P_GSTAR, P_MU, P_NSPRING
 
 from conftest import vt_for_Theta

@@ -6,8 +6,8 @@ import pytest
 
 import dem_contact as dc
 from dem_contact.laws import closed_forms as cf
-from dem_contact.laws import normal
-from dem_contact.laws.slots import H_DP, H_RP, N_HIST_BASE
+from dem_contact.laws.normal import thornton as normal_thornton
+from dem_contact.laws.slots import H_DP, H_RP, N_HIST_BASE, P_KN
 
 
 def test_steel_pair_properties(steel_sphere, steel_wall):
@@ -79,12 +79,12 @@ def test_thornton_kernel_unit_vector():
     h = np.zeros(N_HIST_BASE)
     d_star = 9.802060e-7
     for d in np.linspace(1e-9, d_star, 50):
-        F, a = normal.thornton(sc.params, h, d)
+        F, a = normal_thornton.thornton(sc.params, h, d)
     assert F == pytest.approx(0.2821022, rel=1e-6)
     assert h[H_RP] / UNIT["R"] == pytest.approx(1.450468, rel=1e-6)
     assert h[H_DP] == pytest.approx(3.044201e-7, rel=1e-6)
     # unloading is continuous in force and contact radius at delta*
-    F2, a2 = normal.thornton(sc.params, h, d_star * (1 - 1e-12))
+    F2, a2 = normal_thornton.thornton(sc.params, h, d_star * (1 - 1e-12))
     assert F2 == pytest.approx(F, rel=1e-9)
     assert a2 == pytest.approx(math.sqrt(UNIT["R"] * d_star), rel=1e-9)
     # simulated impact at 5 V_y: maximum overlap and e_n
@@ -127,5 +127,5 @@ def test_damped_and_linear_restitution(steel_sphere, steel_wall, e_n):
     sl = dc.Scene(steel_sphere, steel_wall, normal="linear", e_n=e_n, v_ref=5.0)
     r = dc.impact(sl, 5.0, steps_per_contact=1000)
     assert r.e_n == pytest.approx(e_n, abs=1e-5)
-    assert r.contact_time == pytest.approx(cf.linear_contact_time(sl.params[dc.laws.model.P_KN], sl.pair.m_star,
+    assert r.contact_time == pytest.approx(cf.linear_contact_time(sl.params[P_KN], sl.pair.m_star,
                                                                   cf.linear_damping_ratio(e_n)), rel=1e-5)

@@ -17,7 +17,7 @@ from dem_contact.impacts.sweep import scene_with
 from dem_contact.laws import closed_forms as cf
 from dem_contact.laws import traction_yield as ty
 from dem_contact.laws.contact import contact_step
-from dem_contact.laws.normal import thornton
+from dem_contact.laws.normal.thornton import thornton
 from dem_contact.laws.slots import (H_DP, H_N, H_RP, H_T, H_TANG_EXTRA, P_DELTA_Y, P_DX, P_ESTAR,
                                     P_GSTAR, P_MU, P_PY, P_RSTAR, P_TY_NODES, P_TY_TABLE)
 

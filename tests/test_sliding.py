@@ -10,7 +10,7 @@ from dem_contact.impacts.impact import impact
 from dem_contact.impacts.integrator import SLIDE_IMPULSE_TOL, SLIDE_TOL
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import critical_angle, sweep_theta
-from dem_contact.laws.mdr import _split, _wbar
+from dem_contact.laws.tangential.mdr import _split, _wbar
 from dem_contact.rebound import models as rm
 
 

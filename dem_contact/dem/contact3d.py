@@ -25,14 +25,11 @@ Conventions (SI units):
 Each step the stored tangential history (a vector, an axis or a frame, see ``laws.vector``) is carried
 into the current tangent plane keeping its magnitude and turned about the normal by the angle
 2 atan(wn dt / 2) (the Cayley form of the rotation by wn dt: exactly orthogonal, wn dt (1 - (wn dt)^2 / 12)),
-then the law acts on the slip increment:
-
-- ``mindlin_total``, ``ddm``, ``mindlin_incremental``, ``mindlin_rescale``, ``linear``: vector springs
-  (the LAMMPS granular ``mindlin``, ``mindlin/force``, ``mindlin_rescale/force`` arithmetic), Coulomb by
-  scaling the force back to mu N;
-- ``md``, ``md_rescale``: the planar law along the force axis; slip across the axis turns the force;
-- ``mdr``, ``mdr_adaptive``: vector MDR, each cell a displacement in the tangent plane with its own
-  Coulomb circle (radial return).
+then the law acts on the slip increment (the 3D form of each law is in its file, ``laws.tangential``):
+vector springs (the LAMMPS granular ``mindlin``, ``mindlin/force``, ``mindlin_rescale/force`` arithmetic),
+Coulomb by scaling the force back to mu N; Thornton & Yin's law along the force axis, slip across the axis
+turning the force; vector MDR, each cell a displacement in the tangent plane with its own Coulomb circle
+(radial return).
 
 Motion in one plane repeats the planar laws (``laws.contact``) to rounding error.
 
@@ -47,7 +44,6 @@ for, and all of these refuse a table used with other law ids. Law ids always com
 import math
 import os
 import threading
-import types as pytypes
 
 import numpy as np
 from llvmlite import ir
@@ -56,392 +52,33 @@ from numba.core import cgutils
 from numba.extending import intrinsic, overload
 
 from ..errors import InputError, NumericalError
-from ..laws import mdr as M
-from ..laws import vector as V
-from ..laws.contact import (DDM, HERTZ, HERTZ_DAMPED, LINEAR_NORMAL, LINEAR_TANGENTIAL, MD, MD_RESCALE,
-                            MDR, MDR_ADAPTIVE, MINDLIN_RESCALE, MINDLIN_TOTAL, THORNTON)
-from ..laws.slots import (N_PARAMS, P_DELTA_Y, P_DX, P_ESTAR, P_F_Y, P_GAMMA, P_GSTAR, P_KN, P_KT, P_MDR_PROFILE,
-                          P_MSTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_PY, P_RSTAR, P_TANGENTIAL_LAW, P_TY_NODES)
-from ..laws.vector import (JIT, V_A, V_DP, V_DSTAR, V_FSTAR, V_N, V_RP, W_WORK, W_X, W_Y, W_Z, history_size,
-                           tangential_base)
+from ..laws import table
+from ..laws.compose import STEPS
+from ..laws.dispatch import NORMAL_IDS, NORMAL_NAMES, TANGENTIAL_IDS, TANGENTIAL_NAMES, tangential_base
+from ..laws.dispatch3d import contact_leaf
+from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_NSPRING, P_RSTAR, P_TANGENTIAL_LAW
+from ..laws.vector import JIT, W_WORK, W_X, renamed
 
 __all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
            "contact_forces_batch", "contact_forces_serial", "batch_loop", "contact_forces", "check_contacts",
            "new_histories", "history_size"]
 
 
-# The kernels are flattened for speed. One step function per family of tangential laws (``_step_md``,
-# ``_step_spring``, ``_step_mdr``) alone reads and writes the arrays (H[c, j], params[row, j]) and calls
-# only inlined functions of scalars. The batch loops are compiled per family with the step inlined (numba
-# then keeps the reference counting of the arrays out of the loop), and only the family that is used is
-# compiled. ``contact_force`` calls one non-inlined leaf per family (``_leaf_*``), to keep the cold compile
-# of a user's loop short.
+# The kernels are flattened for speed: the step of each tangential law (``laws.compose``) alone reads and
+# writes the arrays (H[c, j], params[row, j]) and calls only inlined functions of scalars. The batch loops
+# are compiled per tangential law with its step inlined (numba then keeps the reference counting of the
+# arrays out of the loop), and only the law that is used is compiled. ``contact_force`` calls one
+# non-inlined leaf per law (``laws.dispatch3d``), to keep the cold compile of a user's loop short.
 
-def _renamed(func, name):
-    """A copy of the Python function ``func`` under the name ``name``."""
-    copy = pytypes.FunctionType(func.__code__, func.__globals__, name, func.__defaults__, func.__closure__)
-    copy.__qualname__ = name
-    return copy
-
-
-#: mdr.truncated_integral inlined (the truncated profile of Thornton's plastic loading, in _step_mdr), compiled
-#: under a name of its own (numba names compiled code by the function's qualified name; this copy has other flags)
-_truncated_integral = njit(inline="always", **dict(JIT, cache=False))(
-    _renamed(M.truncated_integral.py_func, "_truncated_integral"))
-
-
-@njit(inline="always", **JIT)
-def _kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
-    """Overlap rate v . n, slip increment dd = (v - (v . n) n) dt, and (cos, sin) of the turn of the contact
-    frame about the normal, 2 atan(wn dt / 2) (Cayley form of the rotation by wn dt)."""
-    vel = vx * nx + vy * ny + vz * nz
-    cs = 1.0
-    sn = 0.0
-    if wn != 0.0:
-        q = 0.5 * wn * dt
-        inv = 1.0 / (1.0 + q * q)
-        cs = (1.0 - q * q) * inv
-        sn = 2.0 * q * inv
-    return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
-
-
-@njit(inline="always", **JIT)
-def _normal(nid, E, R, m, gamma, kn, delta_y, F_y, p_y, s0, s1, s2, s3, delta, vel):
-    """The normal law of ``nid``: (N, a) and the four Thornton state values."""
-    if nid == HERTZ:
-        N, a = V.hertz(E, R, delta)
-    elif nid == THORNTON:
-        return V.thornton(E, R, delta_y, F_y, p_y, s0, s1, s2, s3, delta)
-    elif nid == HERTZ_DAMPED:
-        N, a = V.hertz_damped(E, R, m, gamma, delta, vel)
-    else:
-        N, a = V.linear_normal(kn, gamma, m, R, delta, vel)
-    return N, a, s0, s1, s2, s3
-
-
-@njit(inline="always", **JIT)
-def _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
-    N, a, s0, s1, s2, s3 = _normal(nid, params[row, P_ESTAR], params[row, P_RSTAR], params[row, P_MSTAR],
-                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
-                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
-                                   H[c, V_RP], H[c, V_DP], delta, vel)
-    b = tangential_base(nid)
-    Np = N if N > 0.0 else 0.0
-    G = params[row, P_GSTAR]
-    ux, uy, uz, t_old, d_par, px, py, pz = V.md_axis_start(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z],
-                                                           H[c, b + V.M_T], nx, ny, nz, ddx, ddy, ddz, cs, sn)
-    T, ts, tss, k, s = V.md_scalar(params[row, P_MU], G, Np, Np - H[c, V_N], a, H[c, V_A], d_par,
-                                   tid == MD_RESCALE, t_old, H[c, b + V.M_TS], H[c, b + V.M_TSS],
-                                   int(H[c, b + V.M_REGIME]), H[c, b + V.M_SIGN])
-    ux, uy, uz = V.md_axis_turn(T, 8.0 * G * a, ux, uy, uz, px, py, pz)
-    if nid == THORNTON:
-        H[c, V_DSTAR] = s0
-        H[c, V_FSTAR] = s1
-        H[c, V_RP] = s2
-        H[c, V_DP] = s3
-    H[c, V_N] = Np
-    H[c, V_A] = a
-    H[c, b + W_WORK] += 0.5 * (t_old * d_par + T * (ux * ddx + uy * ddy + uz * ddz))
-    H[c, b + W_X] = ux
-    H[c, b + W_Y] = uy
-    H[c, b + W_Z] = uz
-    H[c, b + V.M_T] = T
-    H[c, b + V.M_TS] = ts
-    H[c, b + V.M_TSS] = tss
-    H[c, b + V.M_REGIME] = k
-    H[c, b + V.M_SIGN] = s
-    tx = T * ux
-    ty = T * uy
-    tz = T * uz
-    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
-
-
-@njit(inline="always", **JIT)
-def _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
-    N, a, s0, s1, s2, s3 = _normal(nid, params[row, P_ESTAR], params[row, P_RSTAR], params[row, P_MSTAR],
-                                   params[row, P_GAMMA], params[row, P_KN], params[row, P_DELTA_Y],
-                                   params[row, P_F_Y], params[row, P_PY], H[c, V_DSTAR], H[c, V_FSTAR],
-                                   H[c, V_RP], H[c, V_DP], delta, vel)
-    b = tangential_base(nid)
-    Np = N if N > 0.0 else 0.0
-    a_old = H[c, V_A]
-    x = H[c, b + W_X]
-    y = H[c, b + W_Y]
-    z = H[c, b + W_Z]
-    mu = params[row, P_MU]
-    if tid == MINDLIN_TOTAL or tid == DDM:
-        g8 = 8.0 * params[row, P_GSTAR]
-        if tid == DDM:
-            g8 *= 2.0 / 3.0
-        tx, ty, tz, x, y, z, dw = V.spring_total(g8, mu, Np, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn)
-    else:
-        if tid == LINEAR_TANGENTIAL:
-            kt = params[row, P_KT]
-            a_old = a
-        else:
-            kt = 8.0 * params[row, P_GSTAR] * a
-        tx, ty, tz, dw = V.spring_incremental(kt, mu, Np, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn,
-                                              tid == MINDLIN_RESCALE)
-        x = tx
-        y = ty
-        z = tz
-    if nid == THORNTON:
-        H[c, V_DSTAR] = s0
-        H[c, V_FSTAR] = s1
-        H[c, V_RP] = s2
-        H[c, V_DP] = s3
-    H[c, V_N] = Np
-    H[c, V_A] = a
-    H[c, b + W_WORK] += dw
-    H[c, b + W_X] = x
-    H[c, b + W_Y] = y
-    H[c, b + W_Z] = z
-    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
-
-
-@njit(inline="always", **JIT)
-def _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """Vector MDR (``mdr`` and ``mdr_adaptive``; Popov & Hess 2015 with a displacement vector per cell).
-
-    The cells hold 2D displacements in a frame (e1, e2 = n x e1) of the tangent plane (``V.mdr_frame``).
-    The slip increment in the frame, (dd . e1, dd . e2), is added to every cell in contact, with the entry
-    and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle |G_M u| <= mu q
-    with the cell mean of the line load q of ``mdr._advance`` (the Hertz pressure truncated at p_y during
-    Thornton's plastic loading, ``mdr.truncation``). mdr_adaptive: the grid of ``mdr.mdr_adaptive`` (cell
-    width in the history; its ``merged``, ``halves``, ``shrink_edge`` and ``initial_width``), mdr: the fixed
-    grid of ``mdr.mdr`` (NaN when the contact outgrows it)."""
-    # Every parameter is read first and the history row last, on every path: numba's reference-count
-    # pruning then removes the increments of the two arrays (which would cost two atomic operations per
-    # contact); so the law has one exit and calls only inlined functions.
-    vel, ddx, ddy, ddz, cs, sn = _kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
-    E = params[row, P_ESTAR]
-    R = params[row, P_RSTAR]
-    G = params[row, P_GSTAR]
-    mu = params[row, P_MU]
-    p_y = params[row, P_PY]
-    profile = params[row, P_MDR_PROFILE]
-    n = int(params[row, P_NSPRING])
-    adaptive = tid == MDR_ADAPTIVE
-    dx = params[row, P_DX]
-    N, a, s0, s1, s2, s3 = _normal(nid, E, R, params[row, P_MSTAR], params[row, P_GAMMA], params[row, P_KN],
-                                   params[row, P_DELTA_Y], params[row, P_F_Y], p_y, H[c, V_DSTAR],
-                                   H[c, V_FSTAR], H[c, V_RP], H[c, V_DP], delta, vel)
-    if nid == THORNTON:
-        H[c, V_DSTAR] = s0
-        H[c, V_FSTAR] = s1
-        H[c, V_RP] = s2
-        H[c, V_DP] = s3
-    b = tangential_base(nid)
-    Np = N if N > 0.0 else 0.0
-    a_old = H[c, V_A]
-    k0 = b + V.R_CELLS
-    if adaptive:
-        dx = H[c, b + V.R_DX]
-    tx = 0.0
-    ty = 0.0
-    tz = 0.0
-    if Np <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
-        if dx > 0.0:
-            for j in range(2 * max(V.cells(a, dx, n), V.cells(a_old, dx, n))):
-                H[c, k0 + j] = 0.0
-        for j in range(W_X, V.R_CELLS):
-            H[c, b + j] = 0.0
-    elif not adaptive and a > n * dx:
-        tx = math.nan
-        ty = math.nan
-        tz = math.nan
-        N = math.nan
-    else:
-        ex, ey, ez, fx, fy, fz, d1, d2 = V.mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
-                                                     ddx, ddy, ddz, cs, sn)
-        if adaptive:
-            # the grid of mdr.mdr_adaptive (its merge, split and shrink-edge rules on both components)
-            if dx <= 0.0 or a_old <= 0.0:
-                for j in range(2 * n):
-                    H[c, k0 + j] = 0.0
-                a_old = 0.0
-                dx = V.initial_width(a, n, R)
-                H[c, b + V.R_DX] = dx
-            if a > n * dx or (4.0 * a < n * dx and 4.0 * a_old < n * dx):
-                while a > n * dx:
-                    for j in range(n // 2):
-                        x0 = 2 * j * dx
-                        u1 = M.merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
-                        u2 = M.merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
-                        H[c, k0 + 2 * j] = u1
-                        H[c, k0 + 2 * j + 1] = u2
-                    for j in range(2 * (n // 2), 2 * n):
-                        H[c, k0 + j] = 0.0
-                    dx *= 2.0
-                while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
-                    hdx = 0.5 * dx
-                    for j in range(n // 2 - 1, -1, -1):
-                        u10, u11 = M.halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
-                        u20, u21 = M.halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
-                        H[c, k0 + 4 * j] = u10
-                        H[c, k0 + 4 * j + 1] = u20
-                        H[c, k0 + 4 * j + 2] = u11
-                        H[c, k0 + 4 * j + 3] = u21
-                    dx *= 0.5
-                H[c, b + V.R_DX] = dx
-        # cells in contact: qa = a / dx and qo = a_old / dx give the cell counts and the cut cell
-        qa = a / dx
-        qo = a_old / dx
-        m = max(V.cells_q(a, qa, n), V.cells_q(a_old, qo, n))
-        full = min(int(min(qa, qo)), m)
-        if adaptive and a < a_old:
-            # mdr.shrink_edge: the cell cut by the new edge (i = int(a / dx), the first partial cell)
-            i = int(qa)
-            if i < n:
-                f = V.shrink_factor(i * dx, dx, a, a_old)
-                if f != 1.0:
-                    H[c, k0 + 2 * i] *= f
-                    H[c, k0 + 2 * i + 1] *= f
-        # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
-        GM = 4.0 * G
-        kt = 1.0
-        if nid == THORNTON:
-            kt = M.truncation(profile, p_y, s1, Np, a, E, R)
-        umax_per_w = M.coulomb_per_w(mu, E, G, R, Np, a, kt)
-        a2 = a * a
-        da = a - a_old
-        dx2 = dx * dx / 3.0
-        S1 = 0.0
-        S2 = 0.0
-        Q0 = 0.0      # truncated profile: the integral of the line load up to the cell's lower edge
-        if kt < 1.0:
-            for i in range(full):
-                k = k0 + 2 * i
-                Q1 = _truncated_integral((i + 1) * dx, a, kt)
-                umax = umax_per_w * (Q1 - Q0) / dx
-                Q0 = Q1
-                u1, u2 = V.radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
-                H[c, k] = u1
-                H[c, k + 1] = u2
-                S1 += u1
-                S2 += u2
-        else:
-            # cells sticking (the common case) in a loop without square roots: u += d, and a flag for any
-            # cell near or beyond its circle; if flagged, the cells before the first such cell keep their
-            # values and the radial return acts from it on. The mean of a^2 - x^2 over cell i is
-            # a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
-            w3 = 1.0
-            step = 6.0
-            near = False
-            for i in range(full):
-                k = k0 + 2 * i
-                umax = umax_per_w * (a2 - dx2 * w3)
-                w3 += step
-                step += 6.0
-                u1 = H[c, k] + d1
-                u2 = H[c, k + 1] + d2
-                H[c, k] = u1
-                H[c, k + 1] = u2
-                S1 += u1
-                S2 += u2
-                near |= u1 * u1 + u2 * u2 > V.NEAR * (umax * umax)
-            if near:
-                S1 = 0.0
-                S2 = 0.0
-                w3 = 1.0
-                step = 6.0
-                i0 = 0
-                while i0 < full:
-                    k = k0 + 2 * i0
-                    u1 = H[c, k]
-                    u2 = H[c, k + 1]
-                    umax = umax_per_w * (a2 - dx2 * w3)
-                    if u1 * u1 + u2 * u2 > V.NEAR * (umax * umax):
-                        break
-                    w3 += step
-                    step += 6.0
-                    S1 += u1
-                    S2 += u2
-                    i0 += 1
-                for i in range(i0, full):
-                    k = k0 + 2 * i
-                    umax = umax_per_w * (a2 - dx2 * w3)
-                    w3 += step
-                    step += 6.0
-                    u1, u2 = V.radial(H[c, k], H[c, k + 1], umax)
-                    H[c, k] = u1
-                    H[c, k + 1] = u2
-                    S1 += u1
-                    S2 += u2
-        T1 = S1 * dx
-        T2 = S2 * dx
-        for i in range(full, m):
-            k = k0 + 2 * i
-            x0 = i * dx
-            l_new = min(max(a - x0, 0.0), dx)
-            if l_new <= 0.0:
-                H[c, k] = 0.0
-                H[c, k + 1] = 0.0
-                continue
-            l_old = min(max(a_old - x0, 0.0), dx)
-            u1 = H[c, k] + d1
-            u2 = H[c, k + 1] + d2
-            if l_new > l_old:
-                # the part entering during the step takes the increment after its entry (mdr._advance)
-                xm = x0 + 0.5 * (l_old + l_new)
-                f = (a - xm) / da * (l_new - l_old)
-                u1 = (u1 * l_old + d1 * f) / l_new
-                u2 = (u2 * l_old + d2 * f) / l_new
-            x1 = x0 + l_new
-            if kt < 1.0:
-                Q1 = _truncated_integral(x1, a, kt)
-                wbar = (Q1 - Q0) / l_new
-                Q0 = Q1
-            else:
-                wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
-            u1, u2 = V.radial(u1, u2, umax_per_w * wbar)
-            H[c, k] = u1
-            H[c, k + 1] = u2
-            T1 += u1 * l_new
-            T2 += u2 * l_new
-        T1 *= 2.0 * GM
-        T2 *= 2.0 * GM
-        H[c, b + W_WORK] += 0.5 * ((H[c, b + V.R_T1] + T1) * d1 + (H[c, b + V.R_T2] + T2) * d2)
-        H[c, b + W_X] = ex
-        H[c, b + W_Y] = ey
-        H[c, b + W_Z] = ez
-        H[c, b + V.R_T1] = T1
-        H[c, b + V.R_T2] = T2
-        tx = T1 * ex + T2 * fx
-        ty = T1 * ey + T2 * fy
-        tz = T1 * ez + T2 * fz
-    H[c, V_N] = Np
-    H[c, V_A] = a
-    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
-
-
-@njit(**JIT)
-def _leaf_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    return _step_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-
-
-@njit(**JIT)
-def _leaf_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    return _step_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-
-
-@njit(**JIT)
-def _leaf_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    return _step_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-
-
-@njit(inline="always", **JIT)
-def _dispatch(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """The step of the law family of ``tid`` (ids assumed valid: NaN for an unknown one)."""
-    if tid == MDR_ADAPTIVE or tid == MDR:
-        return _leaf_mdr(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == MD or tid == MD_RESCALE:
-        return _leaf_md(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid >= MINDLIN_TOTAL and tid <= DDM:
-        return _leaf_spring(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
+def history_size(nid: int, tid: int, n_cells: int = 0) -> int:
+    """Length of a 3D history row for the normal law ``nid`` and the tangential law ``tid``; ``n_cells``:
+    the MDR cell count (the largest params[:, P_NSPRING] of the table, >= 2) for the laws with cells,
+    which have no default (``PairTable.history_size`` has it all)."""
+    nid, tid = _valid_ids(nid, tid)
+    if table.FAMILIES["tangential"][tid].CELLS and not (isinstance(n_cells, (int, np.integer)) and n_cells >= 2):
+        raise InputError(f"n_cells = {n_cells!r}: the {TANGENTIAL_NAMES[tid]} law needs its cell count (an integer "
+                         f">= 2, the largest params[:, P_NSPRING] of the table; PairTable.history_size has it)")
+    return table.vector_history_size(nid, tid, n_cells)
 
 
 @njit(inline="always", **JIT)
@@ -450,11 +87,11 @@ def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn
     Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
     Nothing is checked (``check_contacts``) and nothing raises, so that a user's ``prange`` loop around it
     runs in parallel: unknown law ids give NaN forces and leave H unchanged."""
-    if nid < HERTZ or nid > LINEAR_NORMAL or tid < MD or tid > MDR_ADAPTIVE:
+    if nid < 0 or nid >= len(NORMAL_IDS) or tid < 0 or tid >= len(TANGENTIAL_IDS):
         return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
     # int64 indices whatever the caller's (a prange index is uint64): the leaves compiled for serial loops
     # serve parallel ones too
-    return _dispatch(nid, tid, params, np.int64(row), H, np.int64(c), nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    return contact_leaf(nid, tid, params, np.int64(row), H, np.int64(c), nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
 # The contact helpers: a jitted kernel each (``_peek_force`` ...), called unchecked from jitted code (the
@@ -474,15 +111,32 @@ def _reset_contact(H, c):
         H[c, j] = 0.0
 
 
+def _swap_rules():
+    """The sign rules of the tangential laws for swapping the bodies (``SWAP_NEGATE``, ``SWAP_NEGATE_CELL``):
+    the slots relative to the tangential base that change sign (-1 pads), and the first slot of the cell
+    components that change sign (every second slot from there; -1: no cells)."""
+    laws = table.FAMILIES["tangential"]
+    negate = np.full((len(laws), max(len(m.SWAP_NEGATE) for m in laws)), -1, dtype=np.int64)
+    cells = np.full(len(laws), -1, dtype=np.int64)
+    for t, m in enumerate(laws):
+        negate[t, :len(m.SWAP_NEGATE)] = m.SWAP_NEGATE
+        if m.CELLS:
+            cells[t] = m.VECTOR_SLOTS + m.SWAP_NEGATE_CELL
+    return negate, cells
+
+
+_NEGATE, _CELL_NEGATE = _swap_rules()
+
+
 @njit(**JIT)
 def _swap_bodies(nid, tid, H, c):
     b = tangential_base(nid)
-    for j in range(W_X, W_X + 3):
-        H[c, b + j] = -H[c, b + j]
-    if tid == MDR or tid == MDR_ADAPTIVE:
-        # e1 -> -e1 and n -> -n keep e2 = n x e1: the second components change sign
-        H[c, b + V.R_T2] = -H[c, b + V.R_T2]
-        for k in range(b + V.R_CELLS + 1, H.shape[1], 2):
+    for j in range(_NEGATE.shape[1]):
+        k = _NEGATE[tid, j]
+        if k >= 0:
+            H[c, b + k] = -H[c, b + k]
+    if _CELL_NEGATE[tid] >= 0:
+        for k in range(b + _CELL_NEGATE[tid], H.shape[1], 2):
             H[c, k] = -H[c, k]
 
 
@@ -515,7 +169,7 @@ def _check_row(H, c, writes, need=0):
 
 def _check_ids_and_row(nid, tid, H, c, writes):
     nid, tid = _valid_ids(nid, tid)
-    _check_row(H, c, writes, history_size(nid, tid, 2 if tid in (MDR, MDR_ADAPTIVE) else 0))
+    _check_row(H, c, writes, history_size(nid, tid, 2 if table.FAMILIES["tangential"][tid].CELLS else 0))
     return nid, tid
 
 
@@ -590,15 +244,6 @@ def _tangential_work_jit(nid, tid, H, c):
     return lambda nid, tid, H, c: _tangential_work(nid, tid, H, np.int64(c))
 
 
-def _family(tid):
-    """Law family of a (checked) tangential law id: 0 md, 1 vector springs, 2 mdr."""
-    if tid in (MD, MD_RESCALE):
-        return 0
-    if tid in (MDR, MDR_ADAPTIVE):
-        return 2
-    return 1
-
-
 @intrinsic
 def _prefetch(typingctx, arr, row, col):
     """Ask the CPU to bring the cache line of arr[row, col] (a 2D C array) into its caches, for writing
@@ -634,78 +279,28 @@ def _prefetch_row(H, r):
     _prefetch(H, r, H.shape[1] - 1)
 
 
-# The batch loops of each law family, the family's step inlined: contact c has history row rows[c] of H,
+# The batch loops of each tangential law, the law's step inlined: contact c has history row rows[c] of H,
 # prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
-# contact).
+# contact). One source, compiled serial and parallel (prange is range in a serial build).
 
-@njit(**JIT)
-def _serial_md(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
-    n = overlaps.shape[0]
-    for c in range(n):
-        if c + AHEAD < n:
-            _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
-            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-
-
-@njit(parallel=True, **JIT)
-def _batch_md(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+    """Template of the batch loop of one tangential law (its step: the global ``step``, bound per law)."""
     n = overlaps.shape[0]
     for c in prange(n):
         if c + AHEAD < n:
             _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_md(
-            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = step(  # noqa: F821
+            nid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
             velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
 
 
-@njit(**JIT)
-def _serial_spring(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
-    n = overlaps.shape[0]
-    for c in range(n):
-        if c + AHEAD < n:
-            _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
-            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+def _loops_of(step, name):
+    return (njit(**JIT)(renamed(_loop, f"serial_{name}", step=step)),
+            njit(parallel=True, **JIT)(renamed(_loop, f"parallel_{name}", step=step)))
 
 
-@njit(parallel=True, **JIT)
-def _batch_spring(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
-    n = overlaps.shape[0]
-    for c in prange(n):
-        if c + AHEAD < n:
-            _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_spring(
-            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-
-
-@njit(**JIT)
-def _serial_mdr(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
-    n = overlaps.shape[0]
-    for c in range(n):
-        if c + AHEAD < n:
-            _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
-            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-
-
-@njit(parallel=True, **JIT)
-def _batch_mdr(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
-    n = overlaps.shape[0]
-    for c in prange(n):
-        if c + AHEAD < n:
-            _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = _step_mdr(
-            nid, tid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-
-
-#: the loops of each law family (``_family``): (serial, parallel)
-_LOOPS = ((_serial_md, _batch_md), (_serial_spring, _batch_spring), (_serial_mdr, _batch_mdr))
+#: the loops of each tangential law: (serial, parallel)
+_LOOPS = tuple(_loops_of(step, m.NAME) for step, m in zip(STEPS, table.FAMILIES["tangential"]))
 _IDENTITY = [np.arange(0)]
 _SCRATCH = threading.local()
 
@@ -743,18 +338,18 @@ def _distinct(rows, n_rows):
 
 
 def _valid_ids(nid, tid):
-    nid = _law_id("nid (normal law id)", nid, V.NORMAL_IDS, _NORMAL_NAMES)
-    return nid, _law_id("tid (tangential law id)", tid, V.TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+    nid = _law_id("nid (normal law id)", nid, NORMAL_IDS, _NORMAL_NAMES)
+    return nid, _law_id("tid (tangential law id)", tid, TANGENTIAL_IDS, _TANGENTIAL_NAMES)
 
 
 def batch_loop(nid, tid, parallel=False):
-    """The jitted batch loop of the law family of ``tid`` (ids checked here, once):
+    """The jitted batch loop of the tangential law ``tid`` (ids checked here, once):
     loop(nid, tid, params, pair_rows, H, history_rows, normals, overlaps, velocities, wn, dt, forces,
     tforces), the arguments of ``contact_forces_batch`` with history_rows required, none checked. For a
     caller that steps the same laws many times and checked its arrays once (``check_contacts``): arrays
     that do not pass ``check_contacts`` can make it write outside them."""
     nid, tid = _valid_ids(nid, tid)
-    return _LOOPS[_family(tid)][1 if parallel else 0]
+    return _LOOPS[tid][1 if parallel else 0]
 
 
 def _run(parallel, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
@@ -762,7 +357,7 @@ def _run(parallel, nid, tid, params, pair_rows, H, normals, overlaps, velocities
     nid, tid = _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
                              tforces, history_rows)
     rows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
-    _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps,
+    _LOOPS[tid][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps,
                                                velocities, wn, float(dt), forces, tforces)
 
 
@@ -802,13 +397,8 @@ def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
 
 # ------------------------------------------------------------------------------------------- checked entry
 
-_NORMAL_NAMES = "0 hertz, 1 thornton, 2 hertz_damped, 3 linear"
-_TANGENTIAL_NAMES = ("0 md, 1 md_rescale, 2 mindlin_total, 3 mindlin_incremental, 4 mindlin_rescale, 5 linear, "
-                     "6 ddm, 7 mdr, 8 mdr_adaptive")
-_NORMAL_BY_ID = {v: k for k, v in zip(("hertz", "thornton", "hertz_damped", "linear"), V.NORMAL_IDS)}
-_TANGENTIAL_BY_ID = {v: k for k, v in zip(("md", "md_rescale", "mindlin_total", "mindlin_incremental",
-                                           "mindlin_rescale", "linear", "ddm", "mdr", "mdr_adaptive"),
-                                          V.TANGENTIAL_IDS)}
+_NORMAL_NAMES = ", ".join(f"{i} {name}" for i, name in enumerate(NORMAL_NAMES))
+_TANGENTIAL_NAMES = ", ".join(f"{i} {name}" for i, name in enumerate(TANGENTIAL_NAMES))
 UNIT_TOL = 1e-6
 
 
@@ -845,12 +435,8 @@ def _first_bad(name, bad, what):
 
 
 def _law_names(nid, tid):
-    return f"{_NORMAL_BY_ID.get(nid, '?')} + {_TANGENTIAL_BY_ID.get(tid, '?')}"
-
-
-#: Why a row with the traction-coupled Thornton law (Scene(traction_yield=True)) is refused in 3D.
-TRACTION_YIELD_REFUSED = ("has traction_yield on (a thornton limiting pressure coupled to the traction), which the 3D "
-                          "kernels do not carry (the planar impact and sweep do): build it without traction_yield")
+    known = 0 <= nid < len(NORMAL_NAMES) and 0 <= tid < len(TANGENTIAL_NAMES)
+    return f"{NORMAL_NAMES[nid]} + {TANGENTIAL_NAMES[tid]}" if known else "unknown laws"
 
 
 def _check_table(nid, tid, params):
@@ -870,19 +456,12 @@ def _check_table(nid, tid, params):
         raise InputError(f"params[{r}] was built for the laws nid = {bn}, tid = {bt} ({_law_names(bn, bt)}), "
                          f"not for nid = {nid}, tid = {tid} ({_law_names(nid, tid)}): pass the table's own "
                          f"PairTable.normal_id and tangential_id, or build a table for these laws")
-    _first_bad("params", params[:, P_TY_NODES] != 0.0, lambda r: TRACTION_YIELD_REFUSED)
-    if tid not in (MDR, MDR_ADAPTIVE):
+    law = table.FAMILIES["tangential"][tid]
+    if not law.CELLS:
         return history_size(nid, tid)
-    cells = params[:, P_NSPRING]
-    law = "mdr" if tid == MDR else "mdr_adaptive"
-    _first_bad("params", ~((cells >= 2) & (cells <= 10**6) & (cells == np.floor(cells))),
-               lambda r: f"has no MDR cell count (params[:, P_NSPRING] in [2, 1e6]), which the {law} law needs")
-    if tid == MDR_ADAPTIVE:
-        _first_bad("params", cells % 2 != 0, lambda r: "has an odd MDR cell count: mdr_adaptive needs an even one")
-    else:
-        _first_bad("params", ~(params[:, P_DX] > 0.0),
-                   lambda r: "has no MDR cell width (params[:, P_DX] > 0), which the mdr law needs")
-    return history_size(nid, tid, int(cells.max()))
+    for bad, why in law.check_rows(params):
+        _first_bad("params", bad, lambda r: why)
+    return history_size(nid, tid, int(params[:, P_NSPRING].max()))
 
 
 def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
@@ -990,8 +569,8 @@ _DEBUG_REASONS = {1: "pair_rows[{c}] is not a row of params", 2: "H rows are too
 
 
 def _nonfinite_force(c, overlap, tid) -> NumericalError:
-    return NumericalError(f"contact {c}: the force is not finite (overlap {overlap:.6g} m"
-                          f"{', beyond the fixed MDR grid?' if tid == MDR else ''})")
+    hint = getattr(table.FAMILIES["tangential"][tid], "NAN_HINT", "")
+    return NumericalError(f"contact {c}: the force is not finite (overlap {overlap:.6g} m{hint and ', ' + hint})")
 
 
 def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, *,
@@ -1009,10 +588,10 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     hrows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
     if debug:
         need = H.shape[1]
-        if tid in (MDR, MDR_ADAPTIVE) and len(pair_rows):
-            need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
-        elif tid not in (MDR, MDR_ADAPTIVE):
+        if not table.FAMILIES["tangential"][tid].CELLS:
             need = history_size(nid, tid)
+        elif len(pair_rows):
+            need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
         c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn,
                                   float(dt), forces, tforces, need)
         if reason == 5:
@@ -1020,7 +599,7 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
         if reason:
             raise InputError(_DEBUG_REASONS[reason].format(c=c))
     else:
-        _LOOPS[_family(tid)][1 if parallel else 0](nid, tid, params, pair_rows, H, hrows, normals, overlaps,
+        _LOOPS[tid][1 if parallel else 0](nid, tid, params, pair_rows, H, hrows, normals, overlaps,
                                                    velocities, wn, float(dt), forces, tforces)
         n = len(overlaps)
         bad = ~(np.all(np.isfinite(forces[:n]), axis=1) & np.all(np.isfinite(tforces[:n]), axis=1))

@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..materials import Sphere, Wall
 from ..laws.model import Scene
 from ..laws.slots import P_NSPRING
-from ..laws.vector import history_size
+from ..laws.table import vector_history_size as history_size
 
 
 @dataclass(frozen=True, eq=False)

@@ -26,7 +26,7 @@ from ..materials import Sphere, check_finite
 from ..laws.model import HERTZ_DAMPED_EN_FLOOR, Scene, hertz_damped_time_ratio
 
 #: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed. With the
-#: default mdr_adaptive law f/mu is then within 3.5e-4 of its converged value and 7e-4 of converged MDR
+#: default law (adaptive MDR) f/mu is then within 3.5e-4 of its converged value and 7e-4 of converged MDR
 #: (validation/chart); md needs about 1000 steps for 1e-3 of discretisation error.
 DEFAULT_STEPS_PER_CONTACT = 50
 #: Fewer steps per contact than this cannot resolve a contact: rejected.

@@ -45,7 +45,7 @@ import warnings
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import TRACTION_YIELD_REFUSED, contact_force, history_size, new_histories
+from ..dem.contact3d import contact_force, history_size, new_histories
 from ..errors import InputError, NumericalError, kernel_failed
 from ..laws.model import Scene
 from ..laws.normal_impact import drift, eval_overlap, normal_close, normal_start, step_status
@@ -85,8 +85,6 @@ N_SERIES3 = len(SERIES3)
 def new_contact_state(scene: Scene):
     """(params, H): the scene's parameter row as a one-row table and the zeroed 3D history of the one
     contact of an impact, as the 3D kernel takes them."""
-    if scene.traction_yield:
-        raise InputError(f"scene {TRACTION_YIELD_REFUSED}")
     params = np.ascontiguousarray(scene.params[None, :])
     H = new_histories(1, history_size(scene.normal_id, scene.tangential_id, scene.mdr_springs))
     return params, H

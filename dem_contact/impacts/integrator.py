@@ -31,7 +31,7 @@ from ..laws.contact import contact_step
 from ..laws.normal_impact import (STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK, drift, eval_overlap,  # noqa: F401
                                   normal_close, normal_start, step_status)
 from ..laws.slots import P_MU
-from ..laws.vector import NORMAL_IDS, TANGENTIAL_IDS
+from ..laws.dispatch import NORMAL_IDS, TANGENTIAL_IDS
 
 # slots of the output row, in the order of the values that ``integrate_inlined`` writes
 O_VN = 0        # final normal approach velocity, V_nr (negative: moving away) [m/s]
@@ -63,8 +63,8 @@ N_SERIES = 7
 #: far more than SLIDE_TOL (by 0.07 to 1 of mu N at 0.5% below Theta_c of eq. 4.1 of Wu et al. 2009), while
 #: a sliding contact of the fixed-grid mdr dips by a few 1e-6 where its cells cross the contact edge and by
 #: up to 2e-2 in the last steps, where the contact spans only a few springs: that last SLIDE_IMPULSE_TOL of
-#: the impulse is a vanishing set (mdr_adaptive and md stay at the limit to rounding). With these values the
-#: direct Theta_c of mdr, mdr_adaptive and md lies 0.03% to 0.06% below eq. 4.1 from 50 to 50,000 steps per
+#: the impulse is a vanishing set (the adaptive MDR and md stay at the limit to rounding). With these values the
+#: direct Theta_c of mdr, the adaptive MDR and md lies 0.03% to 0.06% below eq. 4.1 from 50 to 50,000 steps per
 #: contact (tests/test_sweep.py).
 SLIDE_TOL = 1e-3
 SLIDE_IMPULSE_TOL = 1e-4

@@ -53,7 +53,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..laws.contact import HERTZ_DAMPED, LINEAR_NORMAL
+from ..laws.dispatch import uses_rate
 from ..laws.vector import V_N
 from ..walls import table as W
 
@@ -579,7 +579,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                     velocities[k, d] = velocities[q, d]
                 k += 1
         n = k
-    if nid == HERTZ_DAMPED or nid == LINEAR_NORMAL:
+    if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(n):
             a = body[k, 0]

@@ -20,7 +20,7 @@ P_NSPRING             number of springs of the MDR reference (mdr)
 P_DX                  spring spacing of the MDR reference [m] (mdr)
 P_MDR_PROFILE         Coulomb-limit profile of the MDR laws: 0 the pressure the normal law implies
                       (Hertz truncated at p_y during Thornton's plastic loading), 1 a Hertz shape scaled
-                      to N (mdr, mdr_adaptive)
+                      to N (the MDR laws)
 P_TY_NODES            nodes of the traction-yield table, 0 = off (thornton)
 P_TY_DMU              spacing of the table in mu_eff = |T|/N [-] (thornton)
 P_TY_TABLE ...        p0(mu_eff)/p0(0) at mu_eff = 0, P_TY_DMU, ... (TY_MAX_NODES slots; thornton)

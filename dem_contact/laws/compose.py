@@ -1,0 +1,54 @@
+"""One 3D contact step composed of the laws of the table: the kinematics of the contact, the normal law,
+then the tangential law, writing the history row in place.
+
+A step is made for each tangential law (``STEPS``, inlined into the batch loops of ``dem.contact3d``, so
+that a loop compiles one tangential law only) with a non-inlined leaf (``LEAVES``, for the single-contact
+entry, whose switch on the id is ``dispatch3d``). Each is compiled under a name of its own
+(``vector.renamed``): numba names compiled code by the qualified name.
+"""
+from numba import njit
+
+from . import table
+from .dispatch import normal_vector, store_normal, tangential_base
+from .vector import JIT, V_A, V_N, renamed
+
+
+@njit(inline="always", **JIT)
+def kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
+    """Overlap rate v . n, slip increment dd = (v - (v . n) n) dt, and (cos, sin) of the turn of the contact
+    frame about the normal, 2 atan(wn dt / 2) (Cayley form of the rotation by wn dt)."""
+    vel = vx * nx + vy * ny + vz * nz
+    cs = 1.0
+    sn = 0.0
+    if wn != 0.0:
+        q = 0.5 * wn * dt
+        inv = 1.0 / (1.0 + q * q)
+        cs = (1.0 - q * q) * inv
+        sn = 2.0 * q * inv
+    return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
+
+
+def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """Template of the step of one tangential law (the global ``tangential``, bound per law by ``renamed``).
+    Returns the force on body 1 and its tangential part (Fx, Fy, Fz, Ftx, Fty, Ftz) [N]."""
+    vel, ddx, ddy, ddz, cs, sn = kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
+    N, a, s0, s1, s2, s3, s4 = normal_vector(nid, params, row, H, c, delta, vel)
+    b = tangential_base(nid)
+    Np = N if N > 0.0 else 0.0
+    tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
+    store_normal(nid, params, row, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
+    H[c, V_N] = Np
+    H[c, V_A] = a
+    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
+
+
+def _leaf(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+    """Template of a leaf: the global ``step`` not inlined."""
+    return step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)  # noqa: F821
+
+
+#: the step of each tangential law, in id order
+STEPS = tuple(njit(inline="always", **JIT)(renamed(_step, f"step_{m.NAME}", tangential=m.vector))
+              for m in table.FAMILIES["tangential"])
+#: the same, not inlined
+LEAVES = tuple(njit(**JIT)(renamed(_leaf, f"leaf_{m.NAME}", step=s)) for s, m in zip(STEPS, table.FAMILIES["tangential"]))

@@ -1,0 +1,103 @@
+"""Law dispatch by id, generated from ``laws.table`` by ``python -m dem_contact.laws.generate``: do not
+edit (a test fails when it is out of date). The ids are the places of the laws in ``table.FAMILIES``."""
+from numba import njit
+
+from .normal import hertz as n0
+from .normal import thornton as n1
+from .normal import hertz_damped as n2
+from .normal import linear as n3
+from .tangential import md as t0
+from .tangential import md_rescale as t1
+from .tangential import mindlin_total as t2
+from .tangential import mindlin_incremental as t3
+from .tangential import mindlin_rescale as t4
+from .tangential import linear as t5
+from .tangential import ddm as t6
+from .tangential import mdr as t7
+from .tangential import mdr_adaptive as t8
+from .twist import none as q0
+from .rolling import none as r0
+
+NORMAL_NAMES = ('hertz', 'thornton', 'hertz_damped', 'linear',)
+NORMAL_IDS = tuple(range(4))
+TANGENTIAL_NAMES = ('md', 'md_rescale', 'mindlin_total', 'mindlin_incremental', 'mindlin_rescale', 'linear', 'ddm', 'mdr', 'mdr_adaptive',)
+TANGENTIAL_IDS = tuple(range(9))
+TWIST_NAMES = ('none',)
+TWIST_IDS = tuple(range(1))
+ROLLING_NAMES = ('none',)
+ROLLING_IDS = tuple(range(1))
+
+
+@njit(inline="always", cache=True)
+def normal_force(nid, p, h, delta, vel):
+    if nid == 0:
+        return n0.planar(p, h, delta, vel)
+    if nid == 1:
+        return n1.planar(p, h, delta, vel)
+    if nid == 2:
+        return n2.planar(p, h, delta, vel)
+    return n3.planar(p, h, delta, vel)
+
+
+@njit(inline="always", cache=True)
+def normal_gap(nid, p, h, delta, vel):
+    if nid == 0:
+        return n0.gap(p, h, delta, vel)
+    if nid == 1:
+        return n1.gap(p, h, delta, vel)
+    if nid == 2:
+        return n2.gap(p, h, delta, vel)
+    return n3.gap(p, h, delta, vel)
+
+
+@njit(inline="always", cache=True)
+def tangential_force(tid, p, h, N, dN, a, a_old, dd):
+    if tid == 0:
+        return t0.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 1:
+        return t1.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 2:
+        return t2.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 3:
+        return t3.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 4:
+        return t4.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 5:
+        return t5.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 6:
+        return t6.planar(p, h, N, dN, a, a_old, dd)
+    if tid == 7:
+        return t7.planar(p, h, N, dN, a, a_old, dd)
+    return t8.planar(p, h, N, dN, a, a_old, dd)
+
+
+@njit(inline="always", cache=True)
+def normal_vector(nid, params, row, H, c, delta, vel):
+    if nid == 0:
+        return n0.vector(params, row, H, c, delta, vel)
+    if nid == 1:
+        return n1.vector(params, row, H, c, delta, vel)
+    if nid == 2:
+        return n2.vector(params, row, H, c, delta, vel)
+    return n3.vector(params, row, H, c, delta, vel)
+
+
+@njit(inline="always", cache=True)
+def uses_rate(nid):
+    """Whether the normal law's force depends on the overlap rate (``USES_RATE``)."""
+    return nid == 2 or nid == 3
+
+
+@njit(inline="always", cache=True)
+def tangential_base(nid):
+    """First tangential slot of a 3D history row: after the normal law's state."""
+    if nid == 1:
+        return 7
+    return 2
+
+
+@njit(inline="always", cache=True)
+def store_normal(nid, params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):
+    """The normal law's ``store`` (laws with a 3D state)."""
+    if nid == 1:
+        n1.store(params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz)

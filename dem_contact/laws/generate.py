@@ -1,0 +1,88 @@
+"""Write ``laws/dispatch.py`` from the law table: ``python -m dem_contact.laws.generate``.
+
+numba inlines and caches a switch on a law id only when the cases are literal integers, so the switch is
+written out as code, from ``laws.table``; ``tests/test_law_contract.py`` fails while the file is out of date.
+"""
+import pathlib
+
+from . import table
+
+TARGET = pathlib.Path(__file__).with_name("dispatch.py")
+TARGET_3D = pathlib.Path(__file__).with_name("dispatch3d.py")
+ALIASES = {"normal": "n", "tangential": "t", "twist": "q", "rolling": "r"}
+
+
+def _switch(family, head, call, ret=""):
+    """A function ``head`` whose body calls ``call`` (with {m}: the law's module alias) for the law of the id
+    (its first argument); the last law is the fall-through."""
+    laws = table.FAMILIES[family]
+    arg = head.split("(")[1].split(",")[0]
+    lines = ["", "", "@njit(inline=\"always\", cache=True)", f"def {head}:"]
+    for i in range(len(laws) - 1):
+        lines += [f"    if {arg} == {i}:", f"        return {call.format(m=f'{ALIASES[family]}{i}')}"]
+    lines.append(f"    return {call.format(m=f'{ALIASES[family]}{len(laws) - 1}')}")
+    return lines
+
+
+def source() -> str:
+    out = ['"""Law dispatch by id, generated from ``laws.table`` by ``python -m dem_contact.laws.generate``: do not',
+           'edit (a test fails when it is out of date). The ids are the places of the laws in ``table.FAMILIES``."""',
+           "from numba import njit", ""]
+    for family, laws in table.FAMILIES.items():
+        out += [f"from .{family} import {m.__name__.rsplit('.', 1)[1]} as {ALIASES[family]}{i}"
+                for i, m in enumerate(laws)]
+    out.append("")
+    for family, laws in table.FAMILIES.items():
+        out.append(f"{family.upper()}_NAMES = ({', '.join(repr(m.NAME) for m in laws)},)")
+        out.append(f"{family.upper()}_IDS = tuple(range({len(laws)}))")
+    normal = table.FAMILIES["normal"]
+    out += _switch("normal", "normal_force(nid, p, h, delta, vel)", "{m}.planar(p, h, delta, vel)")
+    out += _switch("normal", "normal_gap(nid, p, h, delta, vel)", "{m}.gap(p, h, delta, vel)")
+    out += _switch("tangential", "tangential_force(tid, p, h, N, dN, a, a_old, dd)",
+                   "{m}.planar(p, h, N, dN, a, a_old, dd)")
+    out += _switch("normal", "normal_vector(nid, params, row, H, c, delta, vel)",
+                   "{m}.vector(params, row, H, c, delta, vel)")
+    rate = [i for i, m in enumerate(normal) if m.USES_RATE]
+    out += ["", "", "@njit(inline=\"always\", cache=True)", "def uses_rate(nid):",
+            "    \"\"\"Whether the normal law's force depends on the overlap rate (``USES_RATE``).\"\"\"",
+            f"    return {' or '.join(f'nid == {i}' for i in rate) or 'False'}"]
+    out += ["", "", "@njit(inline=\"always\", cache=True)", "def tangential_base(nid):",
+            "    \"\"\"First tangential slot of a 3D history row: after the normal law's state.\"\"\""]
+    for i, m in enumerate(normal):
+        if m.STATE:
+            out += [f"    if nid == {i}:", f"        return {table.tangential_base(i)}"]
+    out.append("    return 2")
+    out += ["", "", "@njit(inline=\"always\", cache=True)",
+            "def store_normal(nid, params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):",
+            "    \"\"\"The normal law's ``store`` (laws with a 3D state).\"\"\""]
+    for i, m in enumerate(normal):
+        if m.STATE:
+            out += [f"    if nid == {i}:", f"        n{i}.store(params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz)"]
+    out.append("")
+    return "\n".join(out)
+
+
+def source_3d() -> str:
+    """The switch of the single-contact 3D entry on the tangential law id, over ``compose.LEAVES``."""
+    laws = table.FAMILIES["tangential"]
+    out = ['"""The 3D contact step by tangential law id, generated from ``laws.table`` by',
+           '``python -m dem_contact.laws.generate``: do not edit."""',
+           "from numba import njit", "", "from .compose import LEAVES", "from .vector import JIT", "",
+           f"({', '.join(f'_{i}' for i in range(len(laws)))},) = LEAVES", "", "",
+           "@njit(inline=\"always\", **JIT)",
+           "def contact_leaf(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):",
+           "    \"\"\"``compose.LEAVES[tid]`` (tid assumed valid).\"\"\""]
+    for i in range(len(laws) - 1):
+        out += [f"    if tid == {i}:", f"        return _{i}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)"]
+    out += [f"    return _{len(laws) - 1}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)", ""]
+    return "\n".join(out)
+
+
+def main():
+    TARGET.write_text(source())
+    TARGET_3D.write_text(source_3d())
+    print(f"wrote {TARGET} and {TARGET_3D}")
+
+
+if __name__ == "__main__":
+    main()

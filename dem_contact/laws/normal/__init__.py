@@ -1,0 +1,1 @@
+"""Normal contact laws, one file each (see ``laws.table`` for what a law file declares)."""

@@ -1,0 +1,69 @@
+"""Hertz elastic contact (Johnson 1985, Contact Mechanics, eq. 4.23): a = sqrt(R* delta), N = (4/3) E* a delta."""
+import math
+
+from numba import njit
+
+from ...errors import InputError
+from .. import closed_forms as cf
+from ..slots import P_ESTAR, P_RSTAR
+from ..vector import JIT
+
+NAME = "hertz"
+FAMILY = "normal"
+SOURCE = "Hertz (Johnson 1985), elastic"
+PARAMETERS = ("E_star", "R_star")
+STATE = ()
+OPTIONS = ()
+USES_RATE = False
+PLASTIC = False
+
+
+def configure(scene, p):
+    if scene.e_n is not None:
+        raise InputError("e_n cannot act on the hertz law (elastic, e_n = 1): use hertz_damped or linear for a "
+                         "restitution, or thornton to calibrate its yield pressure from e_n")
+
+
+def describe(scene, p):
+    return {}
+
+
+def contact_time(scene, vn):
+    """Hertz's elastic contact time at normal speed vn [s] (Johnson 1985, section 11.4)."""
+    pr = scene.pair
+    return cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
+
+
+@njit(inline="always", cache=True)
+def hertz(p, delta):
+    """Hertz (Johnson 1985, eq. 4.23): a = sqrt(R* delta), N = (4/3) E* a delta."""
+    if delta <= 0.0:
+        return 0.0, 0.0
+    a = math.sqrt(p[P_RSTAR] * delta)
+    return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a
+
+
+@njit(inline="always", cache=True)
+def planar(p, h, delta, vel):
+    return hertz(p, delta)
+
+
+@njit(inline="always", cache=True)
+def gap(p, h, delta, vel):
+    return delta
+
+
+@njit(inline="always", **JIT)
+def hertz_vector(E, R, delta):
+    """``hertz`` on scalars. Returns (N, a)."""
+    if delta <= 0.0:
+        return 0.0, 0.0
+    a = math.sqrt(R * delta)
+    return 4.0 / 3.0 * E * a * delta, a
+
+
+@njit(inline="always", **JIT)
+def vector(params, row, H, c, delta, vel):
+    """The 3D form: (N, a) and no state."""
+    N, a = hertz_vector(params[row, P_ESTAR], params[row, P_RSTAR], delta)
+    return N, a, 0.0, 0.0, 0.0, 0.0, 0.0

@@ -1,0 +1,263 @@
+"""Thornton (1997, J. Appl. Mech. 64:383) elastic-perfectly plastic normal law, limiting contact pressure p_y.
+
+Loading to a new maximum delta* (state delta*, F*, R_p, delta_p):
+  Hertz while delta <= delta_y; then N = F_y + pi p_y R* (delta - delta_y), a = sqrt(R* delta).
+  On every new maximum with N > F_y the unloading curve is stored:
+  R_p = 4 E* a*^3 / (3 F*) and delta_p = delta* - (3 F* / (4 E* sqrt(R_p)))^(2/3).
+Unloading and elastic reloading below delta*: N = (4/3) E* sqrt(R_p) (delta - delta_p)^(3/2),
+  a = sqrt(R_p (delta - delta_p)) (Hertz with R*, delta_p = 0 if the contact never yielded).
+
+Option ``traction_yield``: the limiting pressure falls with the traction the contact carries,
+p_y g(|T|/N) (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), loading by
+``_traction_loading``. The planar and the 3D forms read |T| / N of the contact's last step (3D: the
+fifth state slot, written by ``store`` after the tangential law).
+"""
+import math
+
+from numba import njit
+
+from ...errors import InputError
+from .. import closed_forms as cf
+from ..slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR, P_F_Y, P_MU, P_PY, P_RSTAR,
+                     P_TY_DMU, P_TY_NODES, P_TY_TABLE)
+from ..vector import JIT, V_STATE
+from .hertz import contact_time  # noqa: F401  (Hertz's elastic contact time sets the step)
+
+NAME = "thornton"
+FAMILY = "normal"
+SOURCE = "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p_y"
+PARAMETERS = ("E_star", "R_star", "p_y", "delta_y", "F_y", "traction-yield table")
+#: 3D history slots (the planar row has the first four, and reads |T| / N from its header)
+STATE = ("delta_star", "F_star", "R_p", "delta_p", "|T| / N of the last step (traction_yield; -1: N = 0)")
+OPTIONS = ("traction_yield",)
+USES_RATE = False
+PLASTIC = True
+
+
+def configure(scene, p):
+    """p_y from the yielding material, or calibrated for e_n at v_ref (Thornton 1997 closed form)."""
+    pr = scene.pair
+    if pr.p_y is not None:
+        if scene.e_n is not None:
+            raise InputError("the thornton law takes p_y from the material's yield, so e_n cannot act: give "
+                             "either a yield of a material or e_n (with v_ref) to calibrate p_y, not both")
+        p_y, source = pr.p_y, "material"
+    elif scene.e_n is not None:
+        e_min = cf.thornton_restitution_ratio(cf.THORNTON_MIN_VELOCITY_RATIO)
+        if not e_min <= scene.e_n < 1.0:
+            raise InputError(f"e_n = {scene.e_n:g} cannot be calibrated with the thornton law: valid range "
+                             f"[{e_min:.3g}, 1)")
+        v = scene.need_v_ref("the thornton calibration from e_n")
+        p_y = cf.thornton_yield_pressure_for_restitution(pr.E_star, pr.R_star, pr.m_star, scene.e_n, v)
+        source = f"calibrated for e_n = {scene.e_n:g} at {v:g} m/s"
+    else:
+        raise InputError("the thornton law needs a yield: give yield_pressure or yield_stress of a "
+                         "material, or e_n (with v_ref) to calibrate p_y")
+    # F_y ~ p_y^3 R*^2 / E*^2 must stay an ordinary number
+    py_max = (1e100 * 6.0 * pr.E_star**2 / (math.pi**3 * pr.R_star**2)) ** (1.0 / 3.0)
+    py_min = (1e-100 * 6.0 * pr.E_star**2 / (math.pi**3 * pr.R_star**2)) ** (1.0 / 3.0)
+    if not py_min <= p_y <= py_max:
+        raise InputError(f"p_y = {p_y:g} Pa (limiting contact pressure of the thornton law) is outside "
+                         f"[{py_min:.3g}, {py_max:.3g}] Pa for this pair, where its yield force is an "
+                         f"ordinary number (a p_y that is never reached is the hertz law)")
+    scene.p_y = p_y
+    scene.p_y_source = source
+    p[P_PY] = p_y
+    p[P_DELTA_Y] = cf.thornton_yield_overlap(pr.E_star, pr.R_star, p_y)
+    p[P_F_Y] = cf.thornton_yield_force(pr.E_star, pr.R_star, p_y)
+    if scene.traction_yield:
+        _set_traction_yield(scene, p)
+
+
+def _set_traction_yield(scene, p):
+    """Table of p0_first(mu_eff) / p0_first(0) on [0, mu] in the parameter row (none for mu = 0: the
+    contact then carries no traction and the law is Thornton's)."""
+    from ..traction_yield import TABLE_NODES, first_yield_ratio_table
+
+    pr = scene.pair
+    mats = [b.material for b in (scene.sphere, scene.body2) if not b.material.is_rigid]
+    yielding = [m for m in mats if m.p_y is not None and m.p_y == pr.p_y]
+    scene.traction_yield_nu = (yielding or mats)[0].nu
+    if scene.mu == 0.0:
+        return
+    nu = min(max(scene.traction_yield_nu, 0.0), 0.5)
+    table = first_yield_ratio_table(nu, scene.mu)
+    p[P_TY_NODES] = TABLE_NODES
+    p[P_TY_DMU] = scene.mu / (TABLE_NODES - 1)
+    p[P_TY_TABLE:P_TY_TABLE + TABLE_NODES] = table
+
+
+def describe(scene, p):
+    d = dict(p_y=scene.p_y, p_y_source=scene.p_y_source, delta_y=p[P_DELTA_Y], F_y=p[P_F_Y])
+    if scene.traction_yield:
+        d.update(traction_yield=True, traction_yield_nu=scene.traction_yield_nu)
+    return d
+
+
+@njit(cache=True)
+def thornton(p, h, delta):
+    """Thornton's law (module docstring) on the planar history row: reads and writes H_DSTAR, H_FSTAR,
+    H_RP, H_DP. With a traction-yield table in the row (P_TY_NODES > 0) loading follows
+    ``_traction_loading``."""
+    if delta <= 0.0:
+        return 0.0, 0.0
+    E = p[P_ESTAR]
+    R = p[P_RSTAR]
+    if delta >= h[H_DSTAR] and p[P_TY_NODES] > 0.0:
+        return _traction_loading(p, h, delta)
+    if delta >= h[H_DSTAR]:
+        a = math.sqrt(R * delta)
+        if delta <= p[P_DELTA_Y]:
+            F = 4.0 / 3.0 * E * a * delta
+        else:
+            F = p[P_F_Y] + math.pi * p[P_PY] * R * (delta - p[P_DELTA_Y])
+        h[H_DSTAR] = delta
+        h[H_FSTAR] = F
+        if F > p[P_F_Y]:
+            Rp = 4.0 * E * a * a * a / (3.0 * F)
+            h[H_RP] = Rp
+            h[H_DP] = delta - (3.0 * F / (4.0 * E * math.sqrt(Rp))) ** (2.0 / 3.0)
+        return F, a
+    Rp = h[H_RP]
+    if Rp <= 0.0:
+        Rp = R
+    w = delta - h[H_DP]
+    if w <= 0.0:
+        return 0.0, 0.0
+    a = math.sqrt(Rp * w)
+    return 4.0 / 3.0 * E * a * w, a
+
+
+@njit(inline="always", cache=True)
+def yield_ratio_at(p, N, T):
+    """p_y(mu_eff) / p_y of the traction-coupled law: the first-yield pressure of a Hertz contact with
+    sliding traction mu_eff p over that without (``traction_yield``), interpolated in the table of the
+    parameter row, at mu_eff = |T| / N (at most mu) of the contact's last step."""
+    if N <= 0.0:
+        return 1.0
+    m = min(abs(T) / N, p[P_MU])
+    s = m / p[P_TY_DMU]
+    last = int(p[P_TY_NODES]) - 1
+    i = min(int(s), last - 1)
+    t = min(s - i, 1.0)
+    return (1.0 - t) * p[P_TY_TABLE + i] + t * p[P_TY_TABLE + i + 1]
+
+
+@njit(cache=True)
+def yield_ratio(p, h):
+    """``yield_ratio_at`` for the planar history row (N and T of its last step)."""
+    return yield_ratio_at(p, h[H_N], h[H_T])
+
+
+@njit(inline="always", cache=True)
+def traction_loading(E, R, py, dstar, fstar, Rp, dp, delta):
+    """Loading branch (delta >= delta*) with the limiting pressure py = p_y g(mu_eff), which changes during
+    the contact. Returns (F, a, delta*, F*, R_p, delta_p).
+
+    Before first yield: Hertz while delta <= delta_y(py), then Thornton's law at that pressure,
+    F = pi py R* (delta - delta_y / 3) (the Hertz pressure truncated at py). After yield, the increment
+    dF = min(pi py R*, 2 E* a_H(F*)) d(delta), a_H(F*) = (3 F* R* / (4 E*))^(1/3): Thornton's plastic
+    stiffness at the current limit, never stiffer than a Hertz contact of R* carrying F*. The loading
+    curve is then nowhere stiffer, at a given force, than the Hertz unloading curve of (R_p, delta_p), so a
+    loading-unloading cycle cannot create energy. With g = 1 throughout it is Thornton's law (to rounding)."""
+    a = math.sqrt(R * delta)
+    if Rp <= 0.0:
+        dy = R * (math.pi * py / (2.0 * E)) ** 2
+        if delta <= dy:
+            F = 4.0 / 3.0 * E * a * delta
+        else:
+            F = math.pi * py * R * (delta - dy / 3.0)
+    else:
+        k = min(math.pi * py * R, 2.0 * E * (3.0 * fstar * R / (4.0 * E)) ** (1.0 / 3.0))
+        F = fstar + k * (delta - dstar)
+    if F < 4.0 / 3.0 * E * a * delta or Rp > 0.0:
+        Rp = 4.0 * E * a * a * a / (3.0 * F)
+        dp = delta - (3.0 * F / (4.0 * E * math.sqrt(Rp))) ** (2.0 / 3.0)
+    return F, a, delta, F, Rp, dp
+
+
+@njit(cache=True)
+def _traction_loading(p, h, delta):
+    """``traction_loading`` on the planar history row."""
+    F, a, h[H_DSTAR], h[H_FSTAR], h[H_RP], h[H_DP] = traction_loading(
+        p[P_ESTAR], p[P_RSTAR], p[P_PY] * yield_ratio(p, h), h[H_DSTAR], h[H_FSTAR], h[H_RP], h[H_DP], delta)
+    return F, a
+
+
+@njit(inline="always", cache=True)
+def planar(p, h, delta, vel):
+    return thornton(p, h, delta)
+
+
+@njit(inline="always", cache=True)
+def gap(p, h, delta, vel):
+    """Positive while in contact: delta - delta_p (delta_p = 0 before yield)."""
+    return delta - h[H_DP]
+
+
+@njit(**JIT)
+def thornton_vector(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
+    """``thornton`` on its four state values (no traction yield). Returns (N, a, delta*, F*, R_p, delta_p)."""
+    if delta <= 0.0:
+        return 0.0, 0.0, dstar, fstar, Rp, dp
+    if delta >= dstar:
+        a = math.sqrt(R * delta)
+        if delta <= delta_y:
+            F = 4.0 / 3.0 * E * a * delta
+        else:
+            F = F_y + math.pi * p_y * R * (delta - delta_y)
+        if F > F_y:
+            Rp = 4.0 * E * a * a * a / (3.0 * F)
+            dp = delta - (3.0 * F / (4.0 * E * math.sqrt(Rp))) ** (2.0 / 3.0)
+        return F, a, delta, F, Rp, dp
+    Ru = Rp if Rp > 0.0 else R
+    w = delta - dp
+    if w <= 0.0:
+        return 0.0, 0.0, dstar, fstar, Rp, dp
+    a = math.sqrt(Ru * w)
+    return 4.0 / 3.0 * E * a * w, a, dstar, fstar, Rp, dp
+
+
+@njit(inline="always", **JIT)
+def yield_ratio_vector(params, row, ratio):
+    """``yield_ratio_at`` in 3D: ``ratio`` = |T| / N of the last step (-1: N was 0, no coupling)."""
+    if ratio < 0.0:
+        return 1.0
+    m = min(ratio, params[row, P_MU])
+    s = m / params[row, P_TY_DMU]
+    last = int(params[row, P_TY_NODES]) - 1
+    i = min(int(s), last - 1)
+    t = min(s - i, 1.0)
+    return (1.0 - t) * params[row, P_TY_TABLE + i] + t * params[row, P_TY_TABLE + i + 1]
+
+
+@njit(inline="always", **JIT)
+def vector(params, row, H, c, delta, vel):
+    """The 3D form: ``thornton_vector``, or with a traction-yield table the loading of ``traction_loading``
+    at the limiting pressure of the last step's |T| / N (s4). Returns (N, a, state)."""
+    E = params[row, P_ESTAR]
+    R = params[row, P_RSTAR]
+    s0 = H[c, V_STATE]
+    s1 = H[c, V_STATE + 1]
+    s2 = H[c, V_STATE + 2]
+    s3 = H[c, V_STATE + 3]
+    s4 = H[c, V_STATE + 4]
+    if params[row, P_TY_NODES] > 0.0 and delta > 0.0 and delta >= s0:
+        F, a, s0, s1, s2, s3 = traction_loading(E, R, params[row, P_PY] * yield_ratio_vector(params, row, s4),
+                                                s0, s1, s2, s3, delta)
+        return F, a, s0, s1, s2, s3, s4
+    N, a, s0, s1, s2, s3 = thornton_vector(E, R, params[row, P_DELTA_Y], params[row, P_F_Y], params[row, P_PY],
+                                           s0, s1, s2, s3, delta)
+    return N, a, s0, s1, s2, s3, s4
+
+
+@njit(inline="always", **JIT)
+def store(params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):
+    """Write the 3D state after the step: the four values of the law and, with a traction-yield table,
+    |T| / N of this step (-1 where N = 0)."""
+    H[c, V_STATE] = s0
+    H[c, V_STATE + 1] = s1
+    H[c, V_STATE + 2] = s2
+    H[c, V_STATE + 3] = s3
+    if params[row, P_TY_NODES] > 0.0:
+        H[c, V_STATE + 4] = math.sqrt(tx * tx + ty * ty + tz * tz) / N if N > 0.0 else -1.0

@@ -1,0 +1,118 @@
+"""The law table: the laws of each family, in id order. Everything else about the laws (ids, names, sources,
+history sizes, the parameter row, the dispatch of ``laws.dispatch`` and the batch loops of ``dem.contact3d``)
+is derived from it.
+
+A law is one file in the folder of its family (``normal/``, ``tangential/``, ``twist/``, ``rolling/``)
+plus one row here. The file declares:
+
+- ``NAME``, ``FAMILY``, ``SOURCE`` (the paper and equation it implements), ``PARAMETERS`` (what it reads
+  from the parameter row, for the documentation), ``STATE`` (its history slots, by name), ``OPTIONS``
+  (the ``Scene`` settings it takes beyond the common ones; a setting given to laws that do not take it is
+  refused);
+- ``configure(scene, p)``: sets its slots of the parameter row ``p`` from the scene (materials, e_n, v_ref,
+  its options), raising ``InputError`` for what it cannot act on; ``describe(scene, p)``: the derived
+  parameters for reports;
+- its kernels, ``@njit`` functions with the signature of its family: a planar form ``planar`` (normal and
+  tangential laws) and a 3D form ``vector``; where both are kept for speed they stand side by side in the
+  file and ``tests/test_law_contract.py`` holds them equal;
+- family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
+  predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* the tangential laws may
+  read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
+  state after the tangential law, which it may read); tangential laws ``VECTOR_SLOTS`` (fixed 3D slots, the
+  work and the vector of ``laws.vector`` included), ``SWAP_NEGATE`` (the slots, relative to the
+  tangential base, that change sign when the bodies are swapped), ``CELLS`` (a state part sized by the
+  cell count, the parameter n) with ``CELL_HEADER`` (planar slots before the cells).
+
+After a change here or in a law's declarations, ``python -m dem_contact.laws.generate`` writes
+``laws/dispatch.py`` again (a test fails while it is out of date).
+"""
+from types import MappingProxyType
+
+from .normal import hertz, hertz_damped, thornton
+from .normal import linear as linear_normal
+from .rolling import none as rolling_none
+from .tangential import ddm, md, md_rescale, mdr, mdr_adaptive, mindlin_incremental, mindlin_rescale, mindlin_total
+from .tangential import linear as linear_tangential
+from .twist import none as twist_none
+
+#: the laws of each family, in id order (the id of a law is its place here)
+FAMILIES = MappingProxyType({
+    "normal": (hertz, thornton, hertz_damped, linear_normal),
+    "tangential": (md, md_rescale, mindlin_total, mindlin_incremental, mindlin_rescale, linear_tangential, ddm, mdr,
+                   mdr_adaptive),
+    "twist": (twist_none,),
+    "rolling": (rolling_none,),
+})
+
+#: the law of each family that a Scene uses when none is named
+DEFAULTS = MappingProxyType({"normal": "hertz", "tangential": "mdr_adaptive", "twist": "none", "rolling": "none"})
+
+#: the largest normal state (3D slots V_STATE ... V_STATE + 4: the five values s0 ... s4 of the 3D form)
+MAX_NORMAL_STATE = 5
+
+
+def ids(family: str) -> MappingProxyType:
+    """{name: id} of the laws of ``family``."""
+    return MappingProxyType({law.NAME: i for i, law in enumerate(FAMILIES[family])})
+
+
+def law_id(family: str, name: str) -> int:
+    return ids(family)[name]
+
+
+def law(family: str, key):
+    """The law module of ``family`` with the name or id ``key``."""
+    laws = FAMILIES[family]
+    if isinstance(key, str):
+        return laws[ids(family)[key]]
+    return laws[key]
+
+
+def options() -> tuple:
+    """Every Scene option that some law takes, in table order."""
+    seen = []
+    for laws in FAMILIES.values():
+        for m in laws:
+            seen += [o for o in m.OPTIONS if o not in seen]
+    return tuple(seen)
+
+
+def tangential_base(nid: int) -> int:
+    """First tangential slot of a 3D history row (``laws.vector``)."""
+    return 2 + len(FAMILIES["normal"][nid].STATE)
+
+
+def vector_history_size(nid: int, tid: int, n_cells: int = 0) -> int:
+    """Length of a 3D history row for the normal law ``nid`` and the tangential law ``tid`` with ``n_cells``
+    cells (laws with ``CELLS``)."""
+    t = FAMILIES["tangential"][tid]
+    return tangential_base(nid) + t.VECTOR_SLOTS + (2 * int(n_cells) if t.CELLS else 0)
+
+
+def planar_extra(tid: int, n_cells: int) -> int:
+    """Planar history slots after ``slots.N_HIST_BASE`` of the tangential law ``tid``."""
+    t = FAMILIES["tangential"][tid]
+    return t.CELL_HEADER + int(n_cells) if t.CELLS else 0
+
+
+def law_rows() -> list:
+    """One dict per law (family, id, name, source, parameters, state, options), for reports and the
+    documentation's tables."""
+    return [dict(family=family, id=i, name=m.NAME, source=m.SOURCE, parameters=", ".join(m.PARAMETERS),
+                 state=", ".join(m.STATE), options=", ".join(m.OPTIONS))
+            for family, laws in FAMILIES.items() for i, m in enumerate(laws)]
+
+
+def _check():
+    for family, laws in FAMILIES.items():
+        names = [m.NAME for m in laws]
+        assert len(set(names)) == len(names), f"two {family} laws of one name"
+        for m in laws:
+            assert m.FAMILY == family, f"{m.__name__} declares family {m.FAMILY}, listed under {family}"
+            for attr in ("SOURCE", "PARAMETERS", "STATE", "OPTIONS", "configure", "describe", "vector"):
+                assert hasattr(m, attr), f"{m.__name__} lacks {attr}"
+        assert DEFAULTS[family] in names
+    assert max(len(m.STATE) for m in FAMILIES["normal"]) <= MAX_NORMAL_STATE
+
+
+_check()

@@ -1,0 +1,27 @@
+"""No twisting resistance: the relative spin of the bodies about the normal carries no torque (the contact
+laws of Hertz, Mindlin and Deresiewicz treat a point contact)."""
+from numba import njit
+
+from ..vector import JIT
+
+NAME = "none"
+FAMILY = "twist"
+SOURCE = "no torque about the normal"
+PARAMETERS = ()
+STATE = ()
+OPTIONS = ()
+VECTOR_SLOTS = 0
+
+
+def configure(scene, p):
+    pass
+
+
+def describe(scene, p):
+    return {}
+
+
+@njit(inline="always", **JIT)
+def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """Torque on body 1 (x, y, z) from the relative spin w = w1 - w2 [rad/s]: none."""
+    return 0.0, 0.0, 0.0
