@@ -284,9 +284,11 @@ def _prefetch_row(H, r):
 # contact). One source, compiled serial and parallel (prange is range in a serial build).
 
 def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
-    """Template of the batch loop of one tangential law (its step: the global ``step``, bound per law)."""
+    """Template of the batch loop of one tangential law (its step: the global ``step``, bound per law; the
+    global ``loop_range``: ``range`` for the serial loop, ``prange`` for the parallel one, as numba's prange
+    in a serial build costs the loop its optimisations)."""
     n = overlaps.shape[0]
-    for c in prange(n):
+    for c in loop_range(n):  # noqa: F821
         if c + AHEAD < n:
             _prefetch_row(H, rows[c + AHEAD])
         forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = step(  # noqa: F821
@@ -295,8 +297,8 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, w
 
 
 def _loops_of(step, name):
-    return (njit(**JIT)(renamed(_loop, f"serial_{name}", step=step)),
-            njit(parallel=True, **JIT)(renamed(_loop, f"parallel_{name}", step=step)))
+    return (njit(**JIT)(renamed(_loop, f"serial_{name}", step=step, loop_range=range)),
+            njit(parallel=True, **JIT)(renamed(_loop, f"parallel_{name}", step=step, loop_range=prange)))
 
 
 #: the loops of each tangential law: (serial, parallel)

@@ -36,19 +36,14 @@ def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     b = tangential_base(nid)
     Np = N if N > 0.0 else 0.0
     tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
-    store_normal(nid, params, row, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
+    store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
     H[c, V_N] = Np
     H[c, V_A] = a
     return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
 
 
-def _leaf(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
-    """Template of a leaf: the global ``step`` not inlined."""
-    return step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)  # noqa: F821
-
-
 #: the step of each tangential law, in id order
 STEPS = tuple(njit(inline="always", **JIT)(renamed(_step, f"step_{m.NAME}", tangential=m.vector))
               for m in table.FAMILIES["tangential"])
-#: the same, not inlined
-LEAVES = tuple(njit(**JIT)(renamed(_leaf, f"leaf_{m.NAME}", step=s)) for s, m in zip(STEPS, table.FAMILIES["tangential"]))
+#: the same, not inlined (compiled from the template directly: each level of inlining costs compile time)
+LEAVES = tuple(njit(**JIT)(renamed(_step, f"leaf_{m.NAME}", tangential=m.vector)) for m in table.FAMILIES["tangential"])

@@ -30,56 +30,22 @@ ROLLING_IDS = tuple(range(1))
 
 @njit(inline="always", cache=True)
 def normal_force(nid, p, h, delta, vel):
-    if nid == 0:
-        return n0.planar(p, h, delta, vel)
-    if nid == 1:
-        return n1.planar(p, h, delta, vel)
-    if nid == 2:
-        return n2.planar(p, h, delta, vel)
-    return n3.planar(p, h, delta, vel)
+    return n0.planar(p, h, delta, vel) if nid == 0 else n1.planar(p, h, delta, vel) if nid == 1 else n2.planar(p, h, delta, vel) if nid == 2 else n3.planar(p, h, delta, vel)
 
 
 @njit(inline="always", cache=True)
 def normal_gap(nid, p, h, delta, vel):
-    if nid == 0:
-        return n0.gap(p, h, delta, vel)
-    if nid == 1:
-        return n1.gap(p, h, delta, vel)
-    if nid == 2:
-        return n2.gap(p, h, delta, vel)
-    return n3.gap(p, h, delta, vel)
+    return n0.gap(p, h, delta, vel) if nid == 0 else n1.gap(p, h, delta, vel) if nid == 1 else n2.gap(p, h, delta, vel) if nid == 2 else n3.gap(p, h, delta, vel)
 
 
 @njit(inline="always", cache=True)
 def tangential_force(tid, p, h, N, dN, a, a_old, dd):
-    if tid == 0:
-        return t0.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 1:
-        return t1.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 2:
-        return t2.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 3:
-        return t3.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 4:
-        return t4.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 5:
-        return t5.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 6:
-        return t6.planar(p, h, N, dN, a, a_old, dd)
-    if tid == 7:
-        return t7.planar(p, h, N, dN, a, a_old, dd)
-    return t8.planar(p, h, N, dN, a, a_old, dd)
+    return t0.planar(p, h, N, dN, a, a_old, dd) if tid == 0 else t1.planar(p, h, N, dN, a, a_old, dd) if tid == 1 else t2.planar(p, h, N, dN, a, a_old, dd) if tid == 2 else t3.planar(p, h, N, dN, a, a_old, dd) if tid == 3 else t4.planar(p, h, N, dN, a, a_old, dd) if tid == 4 else t5.planar(p, h, N, dN, a, a_old, dd) if tid == 5 else t6.planar(p, h, N, dN, a, a_old, dd) if tid == 6 else t7.planar(p, h, N, dN, a, a_old, dd) if tid == 7 else t8.planar(p, h, N, dN, a, a_old, dd)
 
 
 @njit(inline="always", cache=True)
 def normal_vector(nid, params, row, H, c, delta, vel):
-    if nid == 0:
-        return n0.vector(params, row, H, c, delta, vel)
-    if nid == 1:
-        return n1.vector(params, row, H, c, delta, vel)
-    if nid == 2:
-        return n2.vector(params, row, H, c, delta, vel)
-    return n3.vector(params, row, H, c, delta, vel)
+    return n0.vector(params, row, H, c, delta, vel) if nid == 0 else n1.vector(params, row, H, c, delta, vel) if nid == 1 else n2.vector(params, row, H, c, delta, vel) if nid == 2 else n3.vector(params, row, H, c, delta, vel)
 
 
 @njit(inline="always", cache=True)
@@ -97,7 +63,7 @@ def tangential_base(nid):
 
 
 @njit(inline="always", cache=True)
-def store_normal(nid, params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):
+def store_normal(nid, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):
     """The normal law's ``store`` (laws with a 3D state)."""
     if nid == 1:
-        n1.store(params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz)
+        n1.store(H, c, s0, s1, s2, s3, s4, N, tx, ty, tz)

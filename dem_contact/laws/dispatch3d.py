@@ -11,20 +11,4 @@ from .vector import JIT
 @njit(inline="always", **JIT)
 def contact_leaf(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     """``compose.LEAVES[tid]`` (tid assumed valid)."""
-    if tid == 0:
-        return _0(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 1:
-        return _1(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 2:
-        return _2(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 3:
-        return _3(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 4:
-        return _4(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 5:
-        return _5(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 6:
-        return _6(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    if tid == 7:
-        return _7(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
-    return _8(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    return _0(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 0 else _1(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 1 else _2(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 2 else _3(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 3 else _4(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 4 else _5(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 5 else _6(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 6 else _7(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt) if tid == 7 else _8(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)

@@ -12,16 +12,14 @@ TARGET_3D = pathlib.Path(__file__).with_name("dispatch3d.py")
 ALIASES = {"normal": "n", "tangential": "t", "twist": "q", "rolling": "r"}
 
 
-def _switch(family, head, call, ret=""):
-    """A function ``head`` whose body calls ``call`` (with {m}: the law's module alias) for the law of the id
-    (its first argument); the last law is the fall-through."""
+def _switch(family, head, call):
+    """A function ``head`` that returns ``call`` (with {m}: the law's module alias) for the law of the id (its
+    first argument), as one conditional expression; the last law is the fall-through."""
     laws = table.FAMILIES[family]
     arg = head.split("(")[1].split(",")[0]
-    lines = ["", "", "@njit(inline=\"always\", cache=True)", f"def {head}:"]
-    for i in range(len(laws) - 1):
-        lines += [f"    if {arg} == {i}:", f"        return {call.format(m=f'{ALIASES[family]}{i}')}"]
-    lines.append(f"    return {call.format(m=f'{ALIASES[family]}{len(laws) - 1}')}")
-    return lines
+    cases = [f"{call.format(m=f'{ALIASES[family]}{i}')} if {arg} == {i} else " for i in range(len(laws) - 1)]
+    return ["", "", "@njit(inline=\"always\", cache=True)", f"def {head}:",
+            f"    return {''.join(cases)}{call.format(m=f'{ALIASES[family]}{len(laws) - 1}')}"]
 
 
 def source() -> str:
@@ -53,11 +51,11 @@ def source() -> str:
             out += [f"    if nid == {i}:", f"        return {table.tangential_base(i)}"]
     out.append("    return 2")
     out += ["", "", "@njit(inline=\"always\", cache=True)",
-            "def store_normal(nid, params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):",
+            "def store_normal(nid, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):",
             "    \"\"\"The normal law's ``store`` (laws with a 3D state).\"\"\""]
     for i, m in enumerate(normal):
         if m.STATE:
-            out += [f"    if nid == {i}:", f"        n{i}.store(params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz)"]
+            out += [f"    if nid == {i}:", f"        n{i}.store(H, c, s0, s1, s2, s3, s4, N, tx, ty, tz)"]
     out.append("")
     return "\n".join(out)
 
@@ -72,9 +70,9 @@ def source_3d() -> str:
            "@njit(inline=\"always\", **JIT)",
            "def contact_leaf(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):",
            "    \"\"\"``compose.LEAVES[tid]`` (tid assumed valid).\"\"\""]
-    for i in range(len(laws) - 1):
-        out += [f"    if tid == {i}:", f"        return _{i}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)"]
-    out += [f"    return _{len(laws) - 1}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)", ""]
+    call = "_{i}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)"
+    cases = "".join(f"{call.format(i=i)} if tid == {i} else " for i in range(len(laws) - 1))
+    out += [f"    return {cases}{call.format(i=len(laws) - 1)}", ""]
     return "\n".join(out)
 
 

@@ -6,12 +6,12 @@ A law is one file in the folder of its family (``normal/``, ``tangential/``, ``t
 plus one row here. The file declares:
 
 - ``NAME``, ``FAMILY``, ``SOURCE`` (the paper and equation it implements), ``PARAMETERS`` (what it reads
-  from the parameter row, for the documentation), ``STATE`` (its history slots, by name), ``OPTIONS``
-  (the ``Scene`` settings it takes beyond the common ones; a setting given to laws that do not take it is
-  refused);
-- ``configure(scene, p)``: sets its slots of the parameter row ``p`` from the scene (materials, e_n, v_ref,
-  its options), raising ``InputError`` for what it cannot act on; ``describe(scene, p)``: the derived
-  parameters for reports;
+  from the parameter row, for the documentation), ``STATE`` (its history slots, by name); optional
+  ``OPTIONS`` (the ``Scene`` settings it takes beyond the common ones; a setting given to laws that do
+  not take it is refused; default none);
+- optional ``configure(scene, p)``: sets its slots of the parameter row ``p`` from the scene (materials,
+  e_n, v_ref, its options), raising ``InputError`` for what it cannot act on; optional
+  ``describe(scene, p)``: the derived parameters for reports (defaults: nothing to set, nothing to report);
 - its kernels, ``@njit`` functions with the signature of its family: a planar form ``planar`` (normal and
   tangential laws) and a 3D form ``vector``; where both are kept for speed they stand side by side in the
   file and ``tests/test_law_contract.py`` holds them equal;
@@ -20,8 +20,9 @@ plus one row here. The file declares:
   read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
   state after the tangential law, which it may read); tangential laws ``VECTOR_SLOTS`` (fixed 3D slots, the
   work and the vector of ``laws.vector`` included), ``SWAP_NEGATE`` (the slots, relative to the
-  tangential base, that change sign when the bodies are swapped), ``CELLS`` (a state part sized by the
-  cell count, the parameter n) with ``CELL_HEADER`` (planar slots before the cells).
+  tangential base, that change sign when the bodies are swapped), optional ``CELLS`` (default False: a
+  state part sized by the cell count, the parameter n) with ``CELL_HEADER`` (planar slots before the
+  cells) and ``SWAP_NEGATE_CELL`` (the component of each cell that changes sign).
 
 After a change here or in a law's declarations, ``python -m dem_contact.laws.generate`` writes
 ``laws/dispatch.py`` again (a test fails while it is out of date).
@@ -103,11 +104,22 @@ def law_rows() -> list:
             for family, laws in FAMILIES.items() for i, m in enumerate(laws)]
 
 
+def _nothing(scene, p):
+    return {}
+
+
+#: the optional declarations and their defaults (set here on the law files that leave them out)
+OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing})
+
+
 def _check():
     for family, laws in FAMILIES.items():
         names = [m.NAME for m in laws]
         assert len(set(names)) == len(names), f"two {family} laws of one name"
         for m in laws:
+            for attr, default in OPTIONAL.items():
+                if not hasattr(m, attr):
+                    setattr(m, attr, default)
             assert m.FAMILY == family, f"{m.__name__} declares family {m.FAMILY}, listed under {family}"
             for attr in ("SOURCE", "PARAMETERS", "STATE", "OPTIONS", "configure", "describe", "vector"):
                 assert hasattr(m, attr), f"{m.__name__} lacks {attr}"

@@ -8,24 +8,16 @@ from .. import closed_forms as cf
 from ..slots import P_ESTAR, P_RSTAR
 from ..vector import JIT
 
-NAME = "hertz"
-FAMILY = "normal"
+NAME, FAMILY = "hertz", "normal"
 SOURCE = "Hertz (Johnson 1985), elastic"
-PARAMETERS = ("E_star", "R_star")
-STATE = ()
-OPTIONS = ()
-USES_RATE = False
-PLASTIC = False
+PARAMETERS, STATE = ("E_star", "R_star"), ()
+USES_RATE, PLASTIC = False, False
 
 
 def configure(scene, p):
     if scene.e_n is not None:
         raise InputError("e_n cannot act on the hertz law (elastic, e_n = 1): use hertz_damped or linear for a "
                          "restitution, or thornton to calibrate its yield pressure from e_n")
-
-
-def describe(scene, p):
-    return {}
 
 
 def contact_time(scene, vn):

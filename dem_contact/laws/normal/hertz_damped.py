@@ -14,14 +14,10 @@ from ..slots import N_HIST_BASE, N_PARAMS, P_ESTAR, P_GAMMA, P_MSTAR, P_RSTAR
 from ..vector import JIT
 from .hertz import hertz, hertz_vector
 
-NAME = "hertz_damped"
-FAMILY = "normal"
+NAME, FAMILY = "hertz_damped", "normal"
 SOURCE = "Hertz + dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, force clamped at 0, gamma calibrated for e_n"
-PARAMETERS = ("E_star", "R_star", "m_star", "gamma")
-STATE = ()
-OPTIONS = ()
-USES_RATE = True
-PLASTIC = False
+PARAMETERS, STATE = ("E_star", "R_star", "m_star", "gamma"), ()
+USES_RATE, PLASTIC = True, False
 
 #: Steps per Hertz contact time used to calibrate the dashpot.
 CALIBRATION_STEPS = 4000

@@ -11,14 +11,10 @@ from .. import closed_forms as cf
 from ..slots import P_GAMMA, P_KN, P_KT, P_MSTAR, P_RSTAR
 from ..vector import JIT
 
-NAME = "linear"
-FAMILY = "normal"
+NAME, FAMILY = "linear", "normal"
 SOURCE = "linear spring-dashpot, stiffness matched to the Hertz contact time at v_ref, closed-form e_n"
-PARAMETERS = ("k_n", "gamma", "m_star", "R_star")
-STATE = ()
-OPTIONS = ()
-USES_RATE = True
-PLASTIC = False
+PARAMETERS, STATE = ("k_n", "gamma", "m_star", "R_star"), ()
+USES_RATE, PLASTIC = True, False
 
 
 def linear_stiffness(scene, p, what):

@@ -23,15 +23,13 @@ from ..slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR,
 from ..vector import JIT, V_STATE
 from .hertz import contact_time  # noqa: F401  (Hertz's elastic contact time sets the step)
 
-NAME = "thornton"
-FAMILY = "normal"
+NAME, FAMILY = "thornton", "normal"
 SOURCE = "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p_y"
 PARAMETERS = ("E_star", "R_star", "p_y", "delta_y", "F_y", "traction-yield table")
 #: 3D history slots (the planar row has the first four, and reads |T| / N from its header)
 STATE = ("delta_star", "F_star", "R_p", "delta_p", "|T| / N of the last step (traction_yield; -1: N = 0)")
 OPTIONS = ("traction_yield",)
-USES_RATE = False
-PLASTIC = True
+USES_RATE, PLASTIC = False, True
 
 
 def configure(scene, p):
@@ -234,30 +232,38 @@ def yield_ratio_vector(params, row, ratio):
 @njit(inline="always", **JIT)
 def vector(params, row, H, c, delta, vel):
     """The 3D form: ``thornton_vector``, or with a traction-yield table the loading of ``traction_loading``
-    at the limiting pressure of the last step's |T| / N (s4). Returns (N, a, state)."""
+    at the limiting pressure of the last step's |T| / N (s4). Returns (N, a, state); s4 = OFF without a
+    table (nothing to store: the parameter row is read here, before the history is written)."""
     E = params[row, P_ESTAR]
     R = params[row, P_RSTAR]
     s0 = H[c, V_STATE]
     s1 = H[c, V_STATE + 1]
     s2 = H[c, V_STATE + 2]
     s3 = H[c, V_STATE + 3]
-    s4 = H[c, V_STATE + 4]
-    if params[row, P_TY_NODES] > 0.0 and delta > 0.0 and delta >= s0:
-        F, a, s0, s1, s2, s3 = traction_loading(E, R, params[row, P_PY] * yield_ratio_vector(params, row, s4),
-                                                s0, s1, s2, s3, delta)
-        return F, a, s0, s1, s2, s3, s4
+    if params[row, P_TY_NODES] > 0.0:
+        s4 = H[c, V_STATE + 4]
+        if delta > 0.0 and delta >= s0:
+            F, a, s0, s1, s2, s3 = traction_loading(E, R, params[row, P_PY] * yield_ratio_vector(params, row, s4),
+                                                    s0, s1, s2, s3, delta)
+            return F, a, s0, s1, s2, s3, s4
+    else:
+        s4 = OFF
     N, a, s0, s1, s2, s3 = thornton_vector(E, R, params[row, P_DELTA_Y], params[row, P_F_Y], params[row, P_PY],
                                            s0, s1, s2, s3, delta)
     return N, a, s0, s1, s2, s3, s4
 
 
+#: s4 of a row without a traction-yield table
+OFF = -2.0
+
+
 @njit(inline="always", **JIT)
-def store(params, row, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):
+def store(H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):
     """Write the 3D state after the step: the four values of the law and, with a traction-yield table,
     |T| / N of this step (-1 where N = 0)."""
     H[c, V_STATE] = s0
     H[c, V_STATE + 1] = s1
     H[c, V_STATE + 2] = s2
     H[c, V_STATE + 3] = s3
-    if params[row, P_TY_NODES] > 0.0:
+    if s4 != OFF:
         H[c, V_STATE + 4] = math.sqrt(tx * tx + ty * ty + tz * tz) / N if N > 0.0 else -1.0

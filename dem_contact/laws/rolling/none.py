@@ -1,27 +1,6 @@
-"""No rolling resistance: the relative rolling of the bodies carries no torque (the contact
-laws of Hertz, Mindlin and Deresiewicz treat a point contact)."""
-from numba import njit
+"""No rolling resistance: the relative rolling of the bodies carries no torque (the contact laws of Hertz,
+Mindlin and Deresiewicz treat a point contact)."""
+from ..twist.none import PARAMETERS, STATE, VECTOR_SLOTS, vector  # noqa: F401  (no torque: the same kernel)
 
-from ..vector import JIT
-
-NAME = "none"
-FAMILY = "rolling"
+NAME, FAMILY = "none", "rolling"
 SOURCE = "no torque across the normal"
-PARAMETERS = ()
-STATE = ()
-OPTIONS = ()
-VECTOR_SLOTS = 0
-
-
-def configure(scene, p):
-    pass
-
-
-def describe(scene, p):
-    return {}
-
-
-@njit(inline="always", **JIT)
-def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
-    """Torque on body 1 (x, y, z) from the relative spin w = w1 - w2 [rad/s]: none."""
-    return 0.0, 0.0, 0.0

@@ -10,16 +10,12 @@ import numpy as np
 from numba import njit
 
 from ..slots import H_REGIME, H_SIGN, H_T, H_TS, H_TSS, P_GSTAR, P_MU
-from ..vector import JIT, V_A, V_N, W_WORK, W_X, W_Y, W_Z, carry_unit
+from ..vector import JIT, V_A, V_N, W_WORK, W_X, W_Y, W_Z, carry_unit, renamed
 from .common import mean_radius, release
 
-NAME = "md"
-FAMILY = "tangential"
+NAME, FAMILY = "md", "tangential"
 SOURCE = "Thornton & Yin (1991) incremental Mindlin-Deresiewicz"
-PARAMETERS = ("G_star", "mu")
-STATE = ("T", "T*", "T**", "regime", "sign")
-OPTIONS = ()
-CELLS = False
+PARAMETERS, STATE = ("G_star", "mu"), ("T", "T*", "T**", "regime", "sign")
 RESCALE = False
 
 # 3D slots relative to the tangential base b: the work, the axis u (W_X, W_Y, W_Z), then these
@@ -32,14 +28,6 @@ M_SIGN = 8
 #: changes sign (T along it keeps its value)
 VECTOR_SLOTS = 9
 SWAP_NEGATE = (W_X, W_Y, W_Z)
-
-
-def configure(scene, p):
-    pass
-
-
-def describe(scene, p):
-    return {}
 
 
 @njit(cache=True)
@@ -232,18 +220,13 @@ def md_axis_turn(T, k0, ux, uy, uz, px, py, pz):
     return ux, uy, uz
 
 
-@njit(inline="always", cache=True)
-def planar(p, h, N, dN, a, a_old, dd):
-    return md(p, h, N, dN, a, a_old, dd, RESCALE)
-
-
-@njit(inline="always", **JIT)
-def md_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, rescale):
-    """One 3D step of the law (see the module docstring). Returns T (tx, ty, tz)."""
+def _vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
+    """One 3D step of the law (see the module docstring), with the global RESCALE bound by ``forms``.
+    Returns T (tx, ty, tz)."""
     G = params[row, P_GSTAR]
     ux, uy, uz, t_old, d_par, px, py, pz = md_axis_start(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z],
                                                         H[c, b + M_T], nx, ny, nz, ddx, ddy, ddz, cs, sn)
-    T, ts, tss, k, s = md_scalar(params[row, P_MU], G, N, N - H[c, V_N], a, H[c, V_A], d_par, rescale, t_old,
+    T, ts, tss, k, s = md_scalar(params[row, P_MU], G, N, N - H[c, V_N], a, H[c, V_A], d_par, RESCALE, t_old,
                                  H[c, b + M_TS], H[c, b + M_TSS], int(H[c, b + M_REGIME]), H[c, b + M_SIGN])
     ux, uy, uz = md_axis_turn(T, 8.0 * G * a, ux, uy, uz, px, py, pz)
     H[c, b + W_WORK] += 0.5 * (t_old * d_par + T * (ux * ddx + uy * ddy + uz * ddz))
@@ -258,6 +241,14 @@ def md_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, res
     return T * ux, T * uy, T * uz
 
 
-@njit(inline="always", **JIT)
-def vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
-    return md_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, RESCALE)
+def _planar(p, h, N, dN, a, a_old, dd):
+    return md(p, h, N, dN, a, a_old, dd, RESCALE)
+
+
+def forms(name, rescale):
+    """(planar, vector) kernels of the law with ``rescale`` (a law of this file or its variant)."""
+    return (njit(inline="always", cache=True)(renamed(_planar, f"planar_{name}", RESCALE=rescale)),
+            njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", RESCALE=rescale)))
+
+
+planar, vector = forms(NAME, RESCALE)

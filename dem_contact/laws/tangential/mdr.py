@@ -48,11 +48,9 @@ from ..slots import (H_FSTAR, H_T, H_TANG_EXTRA, P_DX, P_ESTAR, P_GSTAR, P_MDR_P
                      P_RSTAR)
 from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, carry_unit, renamed
 
-NAME = "mdr"
-FAMILY = "tangential"
+NAME, FAMILY = "mdr", "tangential"
 SOURCE = "exact reference: method of dimensionality reduction (Popov & Hess), springs on a half-line"
-PARAMETERS = ("E_star", "G_star", "R_star", "mu", "p_y", "n", "dx", "profile")
-STATE = ("T", "cells")
+PARAMETERS, STATE = ("E_star", "G_star", "R_star", "mu", "p_y", "n", "dx", "profile"), ("T", "cells")
 OPTIONS = ("mdr_springs", "mdr_max_radius", "mdr_profile")
 #: the state has a cell part sized by the cell count (the parameter n): one slot per cell in the plane,
 #: two in 3D (a displacement in the frame e1, e2)
@@ -122,8 +120,6 @@ def check_rows(params):
     return [(~((cells >= 2) & (cells <= 10**6) & (cells == np.floor(cells))),
              f"has no MDR cell count (params[:, P_NSPRING] in [2, 1e6]), which the {NAME} law needs"),
             (~(params[:, P_DX] > 0.0), f"has no MDR cell width (params[:, P_DX] > 0), which the {NAME} law needs")]
-
-
 
 
 @njit(cache=True)
@@ -449,10 +445,9 @@ def mdr_frame(ex, ey, ez, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     return ex, ey, ez, fx, fy, fz, ddx * ex + ddy * ey + ddz * ez, ddx * fx + ddy * fy + ddz * fz
 
 
-@njit(inline="always", **JIT)
-def cells_vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn, adaptive):
+def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     """Vector MDR (Popov & Hess 2015 with a displacement vector per cell), on the fixed grid of ``mdr`` or
-    (``adaptive``) the grid that follows the contact. Returns T (tx, ty, tz): NaN where the contact outgrows
+    (the global ADAPTIVE, bound by ``vector_form``) the grid that follows the contact. Returns T (tx, ty, tz): NaN where the contact outgrows
     the fixed grid.
 
     The cells hold 2D displacements in a frame (e1, e2 = n x e1) of the tangent plane (``mdr_frame``).
@@ -474,7 +469,7 @@ def cells_vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, 
     dx = params[row, P_DX]
     a_old = H[c, V_A]
     k0 = b + R_CELLS
-    if adaptive:
+    if ADAPTIVE:
         dx = H[c, b + R_DX]
     tx = 0.0
     ty = 0.0
@@ -485,14 +480,14 @@ def cells_vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, 
                 H[c, k0 + j] = 0.0
         for j in range(W_X, R_CELLS):
             H[c, b + j] = 0.0
-    elif not adaptive and a > n * dx:
+    elif not ADAPTIVE and a > n * dx:
         tx = math.nan
         ty = math.nan
         tz = math.nan
     else:
         ex, ey, ez, fx, fy, fz, d1, d2 = mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
                                                      ddx, ddy, ddz, cs, sn)
-        if adaptive:
+        if ADAPTIVE:
             # the adaptive grid of the planar law (its merge, split and shrink-edge rules on both components)
             if dx <= 0.0 or a_old <= 0.0:
                 for j in range(2 * n):
@@ -527,7 +522,7 @@ def cells_vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, 
         qo = a_old / dx
         m = max(cells_q(a, qa, n), cells_q(a_old, qo, n))
         full = min(int(min(qa, qo)), m)
-        if adaptive and a < a_old:
+        if ADAPTIVE and a < a_old:
             # mdr.shrink_edge: the cell cut by the new edge (i = int(a / dx), the first partial cell)
             i = int(qa)
             if i < n:
@@ -649,6 +644,11 @@ def cells_vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, 
     return tx, ty, tz
 
 
-@njit(inline="always", **JIT)
-def vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
-    return cells_vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn, False)
+def vector_form(name, adaptive):
+    """The 3D kernel of the law on the fixed grid, or (``adaptive``) on the grid that follows the contact."""
+    return njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", ADAPTIVE=adaptive))
+
+
+#: the fixed grid
+ADAPTIVE = False
+vector = vector_form(NAME, ADAPTIVE)

@@ -7,12 +7,10 @@ from numba import njit
 
 from ...errors import InputError
 from ..slots import H_T, H_TANG_EXTRA, P_NSPRING, P_RSTAR
-from ..vector import JIT
 from .mdr import (PARAMETERS, R_CELLS, SWAP_NEGATE, SWAP_NEGATE_CELL, VECTOR_SLOTS, _advance, _cells, _merge, _release,  # noqa: F401
-                  _split, cells_vector, initial_width, set_profile, shrink_edge)
+                  _split, initial_width, set_profile, shrink_edge, vector_form)
 
-NAME = "mdr_adaptive"
-FAMILY = "tangential"
+NAME, FAMILY = "mdr_adaptive", "tangential"
 SOURCE = "method of dimensionality reduction with few cells on a grid that follows the contact"
 STATE = ("T", "cell width", "cells")
 OPTIONS = ("mdr_springs", "mdr_profile")
@@ -90,6 +88,4 @@ def planar(p, h, N, dN, a, a_old, dd):
     return adaptive(p, h, N, a, a_old, dd)
 
 
-@njit(inline="always", **JIT)
-def vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
-    return cells_vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn, True)
+vector = vector_form(NAME, True)

@@ -4,29 +4,19 @@ capped at mu N. In 3D T is a vector of the tangent plane, carried into the curre
 from numba import njit
 
 from ..slots import H_T, P_GSTAR, P_KT, P_MU
-from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry
+from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry, renamed
 from .common import cap, release
 
-NAME = "mindlin_incremental"
-FAMILY = "tangential"
+NAME, FAMILY = "mindlin_incremental", "tangential"
 SOURCE = "incremental Hertz-Mindlin force (Yade, LAMMPS mindlin/force)"
-PARAMETERS = ("G_star", "mu")
-STATE = ("T",)
-OPTIONS = ()
-CELLS = False
+PARAMETERS, STATE = ("G_star", "mu"), ("T",)
 #: scale T by a / a_old when the contact shrinks
 RESCALE = False
+#: k_t the constant parameter of the linear law (its variant in tangential/linear.py)
+CONSTANT = False
 #: fixed 3D slots (the work and the force T); swapping the bodies negates T
 VECTOR_SLOTS = 4
 SWAP_NEGATE = (W_X, W_Y, W_Z)
-
-
-def configure(scene, p):
-    pass
-
-
-def describe(scene, p):
-    return {}
 
 
 @njit(cache=True)
@@ -64,18 +54,18 @@ def spring_incremental(kt, mu, N, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, 
     return tx, ty, tz, 0.5 * (w_old + tx * ddx + ty * ddy + tz * ddz)
 
 
-@njit(inline="always", **JIT)
-def incremental_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, rescale, constant):
-    """One 3D step: ``spring_incremental`` on the slots of the row, with k_t = 8 G* a or (``constant``) the
-    parameter k_t of the linear law. Returns T (tx, ty, tz)."""
+def _vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
+    """One 3D step: ``spring_incremental`` on the slots of the row, with k_t = 8 G* a or (the global
+    CONSTANT) the parameter k_t of the linear law, and the global RESCALE (both bound by ``forms``).
+    Returns T (tx, ty, tz)."""
     a_old = H[c, V_A]
-    if constant:
+    if CONSTANT:
         kt = params[row, P_KT]
         a_old = a
     else:
         kt = 8.0 * params[row, P_GSTAR] * a
     tx, ty, tz, dw = spring_incremental(kt, params[row, P_MU], N, a, a_old, H[c, b + W_X], H[c, b + W_Y],
-                                        H[c, b + W_Z], nx, ny, nz, ddx, ddy, ddz, cs, sn, rescale)
+                                        H[c, b + W_Z], nx, ny, nz, ddx, ddy, ddz, cs, sn, RESCALE)
     H[c, b + W_WORK] += dw
     H[c, b + W_X] = tx
     H[c, b + W_Y] = ty
@@ -83,11 +73,16 @@ def incremental_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs
     return tx, ty, tz
 
 
-@njit(inline="always", cache=True)
-def planar(p, h, N, dN, a, a_old, dd):
+def _planar(p, h, N, dN, a, a_old, dd):
+    if CONSTANT:
+        return incremental(p, h, N, a, a, dd, False, p[P_KT])
     return incremental(p, h, N, a, a_old, dd, RESCALE, 8.0 * p[P_GSTAR] * a)
 
 
-@njit(inline="always", **JIT)
-def vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
-    return incremental_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, RESCALE, False)
+def forms(name, rescale, constant):
+    """(planar, vector) kernels of the law with ``rescale`` or (``constant``) the linear law's constant k_t."""
+    return (njit(inline="always", cache=True)(renamed(_planar, f"planar_{name}", RESCALE=rescale, CONSTANT=constant)),
+            njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", RESCALE=rescale, CONSTANT=constant)))
+
+
+planar, vector = forms(NAME, RESCALE, False)

@@ -4,29 +4,17 @@ back to mu N with xi = T / (8 G* a). In 3D xi is a vector of the tangent plane (
 from numba import njit
 
 from ..slots import H_T, H_XI, P_GSTAR, P_MU
-from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry
+from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry, renamed
 from .common import cap, release
 
-NAME = "mindlin_total"
-FAMILY = "tangential"
+NAME, FAMILY = "mindlin_total", "tangential"
 SOURCE = "total-displacement no-slip Hertz-Mindlin (LIGGGHTS tangential history, EDEM, LAMMPS mindlin)"
-PARAMETERS = ("G_star", "mu")
-STATE = ("xi", "T")
-OPTIONS = ()
-CELLS = False
+PARAMETERS, STATE = ("G_star", "mu"), ("xi", "T")
 #: stiffness factor on 8 G* a
 FACTOR = 1.0
 #: fixed 3D slots (the work and the spring displacement xi); swapping the bodies negates xi
 VECTOR_SLOTS = 4
 SWAP_NEGATE = (W_X, W_Y, W_Z)
-
-
-def configure(scene, p):
-    pass
-
-
-def describe(scene, p):
-    return {}
 
 
 @njit(cache=True)
@@ -71,13 +59,13 @@ def spring_total(g8, mu, N, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn
     return tx, ty, tz, x, y, z, 0.5 * (w_old + tx * ddx + ty * ddy + tz * ddz)
 
 
-@njit(inline="always", **JIT)
-def total_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, factor):
-    """One 3D step: ``spring_total`` on the slots of the row. Returns T (tx, ty, tz)."""
+def _vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
+    """One 3D step: ``spring_total`` on the slots of the row, with the global FACTOR bound by ``forms``.
+    Returns T (tx, ty, tz)."""
     a_old = H[c, V_A]
     g8 = 8.0 * params[row, P_GSTAR]
-    if factor != 1.0:
-        g8 *= factor
+    if FACTOR != 1.0:
+        g8 *= FACTOR
     tx, ty, tz, x, y, z, dw = spring_total(g8, params[row, P_MU], N, a, a_old, H[c, b + W_X], H[c, b + W_Y],
                                            H[c, b + W_Z], nx, ny, nz, ddx, ddy, ddz, cs, sn)
     H[c, b + W_WORK] += dw
@@ -87,11 +75,14 @@ def total_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, 
     return tx, ty, tz
 
 
-@njit(inline="always", cache=True)
-def planar(p, h, N, dN, a, a_old, dd):
+def _planar(p, h, N, dN, a, a_old, dd):
     return total(p, h, N, a, dd, FACTOR)
 
 
-@njit(inline="always", **JIT)
-def vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
-    return total_vector(params, row, H, c, b, N, a, nx, ny, nz, ddx, ddy, ddz, cs, sn, FACTOR)
+def forms(name, factor):
+    """(planar, vector) kernels of the law with the stiffness ``factor`` (this law or its variant)."""
+    return (njit(inline="always", cache=True)(renamed(_planar, f"planar_{name}", FACTOR=factor)),
+            njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", FACTOR=factor)))
+
+
+planar, vector = forms(NAME, FACTOR)

@@ -4,21 +4,10 @@ from numba import njit
 
 from ..vector import JIT
 
-NAME = "none"
-FAMILY = "twist"
+NAME, FAMILY = "none", "twist"
 SOURCE = "no torque about the normal"
-PARAMETERS = ()
-STATE = ()
-OPTIONS = ()
+PARAMETERS, STATE = (), ()
 VECTOR_SLOTS = 0
-
-
-def configure(scene, p):
-    pass
-
-
-def describe(scene, p):
-    return {}
 
 
 @njit(inline="always", **JIT)
