@@ -627,7 +627,8 @@ def test_history_rows_advance_a_larger_table_in_place(tangential):
                               rows)
         contact_forces(tab.normal_id, tab.tangential_id, tab.params, pair, big_b, nrm, d, v, wn, 1e-7, fb, tb,
                        history_rows=rows)
-        loop(tab.normal_id, tab.tangential_id, tab.params, pair, big_l, rows, nrm, d, v, wn, 1e-7, fl, tl)
+        loop(tab.normal_id, tab.tangential_id, tab.params, pair, big_l, rows, nrm, d, v, C3.NONE3, wn, 1e-7, fl, tl,
+             C3.NONE3)
         assert np.array_equal(f, fs) and np.array_equal(t, ts) and np.array_equal(f, fb) and np.array_equal(t, tb)
         assert np.array_equal(f, fl) and np.array_equal(t, tl)
         assert np.array_equal(big_s[rows], H) and np.array_equal(big_b[rows], H) and np.array_equal(big_l[rows], H)

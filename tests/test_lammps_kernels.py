@@ -56,12 +56,14 @@ def _bridge_step(S, g, step, all_atoms, save):
         g["dt"], True, S["rebuilt"], True, S["stat"], S["used"], g["near"], all_atoms, S["prev"], S["n_prev"],
         S["touched"], *buf[:10])
     assert stale == 0
-    _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = buf
+    _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces, spins, torques = buf
+    K.relative_spins(g["omega"], body, m, spins)
     contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], S["H"], normals[:m], overlaps[:m],
-                          vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m])
+                          vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m], spins=spins[:m],
+                          torques=torques[:m])
     S["f"][:] = 0.0                                       # LAMMPS clears forces and torques every step
     S["torque"][:] = 0.0
-    K.scatter_contacts(g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["typ"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, True,
+    K.scatter_contacts(g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["typ"], m, body, src, dst, normals, overlaps, S["H"], forces, tforces, torques, True,
                        S["f"], S["torque"], S["stat"], S["saved"], step, S["acc"], all_atoms, S["touched"], nt, save)
     S["prev"], S["touched"], S["n_prev"], S["rebuilt"] = S["touched"], S["prev"], nt, False
     return m

@@ -332,3 +332,41 @@ def test_swapping_twice_is_the_identity_and_a_saved_history_carries_on(tangentia
         loaded = np.load(buf)
         assert np.array_equal(_drive(sc, loaded, 20, 2), _drive(sc, H, 20, 2))
         assert np.array_equal(loaded, H)
+
+
+def test_the_3d_kernel_takes_the_relative_spin_and_returns_the_torque_of_the_twist_and_rolling_laws():
+    """Every table records its twist and rolling laws (Scene(twist=..., rolling=...), "none" today); the 3D
+    kernel takes the relative spin of the bodies and returns their torque on body 1 (zero for "none"), its
+    force equal to contact_force's; the batch entries carry spins and torques; an unknown law name is refused."""
+    from dem_contact.dem.contact3d import contact_force_torque, contact_forces
+    from dem_contact.dem.pairs import pair_table
+    from dem_contact.errors import InputError
+    from dem_contact.laws.slots import P_ROLLING_LAW, P_TWIST_LAW
+    from dem_contact.materials import STEEL, Sphere, Wall
+
+    sc = _law_scene("mindlin_total")
+    assert (sc.twist, sc.rolling) == ("none", "none") and sc.describe()["twist_law"] == "none"
+    assert sc.params[P_TWIST_LAW] == table.law_id("twist", "none") + 1
+    assert sc.params[P_ROLLING_LAW] == table.law_id("rolling", "none") + 1
+    with pytest.raises(InputError, match="twist law 'spring' is unknown"):
+        sc.replace(twist="spring")
+    P = sc.params[None, :]
+    H1, H2 = scene_history(sc), scene_history(sc)
+    for k in range(5):
+        a = contact_force(sc.normal_id, sc.tangential_id, P, 0, H1, 0, 0.0, 0.0, 1.0, 1e-6, 0.1, 0.02, 0.0, 5.0, 1e-7)
+        b = contact_force_torque(sc.normal_id, sc.tangential_id, P, 0, H2, 0, 0.0, 0.0, 1.0, 1e-6, 0.1, 0.02, 0.0,
+                                 30.0, -20.0, 10.0, 5.0, 1e-7)
+        assert a == b[:6] and b[6:] == (0.0, 0.0, 0.0)
+    tab = pair_table([Sphere(1e-3, STEEL)], [Wall(STEEL)], tangential="mindlin_total")
+    n = 3
+    torques = np.full((n, 3), np.nan)
+    contact_forces(tab.normal_id, tab.tangential_id, tab.params, np.zeros(n, np.int64),
+                   np.zeros((n, tab.history_size)), np.tile([0.0, 0.0, 1.0], (n, 1)), np.full(n, 1e-7),
+                   np.full((n, 3), 0.01), np.zeros(n), 1e-7, np.zeros((n, 3)), np.zeros((n, 3)),
+                   spins=np.ones((n, 3)), torques=torques)
+    assert np.all(torques == 0.0)
+    with pytest.raises(InputError, match=r"^spins must have shape"):
+        contact_forces(tab.normal_id, tab.tangential_id, tab.params, np.zeros(n, np.int64),
+                       np.zeros((n, tab.history_size)), np.tile([0.0, 0.0, 1.0], (n, 1)), np.full(n, 1e-7),
+                       np.full((n, 3), 0.01), np.zeros(n), 1e-7, np.zeros((n, 3)), np.zeros((n, 3)),
+                       spins=np.ones((n + 1, 3)))

@@ -59,7 +59,7 @@ from ..laws.dispatch3d import contact_leaf
 from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_NSPRING, P_RSTAR, P_TANGENTIAL_LAW
 from ..laws.vector import JIT, W_WORK, W_X, renamed
 
-__all__ = ["contact_force", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
+__all__ = ["contact_force", "contact_force_torque", "peek_force", "reset_contact", "swap_bodies", "rotate_history", "tangential_work",
            "contact_forces_batch", "contact_forces_serial", "batch_loop", "contact_forces", "check_contacts",
            "new_histories", "history_size"]
 
@@ -87,11 +87,24 @@ def contact_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn
     Returns (Fx, Fy, Fz, Ftx, Fty, Ftz): the total force on body 1 and its tangential part [N].
     Nothing is checked (``check_contacts``) and nothing raises, so that a user's ``prange`` loop around it
     runs in parallel: unknown law ids give NaN forces and leave H unchanged."""
+    fx, fy, fz, tx, ty, tz, _, _, _ = contact_force_torque(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy,
+                                                           vz, 0.0, 0.0, 0.0, wn, dt)
+    return fx, fy, fz, tx, ty, tz
+
+
+@njit(inline="always", **JIT)
+def contact_force_torque(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn, dt):
+    """``contact_force`` with the relative spin of the bodies, w = w1 - w2 = (wx, wy, wz) [rad/s], for the
+    twist and rolling laws of the table (``Scene(twist=..., rolling=...)``, recorded in its rows). Returns
+    (Fx, Fy, Fz, Ftx, Fty, Ftz, Mx, My, Mz): the force on body 1, its tangential part [N] and the torque on
+    body 1 of the twist and rolling laws [N m] (body 2 takes -M; the moment of the tangential force,
+    r1 x Ft, is the caller's). Unknown law ids give NaN and leave H unchanged."""
     if nid < 0 or nid >= len(NORMAL_IDS) or tid < 0 or tid >= len(TANGENTIAL_IDS):
-        return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
+        return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
     # int64 indices whatever the caller's (a prange index is uint64): the leaves compiled for serial loops
     # serve parallel ones too
-    return contact_leaf(nid, tid, params, np.int64(row), H, np.int64(c), nx, ny, nz, delta, vx, vy, vz, wn, dt)
+    return contact_leaf(nid, tid, params, np.int64(row), H, np.int64(c), nx, ny, nz, delta, vx, vy, vz, wx, wy, wz,
+                        wn, dt)
 
 
 # The contact helpers: a jitted kernel each (``_peek_force`` ...), called unchecked from jitted code (the
@@ -283,17 +296,34 @@ def _prefetch_row(H, r):
 # prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
 # contact). One source, compiled serial and parallel (prange is range in a serial build).
 
-def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, wn, dt, forces, tforces):
+def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, spins, wn, dt, forces, tforces,
+          torques):
     """Template of the batch loop of one tangential law (its step: the global ``step``, bound per law; the
     global ``loop_range``: ``range`` for the serial loop, ``prange`` for the parallel one, as numba's prange
-    in a serial build costs the loop its optimisations)."""
+    in a serial build costs the loop its optimisations). spins, torques: float64[n, 3], or [0, 3] for none
+    (no relative spin; the torques of the twist and rolling laws not kept)."""
     n = overlaps.shape[0]
+    spun = spins.shape[0] > 0
+    kept = torques.shape[0] > 0
     for c in loop_range(n):  # noqa: F821
         if c + AHEAD < n:
             _prefetch_row(H, rows[c + AHEAD])
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = step(  # noqa: F821
+        wx = spins[c, 0] if spun else 0.0
+        wy = spins[c, 1] if spun else 0.0
+        wz = spins[c, 2] if spun else 0.0
+        fx, fy, fz, tx, ty, tz, mx, my, mz = step(  # noqa: F821
             nid, params, pair_rows[c], H, rows[c], normals[c, 0], normals[c, 1], normals[c, 2], overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], wx, wy, wz, wn[c], dt)
+        forces[c, 0] = fx
+        forces[c, 1] = fy
+        forces[c, 2] = fz
+        tforces[c, 0] = tx
+        tforces[c, 1] = ty
+        tforces[c, 2] = tz
+        if kept:
+            torques[c, 0] = mx
+            torques[c, 1] = my
+            torques[c, 2] = mz
 
 
 def _loops_of(step, name):
@@ -346,25 +376,31 @@ def _valid_ids(nid, tid):
 
 def batch_loop(nid, tid, parallel=False):
     """The jitted batch loop of the tangential law ``tid`` (ids checked here, once):
-    loop(nid, tid, params, pair_rows, H, history_rows, normals, overlaps, velocities, wn, dt, forces,
-    tforces), the arguments of ``contact_forces_batch`` with history_rows required, none checked. For a
+    loop(nid, tid, params, pair_rows, H, history_rows, normals, overlaps, velocities, spins, wn, dt, forces,
+    tforces, torques), the arguments of ``contact_forces_batch`` with history_rows required and spins,
+    torques float64[n, 3] or [0, 3] (none), none checked. For a
     caller that steps the same laws many times and checked its arrays once (``check_contacts``): arrays
     that do not pass ``check_contacts`` can make it write outside them."""
     nid, tid = _valid_ids(nid, tid)
     return _LOOPS[tid][1 if parallel else 0]
 
 
+#: spins or torques not given: no rows
+NONE3 = np.zeros((0, 3))
+
+
 def _run(parallel, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-         history_rows):
+         history_rows, spins, torques):
     nid, tid = _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces,
-                             tforces, history_rows)
+                             tforces, history_rows, spins, torques)
     rows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
-    _LOOPS[tid][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps,
-                                               velocities, wn, float(dt), forces, tforces)
+    _LOOPS[tid][1 if parallel else 0](nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities,
+                                      NONE3 if spins is None else spins, wn, float(dt), forces, tforces,
+                                      NONE3 if torques is None else torques)
 
 
 def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-                         history_rows=None):
+                         history_rows=None, *, spins=None, torques=None):
     """Advance every contact by one step, in parallel (numba prange over contacts), with the loop compiled
     for the law family of ``tid`` only.
 
@@ -373,7 +409,9 @@ def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velo
     overlaps, wn: float64[n]; dt [s]; forces, tforces: float64[n, 3] receive the force on body 1 and its
     tangential part. history_rows: int64[n], distinct, the row of H that holds each contact's history (H
     then has any number of rows: a DEM code's own per-particle storage, advanced in place); default: row c
-    for contact c.
+    for contact c. spins: float64[n, 3], the relative spin w1 - w2 of the bodies of each contact [rad/s],
+    for the twist and rolling laws (default: none); torques: float64[n, 3] receives their torque on body 1
+    [N m] (the moment of the tangential force is the caller's; default: not kept).
 
     Checked here (``InputError``), in O(1) per array and O(n) over the row indices: everything that could
     make the loop read or write outside the arrays, race, or compute in float32 (law ids, dtypes,
@@ -381,14 +419,14 @@ def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velo
     long enough, a table built for these laws, dt > 0). The values of the contacts (finite inputs, unit
     normals) are checked by ``check_contacts`` / ``contact_forces``."""
     _run(True, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-         history_rows)
+         history_rows, spins, torques)
 
 
 def contact_forces_serial(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-                          history_rows=None):
+                          history_rows=None, *, spins=None, torques=None):
     """``contact_forces_batch`` on one thread."""
     _run(False, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-         history_rows)
+         history_rows, spins, torques)
 
 
 def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
@@ -467,7 +505,7 @@ def _check_table(nid, tid, params):
 
 
 def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-                  history_rows):
+                  history_rows, spins=None, torques=None):
     """What the loops need not to read or write outside the arrays, race or compute in float32:
     O(1) per array, O(rows of params), O(n) over the row indices. Returns the checked (nid, tid)."""
     nid, tid = _valid_ids(nid, tid)
@@ -486,9 +524,11 @@ def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
     _array("normals", normals, 2, np.float64, (n, 3))
     _array("velocities", velocities, 2, np.float64, (n, 3))
     _array("wn", wn, 1, np.float64, (n,))
-    for name, a in (("forces", forces), ("tforces", tforces)):
+    for name, a in (("forces", forces), ("tforces", tforces), ("torques", torques)):
         if a is not None:
             _array(name, a, 2, np.float64, (n, 3), writeable=True)
+    if spins is not None:
+        _array("spins", spins, 2, np.float64, (n, 3))
     if not (isinstance(dt, (float, int, np.floating, np.integer)) and not isinstance(dt, (bool, np.bool_))
             and math.isfinite(dt) and dt > 0.0):
         raise InputError(f"dt = {dt!r} must be a finite time step > 0 [s]")
@@ -509,7 +549,7 @@ def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
 
 
 def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
-                   tforces=None, history_rows=None):
+                   tforces=None, history_rows=None, *, spins=None, torques=None):
     """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
     ``contact_force`` call that uses the same arrays): law ids, a table built for them, dtypes, shapes,
     C-contiguity, writeable H (and forces, tforces), row indices in range (``history_rows`` distinct rows
@@ -518,7 +558,7 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
     again when they are reallocated); the jitted kernels themselves do not check."""
     _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-                  history_rows)
+                  history_rows, spins, torques)
     _first_bad("params", ~np.all(np.isfinite(params), axis=1), lambda r: "is not finite")
     if len(overlaps) == 0:
         return
@@ -536,11 +576,13 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
                          f"(the contact laws hold for overlaps far below it)")
     _first_bad("velocities", ~np.all(np.isfinite(velocities), axis=1), lambda c: "is not finite")
     _first_bad("wn", ~np.isfinite(wn), lambda c: "is not finite")
+    if spins is not None:
+        _first_bad("spins", ~np.all(np.isfinite(spins), axis=1), lambda c: "is not finite")
 
 
 @njit(boundscheck=True, **JIT)
-def _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn, dt, forces, tforces,
-                  need):
+def _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, spins, wn, dt, forces,
+                  tforces, torques, need):
     """``contact_forces_serial`` with bounds checks and per-contact checks of what the kernel relies on;
     returns (-1, 0) or (first bad contact, reason: 1 row, 2 history row length, 3 normal, 4 non-finite
     input, 5 non-finite force)."""
@@ -555,13 +597,17 @@ def _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velo
         nz = normals[c, 2]
         if not abs(math.sqrt(nx * nx + ny * ny + nz * nz) - 1.0) <= UNIT_TOL:
             return c, 3
-        s = overlaps[c] + velocities[c, 0] + velocities[c, 1] + velocities[c, 2] + wn[c]
+        w = spins[c] if spins.shape[0] > 0 else np.zeros(3)
+        s = overlaps[c] + velocities[c, 0] + velocities[c, 1] + velocities[c, 2] + wn[c] + w[0] + w[1] + w[2]
         if not math.isfinite(s):
             return c, 4
-        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = contact_force(
+        fx, fy, fz, tx, ty, tz, mx, my, mz = contact_force_torque(
             nid, tid, params, row, H, hrows[c], nx, ny, nz, overlaps[c],
-            velocities[c, 0], velocities[c, 1], velocities[c, 2], wn[c], dt)
-        if not math.isfinite(forces[c, 0] + forces[c, 1] + forces[c, 2]):
+            velocities[c, 0], velocities[c, 1], velocities[c, 2], w[0], w[1], w[2], wn[c], dt)
+        forces[c, 0], forces[c, 1], forces[c, 2], tforces[c, 0], tforces[c, 1], tforces[c, 2] = fx, fy, fz, tx, ty, tz
+        if torques.shape[0] > 0:
+            torques[c, 0], torques[c, 1], torques[c, 2] = mx, my, mz
+        if not math.isfinite(fx + fy + fz + mx + my + mz):
             return c, 5
     return -1, 0
 
@@ -576,15 +622,17 @@ def _nonfinite_force(c, overlap, tid) -> NumericalError:
 
 
 def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces, *,
-                   history_rows=None, parallel=True, debug=None):
+                   history_rows=None, parallel=True, debug=None, spins=None, torques=None):
     """Checked batch step: ``check_contacts``, then ``contact_forces_batch`` (``parallel``) or
-    ``contact_forces_serial`` (``history_rows``: see ``contact_forces_batch``). ``debug`` (default: the
+    ``contact_forces_serial`` (``history_rows``, ``spins``, ``torques``: see ``contact_forces_batch``). ``debug`` (default: the
     environment variable DEM_CONTACT_DEBUG set to 1): run a serial loop compiled with numba's bounds
     checks that also checks every contact's inputs and force, and raises ``InputError`` /
     ``NumericalError`` naming the first bad contact."""
     check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
-                   history_rows)
+                   history_rows, spins=spins, torques=torques)
     nid, tid = int(nid), int(tid)
+    spins3 = NONE3 if spins is None else spins
+    torques3 = NONE3 if torques is None else torques
     if debug is None:
         debug = os.environ.get("DEM_CONTACT_DEBUG", "") not in ("", "0")
     hrows = _identity_rows(len(overlaps)) if history_rows is None else history_rows
@@ -594,17 +642,19 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
             need = history_size(nid, tid)
         elif len(pair_rows):
             need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
-        c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, wn,
-                                  float(dt), forces, tforces, need)
+        c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, spins3,
+                                  wn, float(dt), forces, tforces, torques3, need)
         if reason == 5:
             raise _nonfinite_force(c, overlaps[c], tid)
         if reason:
             raise InputError(_DEBUG_REASONS[reason].format(c=c))
     else:
-        _LOOPS[tid][1 if parallel else 0](nid, tid, params, pair_rows, H, hrows, normals, overlaps,
-                                                   velocities, wn, float(dt), forces, tforces)
+        _LOOPS[tid][1 if parallel else 0](nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities,
+                                          spins3, wn, float(dt), forces, tforces, torques3)
         n = len(overlaps)
         bad = ~(np.all(np.isfinite(forces[:n]), axis=1) & np.all(np.isfinite(tforces[:n]), axis=1))
+        if torques is not None:
+            bad |= ~np.all(np.isfinite(torques[:n]), axis=1)
         if np.any(bad):
             c = int(np.argmax(bad))
             raise _nonfinite_force(c, overlaps[c], tid)

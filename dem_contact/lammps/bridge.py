@@ -744,7 +744,7 @@ class LammpsContacts:
                 self._near_all = np.ones(2 * nlocal + 16, dtype=np.bool_)
             near = self._near_all
         n_prev = max(self._n_prev, 0)
-        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces = self._buffers
+        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces, spins, torques = self._buffers
         t = self.table
         m, n_touched, stale = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
@@ -763,12 +763,13 @@ class LammpsContacts:
         else:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
+        K.relative_spins(omega, body, m, spins)
         self._law(t.normal_id, t.tangential_id, t.params, rows[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
-                  wn[:m], self.dt, forces[:m], tforces[:m])
+                  spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
-                                     not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
+                                     torques, not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)
         if save and not setup:
             # every second copy was rewritten at this step (near: all): none is out of date

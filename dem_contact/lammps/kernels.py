@@ -718,10 +718,21 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
 
 def contact_buffers(n):
     """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, hrow, pair_rows, normals,
-    overlaps, velocities, wn, forces, tforces)."""
+    overlaps, velocities, wn, forces, tforces, spins, torques)."""
     return (np.empty((n, 3), dtype=np.int64), np.empty((n, 2), dtype=np.int64), np.empty(n, dtype=np.int64),
             np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64),
-            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty((n, 3)))
+            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty((n, 3)),
+            np.empty((n, 3)), np.empty((n, 3)))
+
+
+@njit(cache=True)
+def relative_spins(omega, body, m, spins):
+    """spins[k] = w1 - w2 of the m contacts (a wall does not turn): the input of the twist and rolling laws."""
+    for k in range(m):
+        a = body[k, 0]
+        b = body[k, 1]
+        for d in range(3):
+            spins[k, d] = omega[a, d] - (omega[b, d] if b >= 0 else 0.0)
 
 
 @njit(cache=True)
@@ -737,11 +748,12 @@ def read_histories(H, hrow, m):
 
 
 @njit(cache=True)
-def scatter_contacts(nlocal, x, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces, advance, f,
-                     torque, stat, saved, mark, acc, all_atoms, touched, n_touched, save):
+def scatter_contacts(nlocal, x, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces, torques,
+                     advance, f, torque, stat, saved, mark, acc, all_atoms, touched, n_touched, save):
     """Write back the m contacts of ``gather_contacts`` after the law (which advanced the histories in
     their rows src): the second copies, rows dst (advance only), and the forces and torques of the local
-    atoms. forces, tforces: float64[m, 3] force on body 1 and its tangential part; f, torque:
+    atoms. forces, tforces: float64[m, 3] force on body 1 and its tangential part; torques: float64[m, 3]
+    torque on body 1 of the twist and rolling laws (body 2 takes the opposite); f, torque:
     float64[>= nlocal, 3] LAMMPS's forces and torques (cleared by LAMMPS every step), the contact forces
     and torques are added to the local rows; stat[:, ST_OVERLAP] receives each local atom's largest
     overlap; saved: float64[nmax, N_SAVED] receives the contact force and torque of every local atom with
@@ -780,13 +792,16 @@ def scatter_contacts(nlocal, x, v, omega, radius, rmass, typ, m, body, src, dst,
         # torque on a sphere: (R - delta/2) n x Ft on both bodies of a pair (r_a = +arm n, force on b =
         # -Ft); R n x Ft against a wall
         arm = radius[a] - 0.5 * delta if b >= 0 else radius[a]
+        mx = torques[n, 0]
+        my = torques[n, 1]
+        mz = torques[n, 2]
         if a < nlocal:
             acc[a, 0] += fx
             acc[a, 1] += fy
             acc[a, 2] += fz
-            acc[a, 3] += arm * cx
-            acc[a, 4] += arm * cy
-            acc[a, 5] += arm * cz
+            acc[a, 3] += arm * cx + mx
+            acc[a, 4] += arm * cy + my
+            acc[a, 5] += arm * cz + mz
             acc[a, 6] = max(acc[a, 6], delta)
         if b >= 0:
             summary[R_PAIRS] += 1.0
@@ -795,9 +810,9 @@ def scatter_contacts(nlocal, x, v, omega, radius, rmass, typ, m, body, src, dst,
                 acc[b, 0] -= fx
                 acc[b, 1] -= fy
                 acc[b, 2] -= fz
-                acc[b, 3] += arm * cx
-                acc[b, 4] += arm * cy
-                acc[b, 5] += arm * cz
+                acc[b, 3] += arm * cx - mx
+                acc[b, 4] += arm * cy - my
+                acc[b, 5] += arm * cz - mz
                 acc[b, 6] = max(acc[b, 6], delta)
         else:
             summary[R_WALLS] += 1.0

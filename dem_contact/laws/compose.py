@@ -9,7 +9,8 @@ entry, whose switch on the id is ``dispatch3d``). Each is compiled under a name 
 from numba import njit
 
 from . import table
-from .dispatch import normal_vector, store_normal, tangential_base
+from .dispatch import normal_vector, rolling_torque, store_normal, tangential_base, twist_torque
+from .slots import P_ROLLING_LAW, P_TWIST_LAW
 from .vector import JIT, V_A, V_N, renamed
 
 
@@ -28,18 +29,25 @@ def kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
     return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
 
 
-def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
+def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn, dt):
     """Template of the step of one tangential law (the global ``tangential``, bound per law by ``renamed``).
-    Returns the force on body 1 and its tangential part (Fx, Fy, Fz, Ftx, Fty, Ftz) [N]."""
+    (wx, wy, wz): relative spin w1 - w2 of the bodies [rad/s], for the twist and rolling laws (recorded in
+    the parameter row). Returns the force on body 1, its tangential part and the torque on body 1 of the
+    twist and rolling laws (Fx, Fy, Fz, Ftx, Fty, Ftz, Mx, My, Mz) [N, N m]."""
+    qid = int(params[row, P_TWIST_LAW]) - 1
+    rid = int(params[row, P_ROLLING_LAW]) - 1
     vel, ddx, ddy, ddz, cs, sn = kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
     N, a, s0, s1, s2, s3, s4 = normal_vector(nid, params, row, H, c, delta, vel)
     b = tangential_base(nid)
     Np = N if N > 0.0 else 0.0
+    # the twist and rolling laws before the tangential one (which writes the history row last)
+    qx, qy, qz = twist_torque(qid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
+    mx, my, mz = rolling_torque(rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
     tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
     store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
     H[c, V_N] = Np
     H[c, V_A] = a
-    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz
+    return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz, qx + mx, qy + my, qz + mz
 
 
 #: the step of each tangential law, in id order

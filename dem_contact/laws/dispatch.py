@@ -49,6 +49,16 @@ def normal_vector(nid, params, row, H, c, delta, vel):
 
 
 @njit(inline="always", cache=True)
+def twist_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
+    return q0.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)
+
+
+@njit(inline="always", cache=True)
+def rolling_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
+    return r0.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)
+
+
+@njit(inline="always", cache=True)
 def uses_rate(nid):
     """Whether the normal law's force depends on the overlap rate (``USES_RATE``)."""
     return nid == 2 or nid == 3

@@ -40,6 +40,9 @@ def source() -> str:
                    "{m}.planar(p, h, N, dN, a, a_old, dd)")
     out += _switch("normal", "normal_vector(nid, params, row, H, c, delta, vel)",
                    "{m}.vector(params, row, H, c, delta, vel)")
+    for family in ("twist", "rolling"):
+        out += _switch(family, f"{family}_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)",
+                       "{m}.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)")
     rate = [i for i, m in enumerate(normal) if m.USES_RATE]
     out += ["", "", "@njit(inline=\"always\", cache=True)", "def uses_rate(nid):",
             "    \"\"\"Whether the normal law's force depends on the overlap rate (``USES_RATE``).\"\"\"",
@@ -68,9 +71,9 @@ def source_3d() -> str:
            "from numba import njit", "", "from .compose import LEAVES", "from .vector import JIT", "",
            f"({', '.join(f'_{i}' for i in range(len(laws)))},) = LEAVES", "", "",
            "@njit(inline=\"always\", **JIT)",
-           "def contact_leaf(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):",
+           "def contact_leaf(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn, dt):",
            "    \"\"\"``compose.LEAVES[tid]`` (tid assumed valid).\"\"\""]
-    call = "_{i}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)"
+    call = "_{i}(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn, dt)"
     cases = "".join(f"{call.format(i=i)} if tid == {i} else " for i in range(len(laws) - 1))
     out += [f"    return {cases}{call.format(i=len(laws) - 1)}", ""]
     return "\n".join(out)

@@ -20,7 +20,8 @@ from .normal.hertz_damped import EN_FLOOR as HERTZ_DAMPED_EN_FLOOR
 from .normal.hertz_damped import damping_for_restitution as hertz_damping_for_restitution  # noqa: F401
 from .normal.hertz_damped import time_ratio as hertz_damped_time_ratio  # noqa: F401
 from .normal_impact import normal_impact
-from .slots import N_HIST_BASE, N_PARAMS, P_ESTAR, P_GSTAR, P_MSTAR, P_MU, P_NORMAL_LAW, P_RSTAR, P_TANGENTIAL_LAW
+from .slots import (N_HIST_BASE, N_PARAMS, P_ESTAR, P_GSTAR, P_MSTAR, P_MU, P_NORMAL_LAW, P_ROLLING_LAW, P_RSTAR,
+                    P_TANGENTIAL_LAW, P_TWIST_LAW)
 from .tangential.mdr import MDR_PROFILES, MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT  # noqa: F401
 
 NORMAL_LAWS = table.ids("normal")
@@ -79,6 +80,9 @@ class Scene:
         p_y g(|T|/N), g = first-yield pressure of a Hertz contact with sliding traction over that without
         (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of
         the yielding body. Off by default.
+    twist, rolling : the twist law (torque about the normal from the relative spin about it) and the rolling
+        law (torque across the normal from the relative rolling): ``"none"``, the only laws of these families
+        (the 3D kernels take the relative spin and return the torque, ``dem.contact3d.contact_force_torque``)
     model : a named model that sets the laws and the time step: ``MODELS`` (``"thornton2001"``: Thornton
         et al. 2001, thornton + md). Its laws are not to be given as well.
 
@@ -91,15 +95,17 @@ class Scene:
 
     #: the constructor's arguments, which ``replace`` accepts
     ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "e_n", "v_ref", "mdr_springs", "mdr_max_radius",
-                 "mdr_profile", "traction_yield", "model")
+                 "mdr_profile", "traction_yield", "model", "twist", "rolling")
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = table.DEFAULTS["normal"],
                  tangential: str = table.DEFAULTS["tangential"], e_n: float | None = None, v_ref: float | None = None,
                  mdr_springs: int | None = None, mdr_max_radius: float | None = None,
-                 mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None):
+                 mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None,
+                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"]):
         self._args = dict(sphere=sphere, body2=body2, mu=mu, normal=normal, tangential=tangential, e_n=e_n,
                           v_ref=v_ref, mdr_springs=mdr_springs, mdr_max_radius=mdr_max_radius,
-                          mdr_profile=mdr_profile, traction_yield=traction_yield, model=model)
+                          mdr_profile=mdr_profile, traction_yield=traction_yield, model=model, twist=twist,
+                          rolling=rolling)
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):
@@ -127,6 +133,11 @@ class Scene:
         _law(tangential, "tangential")
         self.normal_id = table.law_id("normal", normal)
         self.tangential_id = table.law_id("tangential", tangential)
+        self.twist, self.rolling = twist, rolling
+        _law(twist, "twist")
+        _law(rolling, "rolling")
+        self.twist_id = table.law_id("twist", twist)
+        self.rolling_id = table.law_id("rolling", rolling)
         self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0,
                                                                     lo_open=False)
         self.v_ref = None if v_ref is None else check_finite("v_ref (reference normal speed, m/s)", v_ref, lo=0.0)
@@ -142,11 +153,13 @@ class Scene:
         p[P_MU] = self.mu
         p[P_NORMAL_LAW] = self.normal_id + 1           # the laws the row is built for (checked entries)
         p[P_TANGENTIAL_LAW] = self.tangential_id + 1
+        p[P_TWIST_LAW] = self.twist_id + 1
+        p[P_ROLLING_LAW] = self.rolling_id + 1
         self.p_y = None
         self.mdr_springs = 0
         self._params = p
-        self.normal_law.configure(self, p)
-        self.tangential_law.configure(self, p)
+        for law in self.laws:
+            law.configure(self, p)
         # history slots after N_HIST_BASE (the laws with cells)
         self.tangential_extra_slots = table.planar_extra(self.tangential_id, self.mdr_springs)
         self._frozen = True
@@ -154,13 +167,13 @@ class Scene:
     def _refuse_options(self):
         """A law option given to laws that do not take it cannot act: refused."""
         defaults = inspect.signature(Scene).parameters
-        taken = self.normal_law.OPTIONS + self.tangential_law.OPTIONS
+        taken = sum((law.OPTIONS for law in self.laws), ())
         for option in table.options():
             if option not in taken and self._args[option] != defaults[option].default:
                 takers = [f"{m.NAME} ({m.FAMILY})" for laws in table.FAMILIES.values() for m in laws
                           if option in m.OPTIONS]
                 raise InputError(f"{option} applies to the laws {', '.join(takers)} only "
-                                 f"(here: {self.normal} + {self.tangential})")
+                                 f"(here: {' + '.join(law.NAME for law in self.laws)})")
 
     def __setattr__(self, name, value):
         if self.__dict__.get("_frozen"):
@@ -202,6 +215,12 @@ class Scene:
     def tangential_law(self):
         """The tangential law's module (``laws.table``)."""
         return table.law("tangential", self.tangential_id)
+
+    @property
+    def laws(self) -> tuple:
+        """The law modules of the four families (normal, tangential, twist, rolling)."""
+        return (self.normal_law, self.tangential_law, table.law("twist", self.twist_id),
+                table.law("rolling", self.rolling_id))
 
     @property
     def arguments(self) -> dict:
@@ -265,8 +284,9 @@ class Scene:
             d["sphere2"] = {"radius": self.body2.radius, **_material_dict(self.body2.material)}
         if self.model is not None:
             d.update(model_source=MODELS[self.model]["source"], steps_per_contact_model=self.steps_per_contact)
-        d.update(self.normal_law.describe(self, p))
-        d.update(self.tangential_law.describe(self, p))
+        d.update(twist_law=self.twist, rolling_law=self.rolling)
+        for law in self.laws:
+            d.update(law.describe(self, p))
         return d
 
 

@@ -27,6 +27,8 @@ P_TY_TABLE ...        p0(mu_eff)/p0(0) at mu_eff = 0, P_TY_DMU, ... (TY_MAX_NODE
 P_NORMAL_LAW          normal law id + 1 the row was built for (0: not recorded); no kernel reads it,
                       the checked entries refuse a row used with other law ids
 P_TANGENTIAL_LAW      tangential law id + 1 the row was built for (0: not recorded)
+P_TWIST_LAW           twist law id + 1 the row was built for (0: not recorded; the 3D kernels read it)
+P_ROLLING_LAW         rolling law id + 1 the row was built for (0: not recorded; the 3D kernels read it)
 ====================  =====================================================================
 
 History row (one per contact), updated in place: a header, then the normal slots, then the
@@ -54,7 +56,9 @@ P_TY_TABLE = 16
 TY_MAX_NODES = 16
 P_NORMAL_LAW = 32
 P_TANGENTIAL_LAW = 33
-N_PARAMS = 34
+P_TWIST_LAW = 34
+P_ROLLING_LAW = 35
+N_PARAMS = 36
 
 # history row: header
 H_N = 0        # normal force after the last step [N] (clamped at >= 0)

@@ -15,6 +15,9 @@ plus one row here. The file declares:
 - its kernels, ``@njit`` functions with the signature of its family: a planar form ``planar`` (normal and
   tangential laws) and a 3D form ``vector``; where both are kept for speed they stand side by side in the
   file and ``tests/test_law_contract.py`` holds them equal;
+- twist and rolling laws: a 3D form ``vector(params, row, H, c, N, a, n, w, dt)`` that returns the torque
+  on body 1 from the relative spin w = w1 - w2 of the bodies (their ids are recorded in the parameter
+  row, from which the 3D step reads them), ``VECTOR_SLOTS`` (0 today);
 - family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
   predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* the tangential laws may
   read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
@@ -125,6 +128,11 @@ def _check():
                 assert hasattr(m, attr), f"{m.__name__} lacks {attr}"
         assert DEFAULTS[family] in names
     assert max(len(m.STATE) for m in FAMILIES["normal"]) <= MAX_NORMAL_STATE
+    # a twist or rolling law with a 3D state needs its slots in the row: the tangential base and the
+    # history size would count them (tangential_base, vector_history_size) and the helpers of dem.contact3d
+    # would read the laws from the parameter row
+    assert all(m.VECTOR_SLOTS == 0 for f in ("twist", "rolling") for m in FAMILIES[f]), \
+        "twist and rolling laws with a 3D state are not laid out yet"
 
 
 _check()
