@@ -251,4 +251,8 @@ def forms(name, rescale):
             njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", RESCALE=rescale)))
 
 
-planar, vector = forms(NAME, RESCALE)
+_FORMS = forms(NAME, RESCALE)
+planar = _FORMS[0]
+"""The planar kernel, ``planar(p, h, N, dN, a, a_old, dd) -> T`` (``md`` without rescaling)."""
+vector = _FORMS[1]
+"""The 3D kernel, ``vector(params, row, H, c, b, N, a, F*, n, dd, cos, sin) -> T``."""

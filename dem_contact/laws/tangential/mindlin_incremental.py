@@ -85,4 +85,8 @@ def forms(name, rescale, constant):
             njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", RESCALE=rescale, CONSTANT=constant)))
 
 
-planar, vector = forms(NAME, RESCALE, False)
+_FORMS = forms(NAME, RESCALE, False)
+planar = _FORMS[0]
+"""The planar kernel, ``planar(p, h, N, dN, a, a_old, dd) -> T`` (``incremental`` with k_t = 8 G* a)."""
+vector = _FORMS[1]
+"""The 3D kernel, ``vector(params, row, H, c, b, N, a, F*, n, dd, cos, sin) -> T``."""

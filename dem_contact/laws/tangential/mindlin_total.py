@@ -85,4 +85,8 @@ def forms(name, factor):
             njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", FACTOR=factor)))
 
 
-planar, vector = forms(NAME, FACTOR)
+_FORMS = forms(NAME, FACTOR)
+planar = _FORMS[0]
+"""The planar kernel, ``planar(p, h, N, dN, a, a_old, dd) -> T`` (``total`` with FACTOR = 1)."""
+vector = _FORMS[1]
+"""The 3D kernel, ``vector(params, row, H, c, b, N, a, F*, n, dd, cos, sin) -> T``."""
