@@ -29,7 +29,6 @@ import importlib.util
 import inspect
 import os
 import pathlib
-import pkgutil
 import re
 import subprocess
 import sys
@@ -76,17 +75,8 @@ FAMILIES = ("normal", "tangential", "twist", "rolling")
 
 
 def _walk(package):
-    """The package and every module below it (those that exist)."""
-    try:
-        pkg = importlib.import_module(package)
-    except ModuleNotFoundError as e:
-        if e.name is not None and package.startswith(e.name):
-            return []
-        raise
-    names = [package]
-    if hasattr(pkg, "__path__"):
-        names += [m.name for m in pkgutil.walk_packages(pkg.__path__, prefix=package + ".")]
-    return names
+    """The package and every module below it (those that exist): the hooks' own walk."""
+    return _hooks().package_modules(package)
 
 
 def public_modules():

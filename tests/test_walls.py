@@ -19,6 +19,7 @@ from dem_contact.materials import Material, Sphere, Wall
 from dem_contact.walls import KINDS, ROW_SIZE, PlaneWall, pack
 from dem_contact.walls import plane
 from dem_contact.walls import table as T
+from test_examples import _have_lammps
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 
@@ -237,15 +238,6 @@ def test_wall_contacts_checks_its_inputs():
 
 
 # ------------------------------------------------------------------------------------- LAMMPS, sliding
-
-def _have_lammps():
-    try:
-        from dem_contact.lammps import lammps_module
-        lammps_module()
-        return True
-    except ImportError:
-        return False
-
 
 def _sliding_floor_run(native, shear):
     """Forces and torques on a sphere pressed onto a floor that slides along x at ``shear`` m/s, every
