@@ -251,6 +251,50 @@ def test_refuses_a_ghost_cutoff_below_the_largest_diameter():
     LammpsContacts(_box(), _table(), v_max=1.0, skin=1e-4, ghost_cutoff=2.1e-3)
 
 
+def test_a_granular_pair_style_left_on_is_refused_at_attach_and_at_every_run():
+    """pair_style granular computes the contact forces as well: with the bridge they would be counted twice.
+    Refused when the bridge is attached and when it is set between runs."""
+    lmp = _box()
+    lmp.command("pair_style granular")
+    lmp.command("pair_coeff * * hertz/material 6.3e10 0.2 0.24 tangential linear_nohistory 1.0 0.3")
+    with pytest.raises(InputError, match=r"^pair_style granular computes contact forces"):
+        LammpsContacts(lmp, _table(), v_max=1.0)
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    bridge.run(1)
+    lmp.command("pair_style granular")
+    lmp.command("pair_coeff * * hertz/material 6.3e10 0.2 0.24 tangential linear_nohistory 1.0 0.3")
+    with pytest.raises(InputError, match="counted twice"):
+        bridge.run(1)
+
+
+def test_a_second_bridge_is_refused_and_detach_frees_the_instance():
+    """Two bridges on one LAMMPS instance would both add their forces: the second is refused (whatever its
+    prefix) until the first is detached; a detached bridge refuses to run, and a new one runs."""
+    lmp = _box()
+    first = LammpsContacts(lmp, _table(), v_max=1.0)
+    first.run(2)
+    with pytest.raises(InputError, match="attached to this LAMMPS instance already"):
+        LammpsContacts(lmp, _table(), v_max=1.0, prefix="other")
+    first.detach()
+    with pytest.raises(InputError, match="detached"):
+        first.run(1)
+    second = LammpsContacts(lmp, _table(), v_max=1.0, prefix="other")
+    second.run(2)
+    assert second.stats()
+
+
+def test_a_wall_facing_away_from_the_atoms_is_refused():
+    """A plane wall whose normal points out of the domain has every atom behind it (before: LAMMPS's "Lost
+    atoms" only): refused at the run, naming the wall; the same wall facing the atoms runs."""
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, -1.0))], v_max=1.0)
+    with pytest.raises(InputError, match=r"^walls\[0\]: atoms have their centre behind it"):
+        bridge.run(1)
+    bridge.detach()
+    LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, 1.0))], v_max=1.0).run(2)
+
+
 def test_refuses_ghosts_without_velocities():
     lmp = _box()
     bridge = LammpsContacts(lmp, _table(), v_max=1.0)

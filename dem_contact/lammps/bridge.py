@@ -43,6 +43,7 @@ import math
 import os
 import sys
 import time
+import weakref
 
 import numpy as np
 
@@ -239,6 +240,19 @@ def _huge_pages(a: np.ndarray) -> bool:
     return ok and libc.madvise(ctypes.c_void_p(start), ctypes.c_size_t(end - start), _MADV_COLLAPSE) == 0
 
 
+#: the bridge attached to each LAMMPS instance (one at a time: two would add their forces twice)
+_ATTACHED = weakref.WeakKeyDictionary()
+
+
+def _check_pair_style(lmp):
+    """A granular pair style computes the contact forces of the spheres too: with the bridge's they would be
+    counted twice."""
+    style = lmp.extract_global("pair_style") or "none"
+    if style.split("/")[0] in ("granular", "gran"):
+        raise InputError(f"pair_style {style} computes contact forces as well as the bridge: they would be counted "
+                         f"twice; use `pair_style none` (or `zero`) with the bridge")
+
+
 class LammpsContacts:
     """The contact forces of a PairTable's laws, added to a LAMMPS instance every step.
 
@@ -265,6 +279,11 @@ class LammpsContacts:
                  check_every: int = 100, huge_pages: bool = True, prefix: str = "dc"):
         if not isinstance(table, PairTable):
             raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
+        other = _ATTACHED.get(lmp)
+        if other is not None:
+            raise InputError(f"a bridge is attached to this LAMMPS instance already (prefix {other.prefix!r}): "
+                             f"two would both add their contact forces; call its detach() first")
+        _check_pair_style(lmp)
         self.lmp = lmp
         self.table = table
         self.prefix = prefix
@@ -343,6 +362,8 @@ class LammpsContacts:
             lmp.command(cmd)
         self._fext_key = None          # (address, nlocal) of fix external's force array when last zeroed
         self._set_callback(f"{p}_ext")
+        _ATTACHED[lmp] = self
+        self.attached = True
         self._last_step = None
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
         self._cand_rows = None         # history slots found for each candidate (-1: none yet)
@@ -369,6 +390,21 @@ class LammpsContacts:
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
+
+    def detach(self):
+        """Remove the bridge from its LAMMPS instance (its fixes, computes and variable, and the contact
+        histories they hold): no contact force of the laws from then on; another bridge may be attached."""
+        if not self.attached:
+            return
+        p = self.prefix
+        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_need delete", f"uncompute {p}_max",
+                    f"uncompute {p}_sum", f"uncompute {p}_stat", f"unfix {p}_hist", f"unfix {p}_side",
+                    f"unfix {p}_data"):
+            self.lmp.command(cmd)
+        self.lmp.callback.pop(f"{p}_ext", None)
+        if _ATTACHED.get(self.lmp) is self:
+            del _ATTACHED[self.lmp]
+        self.attached = False
 
     # -- set-up -------------------------------------------------------------------------------------
     def check(self):
@@ -402,6 +438,12 @@ class LammpsContacts:
         if worst[1] > SIZE_TOL:
             raise InputError(f"an atom's mass differs from its type's Sphere mass by {_by(worst[1])} "
                              f"(relative): set the density of type k to that of spheres[k - 1]")
+        behind = K.behind_walls(nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, self.walls)
+        for w in range(len(self.walls)):
+            if max_rank(lmp, int(behind[w])):
+                raise InputError(f"walls[{w}]: atoms have their centre behind it (on this rank {int(behind[w])}): "
+                                 f"its normal must point into the domain, towards the atoms, and no atom may "
+                                 f"start through it")
         g = lmp.extract_global
         for d, lo, hi, periodic in zip("xyz", g("boxlo"), g("boxhi"), g("periodicity")):
             # (two periodic images of one partner are told apart by their separations, a period apart: a
@@ -442,6 +484,9 @@ class LammpsContacts:
         After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a later run starts
         afresh."""
         # (at every run: radii, masses and the time step may have been changed between runs)
+        if not self.attached:
+            raise InputError("this bridge was detached: attach a new one (LammpsContacts) to run with the laws")
+        _check_pair_style(self.lmp)
         self.check()
         moving = self._check_fixes()
         if self.lmp.extract_setting("ghost_velocity") != 1:

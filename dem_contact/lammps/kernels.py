@@ -726,6 +726,20 @@ def contact_buffers(n):
 
 
 @njit(cache=True)
+def behind_walls(nlocal, x, radius, walls):
+    """int64[n_walls]: the local atoms whose centre is behind each wall (signed distance to its surface < 0:
+    a wall that faces away from the domain, or atoms placed through it)."""
+    nw = walls.shape[0]
+    count = np.zeros(max(nw, 1), dtype=np.int64)
+    for i in range(nlocal):
+        for w in range(nw):
+            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            if s < 0.0:
+                count[w] += 1
+    return count[:nw]
+
+
+@njit(cache=True)
 def relative_spins(omega, body, m, spins):
     """spins[k] = w1 - w2 of the m contacts (a wall does not turn): the input of the twist and rolling laws."""
     for k in range(m):
