@@ -370,3 +370,39 @@ def test_the_3d_kernel_takes_the_relative_spin_and_returns_the_torque_of_the_twi
                        np.zeros((n, tab.history_size)), np.tile([0.0, 0.0, 1.0], (n, 1)), np.full(n, 1e-7),
                        np.full((n, 3), 0.01), np.zeros(n), 1e-7, np.zeros((n, 3)), np.zeros((n, 3)),
                        spins=np.ones((n + 1, 3)))
+
+
+@pytest.mark.parametrize("tangential", TANGENTIAL)
+def test_the_batch_loop_is_the_single_contact_step(tangential):
+    """The batch loops write the step of laws.compose out in their body: for every law, with hertz and with
+    the traction-coupled thornton law (its fifth state slot), a serial batch equals contact_force_torque
+    contact by contact, bit for bit, forces, torques and histories."""
+    from dem_contact.dem.contact3d import contact_force_torque, contact_forces_serial
+    from dem_contact.laws.model import Scene
+    from dem_contact.materials import STEEL, Material, Sphere, Wall
+
+    al = Material(E=70e9, nu=0.33, rho=2700.0, yield_pressure=1e9)
+    for sc in (Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0),
+               Scene(Sphere(2e-3, al), Wall(al), mu=0.3, normal="thornton", tangential=tangential, v_ref=1.0,
+                     traction_yield=True)):
+        P = sc.params[None, :]
+        n = 6
+        rng = np.random.default_rng(4)
+        nrm = rng.normal(size=(n, 3))
+        nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+        spins = rng.normal(scale=50.0, size=(n, 3))
+        wn = rng.normal(scale=100.0, size=n)
+        Hb = np.zeros((n, scene_history(sc).shape[1]))
+        Hs = Hb.copy()
+        f, t, m = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((n, 3))
+        for step in range(8):
+            d = 2e-6 * (1.0 + 0.5 * math.sin(step)) * np.ones(n)
+            v = rng.normal(scale=0.05, size=(n, 3))
+            contact_forces_serial(sc.normal_id, sc.tangential_id, P, np.zeros(n, np.int64), Hb, nrm, d, v, wn,
+                                  1e-7, f, t, spins=spins, torques=m)
+            for c in range(n):
+                out = contact_force_torque(sc.normal_id, sc.tangential_id, P, 0, Hs, c, *nrm[c], d[c], *v[c],
+                                           *spins[c], wn[c], 1e-7)
+                assert out == (*f[c], *t[c], *m[c])
+            assert np.array_equal(Hb, Hs)
+        assert np.abs(t).max() > 0.0

@@ -1,10 +1,11 @@
 """One 3D contact step composed of the laws of the table: the kinematics of the contact, the normal law,
 then the tangential law, writing the history row in place.
 
-A step is made for each tangential law (``STEPS``, inlined into the batch loops of ``dem.contact3d``, so
-that a loop compiles one tangential law only) with a non-inlined leaf (``LEAVES``, for the single-contact
-entry, whose switch on the id is ``dispatch3d``). Each is compiled under a name of its own
-(``vector.renamed``): numba names compiled code by the qualified name.
+The step is compiled for each tangential law as a non-inlined leaf (``LEAVES``, for the single-contact
+entry, whose switch on the id is ``dispatch3d``), each under a name of its own (``vector.renamed``): numba
+names compiled code by the qualified name. The batch loops of ``dem.contact3d`` write the same step out
+in their body (one level of inlining less, which the default law's loop repays); the law-contract tests
+hold the two equal.
 """
 from numba import njit
 
@@ -50,8 +51,6 @@ def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn,
     return -N * nx - tx, -N * ny - ty, -N * nz - tz, -tx, -ty, -tz, qx + mx, qy + my, qz + mz
 
 
-#: the step of each tangential law, in id order
-STEPS = tuple(njit(inline="always", **JIT)(renamed(_step, f"step_{m.NAME}", tangential=m.vector))
-              for m in table.FAMILIES["tangential"])
-#: the same, not inlined (compiled from the template directly: each level of inlining costs compile time)
+#: the step of each tangential law, in id order, not inlined (compiled from the template directly: each level
+#: of inlining costs compile time)
 LEAVES = tuple(njit(**JIT)(renamed(_step, f"leaf_{m.NAME}", tangential=m.vector)) for m in table.FAMILIES["tangential"])
