@@ -436,7 +436,6 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     atoms in touched, the number of contacts whose history read is a second copy marked out of date). A contact for which an atom
     has no free history row is left out (no force; counted in ST_NEED, so the run stops at the next check).
     """
-    hs = H.shape[1]
     slots = keys.shape[1]
     npc = cand.shape[0]
     nwc = cand_walls.shape[0]
