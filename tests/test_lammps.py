@@ -295,6 +295,22 @@ def test_a_wall_facing_away_from_the_atoms_is_refused():
     LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, 1.0))], v_max=1.0).run(2)
 
 
+def test_an_atom_started_deep_in_a_wall_is_reported():
+    """A sphere placed 80% of its radius into the floor (before: nothing said) overlaps it far more than an
+    impact at v_max presses: a warning before the run states the count and how deep; none for spheres
+    clear of the walls."""
+    lmp = _box(n=1)
+    floor = PlaneWall((0.0, 0.0, -0.2e-3), (0.0, 0.0, 1.0))        # the sphere (r = 1 mm) at z = 0
+    bridge = LammpsContacts(lmp, _table(), [floor], v_max=1.0)
+    with pytest.warns(RuntimeWarning, match=r"^1 atoms on this rank overlap a wall by more than a head-on impact"):
+        bridge.run(1)
+    bridge.detach()
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, 1.0))], v_max=1.0).run(1)
+
+
 def test_refuses_ghosts_without_velocities():
     lmp = _box()
     bridge = LammpsContacts(lmp, _table(), v_max=1.0)

@@ -43,6 +43,7 @@ import math
 import os
 import sys
 import time
+import warnings
 import weakref
 
 import numpy as np
@@ -325,6 +326,8 @@ class LammpsContacts:
         if not self.ghost_cutoff >= need:
             raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
+        # the largest overlap of a head-on impact at v_max, per pair row (the normal law's own)
+        self._deepest = np.array([sc.max_contact_radius(self.v_max) ** 2 / sc.pair.R_star for sc in table.scenes])
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
         # per-atom arrays: d2_<prefix> the keys and the statistics (read at every step: kept narrow),
@@ -364,6 +367,7 @@ class LammpsContacts:
         self._set_callback(f"{p}_ext")
         _ATTACHED[lmp] = self
         self.attached = True
+        self._ran = False              # a run was made since attaching
         self._last_step = None
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
         self._cand_rows = None         # history slots found for each candidate (-1: none yet)
@@ -444,6 +448,15 @@ class LammpsContacts:
                 raise InputError(f"walls[{w}]: atoms have their centre behind it (on this rank {int(behind[w])}): "
                                  f"its normal must point into the domain, towards the atoms, and no atom may "
                                  f"start through it")
+        # (at the first run only: at a later one a contact of the last run may be as deep as an impact at v_max)
+        count, worst = (0, 0.0) if self._ran else K.deep_wall_overlaps(
+            nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, typ, self.walls, self.wall_mat, self.table.wall_row,
+            self._deepest)
+        if count:
+            warnings.warn(f"{count} atoms on this rank overlap a wall by more than a head-on impact at v_max = "
+                          f"{self.v_max:g} m/s would press them (up to {worst:.3g} times that overlap): their "
+                          f"first contact force releases the energy of the overlap; place them apart from the "
+                          f"walls, or give the v_max that reaches it", RuntimeWarning, stacklevel=3)
         g = lmp.extract_global
         for d, lo, hi, periodic in zip("xyz", g("boxlo"), g("boxhi"), g("periodicity")):
             # (two periodic images of one partner are told apart by their separations, a period apart: a
@@ -510,6 +523,7 @@ class LammpsContacts:
             self.lmp.command(f"run {int(nsteps)}")
         finally:
             self._end_step = None
+            self._ran = True
         if self._saved is not None and self._saved[0] == self._evals:
             # the state the saved forces belong to is that at the end of the step: the velocities and
             # spins after the step's final integration (the callback saw those of its half-step)

@@ -739,6 +739,22 @@ def behind_walls(nlocal, x, radius, walls):
 
 
 @njit(cache=True)
+def deep_wall_overlaps(nlocal, x, radius, typ, walls, wall_mat, wall_row, limit):
+    """(count, largest ratio): the local atoms whose overlap with a wall exceeds limit[row] of their pair row
+    (wall_row[type - 1, material]), and the largest overlap / limit among them (0 if none)."""
+    count = 0
+    worst = 0.0
+    for i in range(nlocal):
+        for w in range(walls.shape[0]):
+            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            ratio = (radius[i] - s) / limit[wall_row[typ[i] - 1, wall_mat[w]]]
+            if ratio > 1.0:
+                count += 1
+                worst = max(worst, ratio)
+    return count, worst
+
+
+@njit(cache=True)
 def relative_spins(omega, body, m, spins):
     """spins[k] = w1 - w2 of the m contacts (a wall does not turn): the input of the twist and rolling laws."""
     for k in range(m):
