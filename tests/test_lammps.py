@@ -311,6 +311,20 @@ def test_an_atom_started_deep_in_a_wall_is_reported():
         LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, 1.0))], v_max=1.0).run(1)
 
 
+def test_lammps_warnings_reach_the_user():
+    """new_lammps() keeps LAMMPS's screen quiet but its log: the warnings LAMMPS writes (here: write_dump before
+    a full system init; before: lost with the output) come back as Python warnings at the next run."""
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    lmp.command(f"write_dump all atom {os.devnull}")
+    with pytest.warns(RuntimeWarning, match="^LAMMPS: Calling write_dump before a full system init"):
+        bridge.run(1)
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)       # a run that LAMMPS does not warn of: nothing
+        bridge.run(1)
+
+
 def test_refuses_ghosts_without_velocities():
     lmp = _box()
     bridge = LammpsContacts(lmp, _table(), v_max=1.0)

