@@ -325,6 +325,19 @@ def test_lammps_warnings_reach_the_user():
         bridge.run(1)
 
 
+def test_a_ghost_cutoff_lowered_after_attaching_is_refused():
+    """`comm_modify cutoff 0.001` after attaching (before: on 2 ranks, contacts across the subdomains missed
+    without a word) is refused before the run; the bridge's own cutoff runs."""
+    lmp = _box()
+    bridge = LammpsContacts(lmp, _table(), v_max=1.0)
+    bridge.run(1)
+    lmp.command("comm_modify cutoff 0.001")
+    with pytest.raises(InputError, match=r"^LAMMPS's ghost cutoff is 0.001 m"):
+        bridge.run(1)
+    lmp.command(f"comm_modify cutoff {bridge.ghost_cutoff!r}")
+    bridge.run(1)
+
+
 def test_refuses_ghosts_without_velocities():
     lmp = _box()
     bridge = LammpsContacts(lmp, _table(), v_max=1.0)

