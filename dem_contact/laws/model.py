@@ -75,7 +75,7 @@ class Scene:
     mdr_profile : Coulomb limit of the MDR laws (the laws that take it, ``laws.table``) during Thornton's plastic
         loading: "truncated" (default), mu times the line load of the Hertz pressure truncated at p_y,
         the distribution Thornton's force law is built on; "scaled", a Hertz-shaped limit scaled to mu N
-        (see ``laws.mdr``). Both are the same for elastic laws and for Thornton unloading.
+        (see ``laws.tangential.mdr``). Both are the same for elastic laws and for Thornton unloading.
     traction_yield : ``thornton`` only: the limiting pressure falls with the traction the contact carries,
         p_y g(|T|/N), g = first-yield pressure of a Hertz contact with sliding traction over that without
         (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of

@@ -123,7 +123,7 @@ def md(p, h, N, dN, a, a_old, dd, rescale):
 @njit(inline="always", **JIT)
 def md_scalar(mu, G, N, dN, a, a_old, dd, rescale, T, ts, tss, k, s):
     """Thornton & Yin (1991) incremental Mindlin-Deresiewicz along one axis: the arithmetic of
-    ``tangential.md`` (see there for the regimes and reversal points) on its state (T, T*, T**, regime k,
+    ``md`` (see there for the regimes and reversal points) on its state (T, T*, T**, regime k,
     loading sign s); the cube root is ``cbrt``. Returns the new state; its first value is T."""
     muN = mu * N
     if muN <= 0.0 or a <= 0.0:
