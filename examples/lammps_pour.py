@@ -34,7 +34,6 @@ import numpy as np
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.errors import InputError, NumericalError
-from dem_contact.laws.slots import P_ESTAR, P_GSTAR, P_MU
 from dem_contact.materials import Material, Sphere, Wall
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)      # soft grains: a time step of microseconds
@@ -58,15 +57,6 @@ def scene(n, seed=1, spacing=1.15, speed=0.3):
     v = rng.normal(0.0, speed, (n, 3))
     types = rng.integers(1, 3, n)
     return x, v, types, L, (layers + 2) * s * 2.0, layers * s
-
-
-def equivalent_material(E_star, G_star):
-    """(E, nu) that LAMMPS's granular models, given one material for both bodies (fix wall/gran, an
-    explicit pair_coeff i j), turn into E* and G*:
-    E* = E / (2 (1 - nu^2)), G* = E / (4 (2 - nu)(1 + nu))."""
-    r = E_star / G_star
-    nu = (r - 4.0) / (r - 2.0)
-    return 2.0 * (1.0 - nu * nu) * E_star, nu
 
 
 def lammps_timers(log_path):
@@ -124,11 +114,12 @@ def main(argv=None):
 
 
 def run(a):
-    from dem_contact.lammps import Census, LammpsContacts, PlaneWall, lammps_module, new_lammps
+    from dem_contact.lammps import Census, LammpsContacts, PlaneWall, lammps_module, native_commands, new_lammps
 
     if a.n < 1 or a.steps < 0 or a.every < 1 or not a.spacing >= 0.9 or not a.speed >= 0.0:
         raise InputError("--n must be >= 1, --steps >= 0, --every >= 1, --spacing >= 0.9, --speed >= 0")
-    laws = {} if a.tangential is None else {"tangential": a.tangential}
+    tangential = "mindlin_total" if a.native and a.tangential is None else a.tangential
+    laws = {} if tangential is None else {"tangential": tangential}
     radii = (RADII[1], RADII[1]) if a.same_size else RADII
     spheres = [Sphere(radii[0], GLASS), Sphere(radii[1], POLYMER)]
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
@@ -163,34 +154,11 @@ def run(a):
     if a.lid:
         walls.append(PlaneWall.axis("z", top, "hi"))
     if a.native:
-        if a.normal != "hertz" or a.tangential not in (None, "mindlin_total"):
-            raise InputError("--native runs LAMMPS's hertz/material + mindlin: use --normal hertz "
-                             "--tangential mindlin_total (or leave them out)")
         lmp.command(f"neighbor {skin!r} bin")
         lmp.command("neigh_modify delay 0 every 1 check yes")
         lmp.command("comm_modify vel yes")
-        lmp.command("pair_style granular")
-        for k, s in enumerate(spheres, start=1):
-            m = s.material
-            lmp.command(f"pair_coeff {k} {k} hertz/material {m.E!r} 0.0 {m.nu!r} tangential mindlin NULL "
-                        f"0.0 {a.mu!r} damping viscoelastic")
-        # LAMMPS mixes the 1-2 pair's normal stiffness from both materials, but its mindlin stiffness from
-        # the mixed modulus with the geometric mean of the Poisson ratios; the Hertz-Mindlin G* of the
-        # two materials is set with the equivalent single material, as for the walls
-        row = table.params[table.sphere_row[0, 1]]
-        E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
-        lmp.command(f"pair_coeff 1 2 hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 "
-                    f"{float(row[P_MU])!r} damping viscoelastic")
-        for k in (1, 2):
-            row = table.params[table.wall_row[k - 1, 0]]
-            E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
-            lmp.command(f"group t{k} type {k}")
-            model = (f"granular hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 {float(row[P_MU])!r} "
-                     f"damping viscoelastic")
-            lmp.command(f"fix wx{k} t{k} wall/gran {model} xplane 0.0 {L!r}")
-            lmp.command(f"fix wy{k} t{k} wall/gran {model} yplane 0.0 {L!r}")
-            zhi = repr(top) if a.lid else "NULL"
-            lmp.command(f"fix wz{k} t{k} wall/gran {model} zplane 0.0 {zhi}")
+        for cmd in native_commands(table, walls):         # the equivalent of the table and walls in LAMMPS
+            lmp.command(cmd)
         bridge = None
     else:
         lmp.command("pair_style none")

@@ -21,7 +21,8 @@ from dem_contact.laws.slots import P_ESTAR, P_GSTAR, P_RSTAR
 from dem_contact.materials import Material, Sphere, Wall
 
 try:
-    from dem_contact.lammps import LammpsContacts, PlaneWall, lammps_module, new_lammps
+    from dem_contact.lammps import LammpsContacts, PlaneWall, lammps_module, native_commands, new_lammps
+    from dem_contact.lammps.native import equivalent_material
     lammps_module()
     HAVE_LAMMPS = True
 except ImportError:
@@ -109,7 +110,7 @@ def _two_body_run(native, wall):
                         f"tangential mindlin NULL 0.0 0.5 damping viscoelastic")
         # the 1-2 pair as one equivalent material with the pair's E* and G* (lammps_pour.py explains)
         row = table.params[table.sphere_row[0, 1]]
-        E, nu = _example("lammps_pour").equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
+        E, nu = equivalent_material(float(row[P_ESTAR]), float(row[P_GSTAR]))
         lmp.command(f"pair_coeff 1 2 hertz/material {E!r} 0.0 {nu!r} tangential mindlin NULL 0.0 0.5 "
                     f"damping viscoelastic")
         lmp.command(f"fix wz all wall/gran granular hertz/material {GLASS.E!r} 0.0 {GLASS.nu!r} tangential "
@@ -338,6 +339,19 @@ def test_a_ghost_cutoff_lowered_after_attaching_is_refused():
     bridge.run(1)
 
 
+def test_native_commands_name_what_lammps_cannot_do():
+    """The native equivalent exists for hertz + mindlin_total and planes perpendicular to an axis (the pour
+    test runs it against the bridge); other laws and an oblique wall are refused, naming them."""
+    tab = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3, tangential="mindlin_total")
+    cmds = native_commands(tab, [PlaneWall.axis("z", 0.0, "lo"), PlaneWall.axis("x", 0.01, "hi")])
+    assert cmds[0] == "pair_style granular" and sum(c.startswith("pair_coeff 1 1 hertz/material") for c in cmds) == 1
+    assert any(c.endswith("zplane 0.0 NULL") for c in cmds) and any(c.endswith("xplane NULL 0.01") for c in cmds)
+    with pytest.raises(InputError, match="mdr_adaptive"):
+        native_commands(pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3), [])
+    with pytest.raises(InputError, match=r"^walls\[0\]: LAMMPS's fix wall/gran takes planes perpendicular"):
+        native_commands(tab, [PlaneWall((0.0, 0.0, 0.0), (0.6, 0.8, 0.0))])
+
+
 def test_refuses_ghosts_without_velocities():
     lmp = _box()
     bridge = LammpsContacts(lmp, _table(), v_max=1.0)
@@ -479,7 +493,7 @@ def _spinning_pair():
     """A spinning sphere pressed onto another, and a third far away."""
     lmp = _box(n=2, dt=1e-7)
     lmp.command("create_atoms 1 single 0.008 0.008 0.008")
-    lmp.command(f"set type 1 diameter 2e-3")
+    lmp.command("set type 1 diameter 2e-3")
     lmp.command(f"set type 1 density {GLASS.rho!r}")
     lmp.numpy.extract_atom("v")[0] = (0.01, 0.0, 0.05)
     lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)

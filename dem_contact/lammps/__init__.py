@@ -5,6 +5,7 @@ of ``dem_contact.walls`` (``PlaneWall`` is re-exported here)."""
 from ..walls import PlaneWall
 from .bridge import (MIN_STEPS_PER_CONTACT, Census, LammpsContacts, lammps_module, lammps_warnings, library_path,
                      new_lammps)
+from .native import native_commands
 
 __all__ = ["Census", "LammpsContacts", "MIN_STEPS_PER_CONTACT", "PlaneWall", "lammps_module", "lammps_warnings",
-           "library_path", "new_lammps"]
+           "library_path", "native_commands", "new_lammps"]

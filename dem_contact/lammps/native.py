@@ -1,0 +1,86 @@
+"""LAMMPS's own granular model equivalent to a pair table and its walls, as LAMMPS commands: for comparisons
+with the bridge and for users moving between the two.
+
+The equivalent exists for hertz + mindlin_total (LAMMPS ``pair granular hertz/material ... tangential
+mindlin``, no damping, with ``fix wall/gran granular`` for the walls), which the bridge matches to rounding
+with ``frame_spin=False`` (LAMMPS's models keep the tangential history fixed in space): tests/test_lammps.py
+runs a pour both ways. LAMMPS mixes a pair of different materials itself (its normal stiffness from both
+materials, its Mindlin stiffness from the mixed modulus with the geometric mean of the Poisson ratios), so
+each pair of types and each wall is given as one equivalent material, (E, nu) with the pair's E* and G*:
+E* = E / (2 (1 - nu^2)), G* = E / (4 (2 - nu)(1 + nu)) (Johnson 1985, section 4.2, for two equal bodies).
+"""
+from __future__ import annotations
+
+from ..dem.pairs import PairTable
+from ..errors import InputError
+from ..laws.slots import P_ESTAR, P_GSTAR, P_MU
+from ..walls import PlaneWall, pack
+
+#: the laws of a table that LAMMPS's own models reproduce, and LAMMPS's names for them
+LAWS = {("hertz", "mindlin_total"): ("hertz/material", "mindlin")}
+
+
+def equivalent_material(E_star: float, G_star: float) -> tuple:
+    """(E [Pa], nu) of the one material that gives E* and G* to a pair of two bodies of it."""
+    r = E_star / G_star
+    nu = (r - 4.0) / (r - 2.0)
+    return 2.0 * (1.0 - nu * nu) * E_star, nu
+
+
+def _model(table, row, normal, tangential):
+    E, nu = equivalent_material(float(table.params[row, P_ESTAR]), float(table.params[row, P_GSTAR]))
+    return (f"{normal} {E!r} 0.0 {nu!r} tangential {tangential} NULL 0.0 {float(table.params[row, P_MU])!r} "
+            f"damping viscoelastic")
+
+
+def _plane(k, wall):
+    """(axis, lo, hi, shear) of a PlaneWall for fix wall/gran's xplane/yplane/zplane."""
+    normal = [float(c) for c in wall.normal]
+    axes = [i for i, c in enumerate(normal) if c != 0.0]
+    if len(axes) != 1 or abs(normal[axes[0]]) != 1.0:
+        raise InputError(f"walls[{k}]: LAMMPS's fix wall/gran takes planes perpendicular to x, y or z only "
+                         f"(normal {tuple(normal)})")
+    i = axes[0]
+    pos = repr(float(wall.point[i]))
+    lo, hi = (pos, "NULL") if normal[i] > 0.0 else ("NULL", pos)
+    moving = [(d, float(v)) for d, v in zip("xyz", wall.velocity) if v != 0.0]
+    if len(moving) > 1:
+        raise InputError(f"walls[{k}]: LAMMPS's fix wall/gran shears along one axis only (velocity "
+                         f"{tuple(wall.velocity)})")
+    shear = f" shear {moving[0][0]} {moving[0][1]!r}" if moving else ""
+    return "xyz"[i], lo, hi, shear
+
+
+def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
+    """The LAMMPS commands (pair style, coefficients, walls) of LAMMPS's own model equivalent to ``table``
+    (hertz + mindlin_total) and its ``walls`` (PlaneWall, perpendicular to an axis): run them instead of
+    attaching the bridge (with ``pair_style`` granular LAMMPS computes the contacts itself). Atom type k is
+    spheres[k - 1] of the table, as for the bridge; one group per type and one ``fix wall/gran`` per type
+    and wall (ids ``<prefix>_t<k>``, ``<prefix>_w<w>_t<k>``). Raises InputError for laws or walls that
+    LAMMPS's models do not have."""
+    if not isinstance(table, PairTable):
+        raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
+    scene = table.scenes[0]
+    names = LAWS.get((scene.normal, scene.tangential))
+    if names is None:
+        raise InputError(f"LAMMPS's own models reproduce {', '.join(' + '.join(k) for k in LAWS)} only, not "
+                         f"{scene.normal} + {scene.tangential}")
+    walls = list(walls)
+    pack(walls, table.wall_row.shape[1])             # every wall checked (kind, vectors, material index)
+    planes = []
+    for k, w in enumerate(walls):
+        if not isinstance(w, PlaneWall):
+            raise InputError(f"walls[{k}] must be a PlaneWall: LAMMPS's fix wall/gran has planes only here")
+        planes.append(_plane(k, w))
+    nt = table.sphere_row.shape[0]
+    cmds = ["pair_style granular"]
+    for i in range(nt):
+        for j in range(i, nt):
+            cmds.append(f"pair_coeff {i + 1} {j + 1} {_model(table, table.sphere_row[i, j], *names)}")
+    for k in range(nt):
+        cmds.append(f"group {prefix}_t{k + 1} type {k + 1}")
+        for w, (wall, (axis, lo, hi, shear)) in enumerate(zip(walls, planes)):
+            model = _model(table, table.wall_row[k, wall.wall], *names)
+            cmds.append(f"fix {prefix}_w{w}_t{k + 1} {prefix}_t{k + 1} wall/gran granular {model} "
+                        f"{axis}plane {lo} {hi}{shear}")
+    return cmds
