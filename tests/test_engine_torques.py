@@ -137,4 +137,5 @@ def test_engine_model_settings_are_checked():
         Scene(body, body, **dict(SDS, k_twist=0.0))
     with pytest.raises(InputError, match=r"^k_roll applies to the laws sds \(rolling\) only"):
         Scene(body, body, k_roll=1.0)
-    assert Scene(body, body, twist="marshall").describe()["twist_k_t"] == pytest.approx(8.0 * Scene(body, body).pair.G_star)
+    marshall = Scene(body, body, twist="marshall")
+    assert marshall.describe()["twist_k_t"] == pytest.approx(8.0 * marshall.pair.G_star)

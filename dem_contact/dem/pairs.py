@@ -28,7 +28,8 @@ class PairTable:
     ``contact3d`` refuse the table with other ids); sphere_row: int64[n_types, n_types] row of each
     sphere-sphere pair (symmetric); wall_row: int64[n_types, n_walls] row of each sphere-wall pair;
     history_size: length of a 3D history row (``contact3d``, layout in ``laws.table``) for the laws (the
-    twist and rolling laws of the rows included) and the largest MDR cell count of the table; scenes: the Scene of each row (a tuple).
+    twist and rolling laws of the rows included) and the largest MDR cell count of the table; scenes: the
+    Scene of each row (a tuple).
 
     The table is immutable (its attributes cannot be assigned; the Scenes are immutable too): for other
     settings build another with ``pair_table``. Its arrays are the kernels' inputs, passed without copies."""

@@ -10,7 +10,8 @@ hold the two equal.
 from numba import njit
 
 from . import table
-from .dispatch import normal_vector, rolling_base, rolling_torque, store_normal, tangential_base, twist_base, twist_torque
+from .dispatch import (normal_vector, rolling_base, rolling_torque, store_normal, tangential_base, twist_base,
+                       twist_torque)
 from .slots import P_ROLLING_LAW, P_TWIST_LAW
 from .vector import JIT, V_A, V_N, renamed
 
