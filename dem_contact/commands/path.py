@@ -23,9 +23,10 @@ DESCRIPTION = ("Drive one contact (the 3D per-contact kernel, normal along z) al
                "twist: the rotation of body 1 relative to body 2 about the normal (from body 1 to body 2, "
                "right-handed) [rad]; the contact starts unloaded before the first row. Or a named path at "
                "constant overlap (--shape), sizes in units of the slip displacement mu delta / kappa and "
-               "twists in units of beta_1 = 3 mu N / (16 G_c a^2), the twist at which the no-slip moment "
-               "would be mu N a. A path that twists needs a twist law (--twist) or --reference: the law "
-               "'none' ignores the twist (Mz = 0) and is refused for it unless named. SI units.")
+               "twists in units of beta_1 = 3 mu N / (16 G_c a^2) (1/G_c = 1/G1 + 1/G2), the twist at "
+               "which the no-slip moment would be mu N a. A path that twists needs a twist law (--twist) or "
+               "--reference: the law 'none' ignores the twist (Mz = 0) and is refused for it unless named. "
+               "SI units.")
 
 
 def add_options(p):
