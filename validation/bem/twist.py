@@ -41,17 +41,24 @@ GRIDS = (16, 32, 64, 128, 256)
 PATH_DELTA = 1e-5                              # named paths: steel sphere R = 10 mm on a steel wall
 PATH_STEPS = 400
 PATH_GRIDS = (32, 64, 128)
+#: (elements across, steps) of the path runs: the grid at 400 steps, and the step at 64 across
+PATH_RUNS = tuple((n, PATH_STEPS) for n in PATH_GRIDS) + ((64, 2 * PATH_STEPS),)
 
 
 def save(name, obj):
     os.makedirs(RES, exist_ok=True)
     with open(os.path.join(RES, f"{name}.json"), "w") as f:
-        json.dump(obj, f, indent=1)
+        json.dump(obj, f, indent=None if name == "twist_paths" else 1)
 
 
 def load(name):
     path = os.path.join(RES, f"{name}.json")
     return json.load(open(path)) if os.path.exists(path) else None
+
+
+def short(values):
+    """A list of floats to 9 significant digits (the JSON results)."""
+    return [float(f"{v:.9g}") for v in values]
 
 
 def contact(E2, nu2):
@@ -106,8 +113,8 @@ def run_closed():
         row["Masing cycle (mu N a)"] = float(err.max())
         row["cycle time per step [s]"] = wall / tw.size
         if n == 64:
-            row["cycle"] = {"twist_over_beta1": list(tw / b1), "M_over_muNa": list(-Mz / (MU * N * a)),
-                            "exact": list(exact / (MU * N * a))}
+            row["cycle"] = {"twist_over_beta1": short(tw / b1), "M_over_muNa": short(-Mz / (MU * N * a)),
+                            "exact": short(exact / (MU * N * a))}
         out[str(n)] = row
         print(n, {k: (f"{v:+.2e}" if isinstance(v, float) else "...") for k, v in row.items()}, flush=True)
         save("twist_closed", out)
@@ -120,27 +127,39 @@ def path_scene():
 def run_paths():
     sc = path_scene()
     out = load("twist_paths") or {}
-    for n in PATH_GRIDS:
+    for n, steps in PATH_RUNS:
         for shape, size in TWIST_SET:
-            key = f"{shape}:{size}:{n}"
+            key = f"{shape}:{size}:{n}" + ("" if steps == PATH_STEPS else f":{steps}")
             if key in out:
                 continue
-            d, ux, uy, tw = scene_path(shape, size, PATH_STEPS, sc, PATH_DELTA)
+            d, ux, uy, tw = scene_path(shape, size, steps, sc, PATH_DELTA)
             t0 = time.perf_counter()
             N, Tx, Ty, Mz = B.bem_path_scene(sc, d, ux, uy, tw, n_across=n)
             wall = time.perf_counter() - t0
             a = math.sqrt(sc.pair.R_star * PATH_DELTA)
-            out[key] = {"shape": shape, "size": size, "n_across": n, "steps": PATH_STEPS, "wall": wall,
+            out[key] = {"shape": shape, "size": size, "n_across": n, "steps": steps, "wall": wall,
                         "time_per_step": wall / d.size,
-                        "Tx_over_muN": list(Tx / (MU * N)), "Ty_over_muN": list(Ty / (MU * N)),
-                        "Mz_over_muNa": list(Mz / (MU * N * a))}
-            print(f"{shape} {size} n={n}: {wall:.1f} s ({1e3 * wall / d.size:.1f} ms/step)", flush=True)
+                        "Tx_over_muN": short(Tx / (MU * N)), "Ty_over_muN": short(Ty / (MU * N)),
+                        "Mz_over_muNa": short(Mz / (MU * N * a))}
+            print(f"{shape} {size} n={n} steps={steps}: {wall:.1f} s ({1e3 * wall / d.size:.1f} ms/step)", flush=True)
             save("twist_paths", out)
-            if n == PATH_GRIDS[-1]:
+            if n == PATH_GRIDS[-1] and steps == PATH_STEPS:
                 os.makedirs(os.path.join(HERE, "paths"), exist_ok=True)
-                np.savetxt(os.path.join(HERE, "paths", f"{shape}_{size:g}_n{n}_s{PATH_STEPS}.csv"),
+                np.savetxt(os.path.join(HERE, "paths", f"{shape}_{size:g}_n{n}_s{steps}.csv"),
                            np.column_stack([d, ux, uy, tw, N, Tx, Ty, Mz]), delimiter=",",
                            header="delta,ux,uy,twist,N,Tx,Ty,Mz", comments="", fmt="%.12e")
+
+
+def step_error(paths, shape, size):
+    """The 400-step run at 64 across against 800 steps, at the common rows (every second of 800)."""
+    p, q = paths.get(f"{shape}:{size}:64"), paths.get(f"{shape}:{size}:64:{2 * PATH_STEPS}")
+    if p is None or q is None:
+        return None
+    sub = slice(None, None, 2)
+    dT = np.hypot(np.subtract(p["Tx_over_muN"], q["Tx_over_muN"][sub]),
+                  np.subtract(p["Ty_over_muN"], q["Ty_over_muN"][sub]))
+    dM = np.abs(np.subtract(p["Mz_over_muNa"], q["Mz_over_muNa"][sub]))
+    return float(dT.max()), float(dM.max())
 
 
 def grid_error(paths, shape, size, n, ref):
@@ -189,6 +208,10 @@ def run_report():
                 m = "-" if e[1] is None else f"{e[1]:.1e}"
                 lines.append(f"| {shape} {size:g} | {n} | {f} | {m} | {1e3 * p['time_per_step']:.1f} |")
         lines.append("")
+        st = [(f"{shape} {size:g}", step_error(paths, shape, size)) for shape, size in TWIST_SET]
+        if all(e is not None for _, e in st):
+            lines += [f"Step error at 64 across: {PATH_STEPS} steps against {2 * PATH_STEPS} (the same rows): "
+                      + "; ".join(f"{k}: {e[0]:.1e} mu N, {e[1]:.1e} mu N a" for k, e in st) + ".", ""]
     lines += ["![twist](bem_twist.png)", ""]
     with open(os.path.join(HERE, "twist.md"), "w") as f:
         f.write("\n".join(lines))
