@@ -112,7 +112,7 @@ def time_per_update(scene: Scene, delta, ux, uy, repeats: int = 5) -> float:
     params = np.ascontiguousarray(sc.params[None, :])
     n = delta.size
     N, Tx, Ty, Mz, twist = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-    hs = history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs)
+    hs = history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs, sc.twist_id, sc.rolling_id)
     best = math.inf
     for _ in range(repeats + 1):            # the first run compiles or warms up
         H = new_histories(1, hs)

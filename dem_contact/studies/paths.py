@@ -120,7 +120,7 @@ def run_path(scene: Scene, delta, ux, uy, twist=None, *, dt: float = 1.0):
     tw = cols[3] if twist is not None else np.zeros(delta.size)
     dt = check_finite("dt (time per row, s)", dt, lo=0.0)
     sc = path_scene(scene, float(delta.max()))
-    H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs))
+    H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs, sc.twist_id, sc.rolling_id))
     out = N, Tx, Ty, Mz = (np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size))
     try:
         _drive(sc.normal_id, sc.tangential_id, np.ascontiguousarray(sc.params[None, :]), H, delta, ux, uy, tw, dt,
