@@ -116,6 +116,18 @@ def tangential_stress(x, y, z, nu):
     return sxx, syy, szz, sxy, sxz, syz
 
 
+def partial_slip_stress(x, y, z, nu, stick):
+    """Stresses / q0 under the traction q0 (sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)) in +x (the
+    second term inside r < c only), c/a = ``stick`` in [0, 1]: Hamilton's field of radius a less his field
+    of radius c, which is the unit field at (x, y, z) / c scaled by the peak traction q0 c/a. stick = 0 is
+    ``tangential_stress``; same conventions."""
+    st = tangential_stress(x, y, z, nu)
+    if stick <= 0.0:
+        return st
+    sc = tangential_stress(x / stick, y / stick, z / stick, nu)
+    return tuple(a - stick * b for a, b in zip(st, sc))
+
+
 #: Closer to the axis than this (in units of a), the closed forms lose digits to cancellation (terms in
 #: 1/r^4): the field is evaluated at this distance instead, in the same direction (it is smooth there).
 AXIS_GUARD = 0.02
@@ -133,12 +145,8 @@ def von_mises(x, y, z, nu, mu_eff, stick=0.0):
     x = np.where(near, np.where(r > 0.0, x * scale, AXIS_GUARD), x)
     y = np.where(near, y * np.where(r > 0.0, scale, 0.0), y)
     sn = normal_stress(x, y, z, nu)
-    st = tangential_stress(x, y, z, nu)
-    s = [a + mu_eff * b for a, b in zip(sn, st)]
-    if stick > 0.0:
-        sc = tangential_stress(x / stick, y / stick, z / stick, nu)
-        s = [a - mu_eff * stick * b for a, b in zip(s, sc)]
-    sxx, syy, szz, sxy, sxz, syz = s
+    st = partial_slip_stress(x, y, z, nu, stick)
+    sxx, syy, szz, sxy, sxz, syz = (a + mu_eff * b for a, b in zip(sn, st))
     return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
                    + 3.0 * (sxy * sxy + sxz * sxz + syz * syz))
 
