@@ -281,6 +281,18 @@ def test_partial_slip_leaves_elastic_impacts_unchanged(partial_slip_scenes):
                                                                        b.Omega_r)
 
 
+def test_partial_slip_acts_in_3d_as_in_the_plane(partial_slip_scenes):
+    """The 3D kernels read the same table (|T|/N of the last step in the fifth state slot): impact3d gives
+    the e_n of the planar impact, below the uncoupled law's."""
+    from dem_contact.impacts.impact3d import impact3d
+
+    coupled = partial_slip_scenes[5.0]
+    vt = angle_vt(5.0, 30)
+    q = impact3d(coupled, 5.0, (vt, 0.0))
+    assert q.e_n == pytest.approx(dc.impact(coupled, 5.0, vt).e_n, rel=1e-6, abs=0.0)
+    assert q.e_n < impact3d(scene_with(coupled, traction_yield=False), 5.0, (vt, 0.0)).e_n - 0.005
+
+
 @settings(max_examples=20, deadline=None)
 @given(st.lists(st.floats(0.5, 1.0), min_size=ty.TABLE_NODES, max_size=ty.TABLE_NODES),
        st.lists(st.floats(0.0, 0.3), min_size=3, max_size=30), st.floats(1.5, 30.0))

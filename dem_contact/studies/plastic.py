@@ -5,11 +5,15 @@
   that Thornton's force law implies against a Hertz shape scaled to the force (``Scene(mdr_profile=)``);
 - the traction-coupled Thornton law (``Scene(traction_yield=True)``): e_n against the impact angle at
   fixed V_n, and the PE curves refitted;
-- ``thornton2001`` (thornton + md) beside the exact reference, the default law and the FEA fits.
+- ``thornton2001`` (thornton + md) beside the exact reference, the default law and the FEA fits;
+- the e_n dip with the impact angle (``en_dip_section``): uncoupled and with both traction distributions
+  of ``traction_yield``, the FEA's regimes, the PE f/mu curves, and the traction the contact carries at
+  its centre at maximum compression (``centre_traction``, from the exact reference).
 
 ``plastic_sections(figdir)`` returns the report's markdown lines (used by ``wu2009.run_validation``);
 ``update_report(outdir)`` recomputes only these sections and splices them into an existing
-``outdir/report.md`` (``python -m dem_contact.studies.plastic [outdir]``).
+``outdir/report.md`` (``python -m dem_contact.studies.plastic [outdir]``); ``update_dip_section`` only the
+e_n-dip section (``python validation/plastic_dip.py``).
 """
 from __future__ import annotations
 
