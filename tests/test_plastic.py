@@ -328,6 +328,8 @@ def test_options_are_checked():
     sph, wall = dc.Sphere(0.01, mat), dc.Wall(mat)
     with pytest.raises(InputError, match="traction_yield"):
         dc.Scene(sph, wall, traction_yield=True)
+    with pytest.raises(InputError, match="traction_yield = 'cattaneo' is unknown"):
+        dc.Scene(sph, wall, normal="thornton", e_n=0.8, v_ref=1.0, traction_yield="cattaneo")
     with pytest.raises(InputError, match="mdr_profile"):
         dc.Scene(sph, wall, mdr_profile="flat")
     with pytest.raises(InputError, match="mdr_profile"):
