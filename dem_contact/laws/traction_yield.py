@@ -29,14 +29,16 @@ annulus of Cattaneo's kind forms only when the tangential rate later exceeds mu 
 traction: g = 1; gross sliding: g(mu), the same as ``"proportional"``) and an approximation in between,
 where it places the traction in an annulus that the tangential law need not have; during a stuck
 loading with varying dT/dN the true distribution is a sum of Hertz-shaped increments of all radii up to
-a, which neither table represents. Unloading and reversals do not enter: Thornton's law yields only on
-loading.
+a, which neither table represents: at small angles the centre keeps the traction of the early loading
+while |T| has fallen (the exact reference at maximum compression, measured in the validation report,
+section "The e_n dip with the impact angle"). Unloading and reversals do not enter: Thornton's law
+yields only on loading.
 
 Why not the plastic junction. A fully plastic junction under pressure p and shear tau flows at
 p^2 + 3 tau^2 = p_m^2 (von Mises; junction growth: McFarlane & Tabor, Proc. R. Soc. A 202 (1950) 244),
 which would lower the limiting pressure by 1 - 1/sqrt(1 + 3 mu^2) (11.3% at mu = 0.3). It needs a plastic
 zone that has reached the surface, i.e. a fully plastic indentation: for a sphere from E* a / (Y R) of
-about 30, some 400 times the first-yield load (Johnson 1985, section 6.3, fig. 6.16). A steel sphere of
+about 30, some 400 times the first-yield load (Johnson 1985, section 6.3). A steel sphere of
 Y = 1.85 GPa on steel at 5 m/s reaches E* a / (Y R) of about 6 (Hertz radius of the overlap), at 2 m/s
 about 4: contained elastic-plastic contacts, for which first yield is the result that applies, so the
 junction argument is not used.
