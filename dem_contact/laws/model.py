@@ -46,6 +46,22 @@ MODELS = MappingProxyType({
 #: Largest friction coefficient accepted (the failure map runs to 1e4).
 MAX_MU = 1e10
 
+#: Values of Scene(traction_yield=) that switch it on (True is "proportional").
+TRACTION_YIELD = ("proportional", "partial_slip")
+
+
+def _traction_yield(value):
+    """False, or the name of the traction distribution of the first-yield table (True: "proportional")."""
+    if value is False or value is None:
+        return False
+    if value is True:
+        return "proportional"
+    if isinstance(value, str) and value in TRACTION_YIELD:
+        return value
+    raise InputError(f"traction_yield = {value!r} is unknown; choose False, True or one of: "
+                     f"{', '.join(TRACTION_YIELD)}")
+
+
 def _law(name: str, family: str):
     laws = table.ids(family)
     if name not in laws:
@@ -77,9 +93,10 @@ class Scene:
         the distribution Thornton's force law is built on; "scaled", a Hertz-shaped limit scaled to mu N
         (see ``laws.tangential.mdr``). Both are the same for elastic laws and for Thornton unloading.
     traction_yield : ``thornton`` only: the limiting pressure falls with the traction the contact carries,
-        p_y g(|T|/N), g = first-yield pressure of a Hertz contact with sliding traction over that without
+        p_y g(|T|/N), g = first-yield pressure of a Hertz contact carrying that traction over that without
         (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of
-        the yielding body. Off by default.
+        the yielding body. False (default): off; "proportional" (or True): the traction (|T|/N) p;
+        "partial_slip": the Cattaneo-Mindlin traction of the stick radius c/a = (1 - |T|/(mu N))^(1/3).
     twist, rolling : the twist law (torque about the normal from the relative spin about it) and the rolling
         law (torque across the normal from the relative rolling), for the 3D kernels (which take the relative
         spin and return the torque, ``dem.contact3d.contact_force_torque``): ``"none"`` (default), or LAMMPS's
@@ -109,7 +126,7 @@ class Scene:
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = table.DEFAULTS["normal"],
                  tangential: str = table.DEFAULTS["tangential"], e_n: float | None = None, v_ref: float | None = None,
                  mdr_springs: int | None = None, mdr_max_radius: float | None = None,
-                 mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None,
+                 mdr_profile: str = "truncated", traction_yield: bool | str = False, model: str | None = None,
                  twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"],
                  k_twist: float | None = None, gamma_twist: float | None = None, mu_twist: float | None = None,
                  k_roll: float | None = None, gamma_roll: float | None = None, mu_roll: float | None = None):
@@ -153,7 +170,7 @@ class Scene:
         self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0,
                                                                     lo_open=False)
         self.v_ref = None if v_ref is None else check_finite("v_ref (reference normal speed, m/s)", v_ref, lo=0.0)
-        self.traction_yield = bool(traction_yield)
+        self.traction_yield = _traction_yield(traction_yield)
         self.mdr_profile = mdr_profile
         self._refuse_options()
         self.pair = pr = pair_properties(sphere, body2)
