@@ -472,7 +472,19 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle |G_M u| <= mu q
     with the cell mean of the line load q of ``mdr._advance`` (the Hertz pressure truncated at p_y during
     Thornton's plastic loading, ``truncation``). The adaptive grid: that of the planar adaptive law (cell
-    width in the history; ``merged``, ``halves``, ``shrink_factor`` and ``initial_width_ldexp``)."""
+    width in the history; ``merged``, ``halves``, ``shrink_factor`` and ``initial_width_ldexp``).
+
+    Adaptive grid, sticking zone: the same arithmetic, with the inner cells that provably stick advanced
+    in O(1). After a step that updated every cell, the cells 0 ... j - 1 before the first one near its
+    circle (j >= LAZY_MIN) form a zone: each then holds v = u - D with D = 0, the history keeps the sum of
+    v over the zone, K_s = umax per w (``coulomb_per_w``) and G0 = K_s a^2 - min (umax - |u|) over the
+    zone. At a later step every cell of the zone is still inside the contact and |u_i| <= |u_i(set-up)| +
+    |D + d|; its circle is umax_i = K (a^2 - dx^2 w_i / 3) (w_i = 3 i (i + 1) + 1), so the zone sticks if
+    QNEAR K (a^2 - dx^2 w / 3) - G0 + K_s dx^2 w / 3 >= |D + d| at both ends w_0, w_(j-1) of the zone (the
+    left side is linear in w): then D += d advances it (u += d of each cell, as the cell-by-cell loop
+    does for a cell that sticks) and it adds sum v + j D to T. Otherwise, and before a regrid, a
+    truncated profile or a contact that no longer covers the zone, each cell takes u = v + D and the zone
+    is dissolved. In a dense packing most cells stick at most steps: they cost nothing then.
     # Every parameter is read first and the history row last, on every path: numba's reference-count
     # pruning then removes the increments of the two arrays (which would cost two atomic operations per
     # contact); so the law has one exit and calls only inlined functions.
