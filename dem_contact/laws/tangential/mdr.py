@@ -484,7 +484,7 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     left side is linear in w): then D += d advances it (u += d of each cell, as the cell-by-cell loop
     does for a cell that sticks) and it adds sum v + j D to T. Otherwise, and before a regrid, a
     truncated profile or a contact that no longer covers the zone, each cell takes u = v + D and the zone
-    is dissolved. In a dense packing most cells stick at most steps: they cost nothing then.
+    is dissolved. In a dense packing most cells stick at most steps: they cost nothing then."""
     # Every parameter is read first and the history row last, on every path: numba's reference-count
     # pruning then removes the increments of the two arrays (which would cost two atomic operations per
     # contact); so the law has one exit and calls only inlined functions.
