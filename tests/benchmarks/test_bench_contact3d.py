@@ -16,7 +16,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from dem_contact.dem.contact3d import contact_forces_serial, new_histories
+from dem_contact.dem.contact3d import batch_loop, contact_forces_serial, new_histories
 from dem_contact.materials import STEEL, Material, Sphere, Wall
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
 from dem_contact.dem.pairs import pair_table
@@ -60,6 +60,48 @@ def test_bench_batch_tangential(benchmark, tangential):
 @pytest.mark.parametrize("normal", list(NORMAL_LAWS))
 def test_bench_batch_normal(benchmark, normal):
     _run_numba(benchmark, "md", normal)
+
+
+def _pressed_like(tangential, n=12_500, slots=12, rounds=40):
+    """Contacts of a dense packing as the LAMMPS bridge steps them (``lammps_throughput.py --scene pressed``):
+    history rows scattered over ``slots`` rows per contact, the overlap oscillating by 2% and a small
+    reversing slip (|dd| / a about 1e-3 per step), the contact frame turning slowly. Returns a function
+    stepping every contact once (the next round of the path at each call)."""
+    steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho)
+    tab = pair_table([Sphere(2e-3, steel)], [Wall(steel)], mu=0.4, tangential=tangential)
+    rng = np.random.default_rng(0)
+    nrm = rng.normal(size=(n, 3))
+    nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+    d0 = rng.uniform(1e-6, 3e-6, size=n)
+    ph = rng.uniform(0.0, 2.0 * np.pi, n)
+    H = new_histories(n * slots, tab.history_size)
+    rows = rng.permutation(n * slots)[:n].astype(np.int64)
+    pair = np.zeros(n, np.int64)
+    wn = rng.normal(scale=1.0, size=n)
+    deltas = [d0 * (1.0 + 0.02 * np.sin(ph + 0.3 * r)) for r in range(rounds)]
+    vels = [rng.normal(scale=0.01, size=(n, 3)) + 0.01 * np.sin(0.3 * r + ph)[:, None] for r in range(rounds)]
+    f, t = np.zeros((n, 3)), np.zeros((n, 3))
+    loop = batch_loop(tab.normal_id, tab.tangential_id)
+    none3 = np.zeros((0, 3))
+    state = [0]
+
+    def step():
+        r = state[0] % rounds
+        state[0] += 1
+        loop(tab.normal_id, tab.tangential_id, tab.params, pair, H, rows, nrm, deltas[r], vels[r], none3, wn, 1e-7,
+             f, t, none3)
+    return step
+
+
+@pytest.mark.benchmark(group="contact3d-pressed")
+@pytest.mark.parametrize("tangential", ["mdr_adaptive", "mindlin_total"])
+def test_bench_pressed_like(benchmark, tangential):
+    """The default law and mindlin_total on the contacts of a dense packing (``_pressed_like``)."""
+    step = _pressed_like(tangential)
+    for _ in range(10):                 # compile, and let the histories settle into the path
+        step()
+    benchmark.pedantic(step, rounds=ROUNDS, iterations=1, warmup_rounds=2)
+    benchmark.extra_info["updates_per_s"] = 12_500 / benchmark.stats.stats.min
 
 
 # The C references: Hertz + md and Hertz + mdr_adaptive (the default law), the arithmetic of
