@@ -209,7 +209,7 @@ def test_history_size_has_no_default_cell_count_for_the_mdr_laws():
     for tid in (TANGENTIAL_LAWS["mdr"], TANGENTIAL_LAWS["mdr_adaptive"]):
         with pytest.raises(InputError, match=r"^n_cells = 0: the mdr(_adaptive)? law needs its cell count"):
             history_size(tab.normal_id, tid)
-    assert history_size(tab.normal_id, tab.tangential_id, 12) == tab.history_size == 2 + 7 + 2 * 12
+    assert history_size(tab.normal_id, tab.tangential_id, 12) == tab.history_size == 2 + 14 + 2 * 12
     with pytest.raises(InputError, match=r"^tid \(tangential law id\) = 9 is not a law id"):
         history_size(0, 9)
 
