@@ -66,9 +66,9 @@ def write_stl(path, vertices, triangles, ascii: bool = True, name: str = "mesh")
     if ascii:
         lines = [f"solid {name}"]
         for c, nn in zip(corners, n):
-            lines.append(f"  facet normal {nn[0]!r} {nn[1]!r} {nn[2]!r}")
+            lines.append("  facet normal " + " ".join(repr(float(q)) for q in nn))
             lines.append("    outer loop")
-            lines += [f"      vertex {p[0]!r} {p[1]!r} {p[2]!r}" for p in c]
+            lines += ["      vertex " + " ".join(repr(float(q)) for q in p) for p in c]
             lines += ["    endloop", "  endfacet"]
         lines.append(f"endsolid {name}")
         with open(path, "w") as f:
