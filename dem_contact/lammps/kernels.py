@@ -7,8 +7,11 @@ property/atom d2_...``, which migrate with the atom between ranks and survive ne
 atom sorting): the keys of its rows, ``keys`` (nmax, slots), in a narrow array read at every step; for
 each row the separation of its contact when it was last matched and a mark of an out-of-date second copy
 (see below), ``sep`` (nmax, 4 slots), in another; and the rows in a third, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
-partner's atom id (> 0), the wall's key (< 0, ``walls.contract.history_key``: -(w + 1) for wall w when
-every wall has one element, as planes) for a wall, or 0 for a free row. A contact is the partner and the
+partner's atom id (> 0), the wall's key (< 0, ``walls.table.history_key``: -(w + 1) for wall w when
+every wall has one patch, as planes and cylinders; one per flat patch of a mesh) for a wall, or 0 for a
+free row. A wall contact that moves from one element to another of its patch (a mesh's triangles) keeps
+its row: the row of a wall contact that ended is freed only after the new contacts of the step have
+looked for their rows by key. A contact is the partner and the
 periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
 two images of one partner, each its own contact with its own row, told apart by the separation
 (x_partner - x_atom, continuous in time whatever the atoms' wraps), which is stored with the row when it
@@ -45,8 +48,8 @@ and R for a wall.
 
 Walls: packed rows of ``walls.table.pack`` (float64[n_walls, walls.ROW_SIZE]), read only through the wall
 kernels of ``walls.table`` (``contact``: distance and normal; ``velocity``: the wall's velocity at the
-contact point, subtracted from the sphere's; ``element`` and ``history_key``: the key of the contact's
-history), so that every kind of wall of the table works here.
+contact point, subtracted from the sphere's; ``history_key``: the key of the contact's history), so that
+every kind of wall of the table works here; ``wall_loads`` sums each wall's force, torque and power.
 """
 import math
 
@@ -242,17 +245,23 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         fill[first[c]] = q + 1
         pairs[q, 0] = first[c]
         pairs[q, 1] = second[c]
-    nw = walls.shape[0]
-    hits = np.empty((max(nlocal * nw, 1), 3), dtype=np.int64)
-    kw = 0
-    for i in range(nlocal):
-        for w in range(nw):
-            gap, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            if gap < radius[i] + skin:
-                hits[kw, 0] = i
-                hits[kw, 1] = w
-                hits[kw, 2] = W.element(walls, w, x[i, 0], x[i, 1], x[i, 2])
-                kw += 1
+    nw = W.count(walls)
+    cap = nlocal * nw + 16
+    while True:
+        hits = np.empty((cap, 3), dtype=np.int64)
+        kw = 0
+        for i in range(nlocal):
+            for w in range(nw):
+                for e in range(W.elements(walls, w)):
+                    if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
+                        if kw < cap:
+                            hits[kw, 0] = i
+                            hits[kw, 1] = w
+                            hits[kw, 2] = e
+                        kw += 1
+        if kw <= cap:
+            break
+        cap = kw
     return pairs, hits[:kw]
 
 
@@ -290,7 +299,7 @@ def overlapping(x, radius, walls, cand, cand_walls):
     for c in range(cand_walls.shape[0]):
         i = cand_walls[c, 0]
         w = cand_walls[c, 1]
-        gap, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, _, _, _ = W.contact(walls, w, cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
         d = radius[i] - gap
         if d > 0.0:
             wkeep[kw] = c
@@ -467,7 +476,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             i = cand_walls[c - npc, 0]
             w = cand_walls[c - npc, 1]
             j = -1
-            gap, nx, ny, nz = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            gap, nx, ny, nz = W.contact(walls, w, cand_walls[c - npc, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
             delta = radius[i] - gap
             touch = delta > 0.0
             local_j = False
@@ -619,10 +628,16 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
     left_out = 0
     stale = 0
     for k in range(ended):
-        # contacts that ended free their rows (reset)
+        # contacts that ended free their rows (reset); a wall contact's row only after the new contacts
+        # have looked for theirs (the contact may have moved to another element of its patch: the row is
+        # kept in cand_rows[c, 1] till then)
         c = work[k, 2]
         i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
         r = cand_rows[c, 0]
+        if j < 0:
+            cand_rows[c, 0] = -1
+            cand_rows[c, 1] = r
+            continue
         if r >= 0 and keys[i, r] == key_i:
             _release(keys, H, i, r)
         r = cand_rows[c, 1]
@@ -646,6 +661,23 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
             cand_rows[c, 1] = rj
             if full and rj >= 0:
                 used[j, rj] = True
+    for k in range(ended):
+        # the rows of wall contacts that ended, unless a new contact of the atom took them over
+        c = work[k, 2]
+        i, j, key_i, _ = _candidate(cand, cand_walls, walls, c, tag, nlocal)
+        if j >= 0:
+            continue
+        r = cand_rows[c, 1]
+        cand_rows[c, 1] = -1
+        if r < 0 or keys[i, r] != key_i:
+            continue
+        taken = False
+        for q in range(late):
+            c2 = work[q, 1]
+            if c2 >= cand.shape[0] and cand_walls[c2 - cand.shape[0], 0] == i and cand_rows[c2, 0] == r:
+                taken = True
+        if not taken:
+            _release(keys, H, i, r)
     if full:
         # after a rebuild: the rows no contact uses are freed (contacts that ended, rows that came with
         # an atom from another rank) before new contacts take rows
@@ -715,6 +747,61 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
     return left_out, stale
 
 
+@njit(cache=True)
+def wall_loads(x, radius, walls, m, body, normals, overlaps, forces, torques, loads):
+    """loads float64[n_walls, 7]: each wall's force (3) [N], torque about its centre of rotation (3) [N m]
+    and the power it gives the spheres [W], from the m contacts of this rank (forces, torques: on body 1,
+    the sphere; each wall contact is its local atom's, so the ranks' loads add up): -F, (c - C) x (-F) - M
+    and F . v_wall(c), with c = x + (R - delta) n the contact point on the wall's surface."""
+    loads[:, :] = 0.0
+    for n in range(m):
+        b = body[n, 1]
+        if b >= 0:
+            continue
+        w = -b - 1
+        a = body[n, 0]
+        s = radius[a] - overlaps[n]
+        cx = x[a, 0] + s * normals[n, 0]
+        cy = x[a, 1] + s * normals[n, 1]
+        cz = x[a, 2] + s * normals[n, 2]
+        fx = forces[n, 0]
+        fy = forces[n, 1]
+        fz = forces[n, 2]
+        rx = cx - walls[w, W.CENTRE]
+        ry = cy - walls[w, W.CENTRE + 1]
+        rz = cz - walls[w, W.CENTRE + 2]
+        loads[w, 0] -= fx
+        loads[w, 1] -= fy
+        loads[w, 2] -= fz
+        loads[w, 3] -= ry * fz - rz * fy + torques[n, 0]
+        loads[w, 4] -= rz * fx - rx * fz + torques[n, 1]
+        loads[w, 5] -= rx * fy - ry * fx + torques[n, 2]
+        vx, vy, vz = W.velocity(walls, w, cx, cy, cz)
+        loads[w, 6] += fx * vx + fy * vy + fz * vz
+
+
+@njit(cache=True)
+def moved(nlocal, x, x_ref):
+    """The largest displacement of the local atoms from x_ref[:nlocal] [m]."""
+    big = 0.0
+    for i in range(nlocal):
+        d = (x[i, 0] - x_ref[i, 0]) ** 2 + (x[i, 1] - x_ref[i, 1]) ** 2 + (x[i, 2] - x_ref[i, 2]) ** 2
+        big = max(big, d)
+    return math.sqrt(big)
+
+
+@njit(cache=True)
+def carry_wall_rows(old, old_rows, new, new_rows):
+    """new_rows[c, 0] := old_rows[c', 0] for the wall candidates (i, w, e) found in both lists (each in the
+    order of i, w, e): the history rows of contacts that continue across a rebuild of the wall list."""
+    p = 0
+    for c in range(new.shape[0]):
+        while p < old.shape[0] and (old[p, 0], old[p, 1], old[p, 2]) < (new[c, 0], new[c, 1], new[c, 2]):
+            p += 1
+        if p < old.shape[0] and old[p, 0] == new[c, 0] and old[p, 1] == new[c, 1] and old[p, 2] == new[c, 2]:
+            new_rows[c, 0] = old_rows[p, 0]
+
+
 def contact_buffers(n):
     """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, hrow, pair_rows, normals,
     overlaps, velocities, wn, forces, tforces, spins, torques)."""
@@ -728,13 +815,15 @@ def contact_buffers(n):
 def behind_walls(nlocal, x, radius, walls):
     """int64[n_walls]: the local atoms whose centre is behind each wall (signed distance to its surface < 0:
     a wall that faces away from the domain, or atoms placed through it)."""
-    nw = walls.shape[0]
+    nw = W.count(walls)
     count = np.zeros(max(nw, 1), dtype=np.int64)
     for i in range(nlocal):
         for w in range(nw):
-            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            if s < 0.0:
-                count[w] += 1
+            for e in range(W.elements(walls, w)):
+                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                if s < 0.0:
+                    count[w] += 1
+                    break
     return count[:nw]
 
 
@@ -745,12 +834,13 @@ def deep_wall_overlaps(nlocal, x, radius, typ, walls, wall_mat, wall_row, limit)
     count = 0
     worst = 0.0
     for i in range(nlocal):
-        for w in range(walls.shape[0]):
-            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            ratio = (radius[i] - s) / limit[wall_row[typ[i] - 1, wall_mat[w]]]
-            if ratio > 1.0:
-                count += 1
-                worst = max(worst, ratio)
+        for w in range(W.count(walls)):
+            for e in range(W.elements(walls, w)):
+                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                ratio = (radius[i] - s) / limit[wall_row[typ[i] - 1, wall_mat[w]]]
+                if ratio > 1.0:
+                    count += 1
+                    worst = max(worst, ratio)
     return count, worst
 
 
