@@ -29,6 +29,7 @@ P_NORMAL_LAW          normal law id + 1 the row was built for (0: not recorded);
 P_TANGENTIAL_LAW      tangential law id + 1 the row was built for (0: not recorded)
 P_TWIST_LAW           twist law id + 1 the row was built for (0: not recorded; the 3D kernels read it)
 P_ROLLING_LAW         rolling law id + 1 the row was built for (0: not recorded; the 3D kernels read it)
+P_G_TWIST             shear modulus of the twist G_c [Pa], 1/G_c = 1/G1 + 1/G2 (twist deresiewicz)
 ====================  =====================================================================
 
 History row (one per contact), updated in place: a header, then the normal slots, then the
@@ -58,7 +59,8 @@ P_NORMAL_LAW = 32
 P_TANGENTIAL_LAW = 33
 P_TWIST_LAW = 34
 P_ROLLING_LAW = 35
-N_PARAMS = 36
+P_G_TWIST = 36
+N_PARAMS = 37
 
 # history row: header
 H_N = 0        # normal force after the last step [N] (clamped at >= 0)

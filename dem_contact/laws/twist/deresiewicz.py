@@ -67,9 +67,9 @@ import math
 import numpy as np
 from numba import njit
 
-from ..slots import P_MU, P_RSTAR
+from ..slots import P_G_TWIST, P_MU, P_RSTAR
 from ..tangential.mdr import initial_width_ldexp
-from ..vector import JIT
+from ..vector import JIT, V_A
 
 NAME, FAMILY = "deresiewicz", "twist"
 SOURCE = ("Lubkin 1951 (J. Appl. Mech. 18:183), Deresiewicz 1954 (J. Appl. Mech. 21:52): exact, by flat-punch "
@@ -274,9 +274,29 @@ def twist_path(Gc, mu, R, N, a, beta, n):
     return out, work
 
 
+@njit(inline="always", **JIT)
+def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """Torque on body 1 (x, y, z) [N m], -M n, from the relative spin w = w1 - w2 [rad/s]: the twist
+    increment (w . n) dt on the springs of ``advance`` (the contact radius before the step is the row's
+    V_A, written after the twist law)."""
+    Gc = params[row, P_G_TWIST]
+    mu = params[row, P_MU]
+    R = params[row, P_RSTAR]
+    M = advance(H, c, b, TWIST_CELLS, Gc, mu, R, N, a, H[c, V_A], (wx * nx + wy * ny + wz * nz) * dt)
+    return -M * nx, -M * ny, -M * nz
+
+
 def twist_modulus(body1, body2):
     """G_c [Pa] of a sphere against a sphere or a wall: 1/G_c = 1/G1 + 1/G2 (a rigid body adds nothing)."""
     comp = sum(0.0 if m.is_rigid else 1.0 / m.G for m in (body1.material, body2.material))
     return 1.0 / comp
+
+
+def configure(scene, p):
+    p[P_G_TWIST] = twist_modulus(scene.sphere, scene.body2)
+
+
+def describe(scene, p):
+    return dict(twist_G_c=p[P_G_TWIST], twist_cells=TWIST_CELLS)
 
 
