@@ -179,7 +179,7 @@ def test_history_helpers(tangential, normal):
     swap_bodies(nid, tid, H, 0)
     assert not np.array_equal(H, H0)
     Hs = H.copy()
-    b = tangential_base(nid)
+    b = tangential_base(nid, 0, 0)
     assert np.array_equal(Hs[:, :b], H0[:, :b])       # the normal state (thornton's F*, R_p, delta_p) is kept
     swap_bodies(nid, tid, H, 0)
     assert np.array_equal(H, H0)

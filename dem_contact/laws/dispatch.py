@@ -49,13 +49,13 @@ def normal_vector(nid, params, row, H, c, delta, vel):
 
 
 @njit(inline="always", cache=True)
-def twist_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return q0.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)
+def twist_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    return q0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
-def rolling_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return r0.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)
+def rolling_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    return r0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
@@ -65,11 +65,23 @@ def uses_rate(nid):
 
 
 @njit(inline="always", cache=True)
-def tangential_base(nid):
-    """First tangential slot of a 3D history row: after the normal law's state."""
+def twist_base(nid):
+    """First slot of the twist law's state in a 3D history row: after the normal law's state."""
     if nid == 1:
         return 7
     return 2
+
+
+@njit(inline="always", cache=True)
+def rolling_base(nid, qid):
+    """First slot after the twist law's state (``laws.table``: the layout of a 3D row)."""
+    return twist_base(nid) + (0)
+
+
+@njit(inline="always", cache=True)
+def tangential_base(nid, qid, rid):
+    """First slot after the rolling law's state (``laws.table``: the layout of a 3D row)."""
+    return rolling_base(nid, qid) + (0)
 
 
 @njit(inline="always", cache=True)
