@@ -145,3 +145,55 @@ def test_varying_normal_force():
         br[0] = 0.0
         _, W = run(Gc, Nr, ar, br)
         assert W.min() > -1e-12 * MU * N0 * a0 * b1
+
+
+def test_3d_kernel_twist_objective_and_batch():
+    """In the 3D step (Scene(twist="deresiewicz")): the torque on body 1 is -M n with M on Lubkin's curve
+    for any normal direction; swapping the bodies (n -> -n, w1 - w2 -> its negative) gives body 2 the
+    opposite torque; the batch loop equals the single-contact step bit for bit."""
+    from dem_contact.dem.contact3d import contact_force_torque, contact_forces_serial, history_size, new_histories
+    from dem_contact.dem.pairs import pair_table
+    from dem_contact.laws.model import Scene
+    from dem_contact.laws.slots import P_NSPRING
+
+    sc = Scene(Sphere(R, STEEL), Sphere(R, GLASS), mu=MU, twist="deresiewicz")
+    Gc = d.twist_modulus(sc.sphere, sc.body2)
+    Rs = sc.pair.R_star
+    delta = 1e-6
+    N, a = 4 / 3 * sc.pair.E_star * math.sqrt(Rs) * delta**1.5, math.sqrt(Rs * delta)
+    b1 = unit(Gc, N, a)
+    P = sc.params[None, :]
+    size = history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING]), sc.twist_id, sc.rolling_id)
+    n = np.array([0.36, -0.48, 0.8])
+    dt, steps = 1e-7, 60
+    w = 2.0 * b1 / (steps * dt)
+    H1, H2 = new_histories(1, size), new_histories(1, size)
+    for k in range(steps + 1):
+        wk = w * n if k else 0.0 * n
+        q1 = contact_force_torque(sc.normal_id, sc.tangential_id, P, 0, H1, 0, *n, delta, 0.0, 0.0, 0.0, *wk, 0.0, dt)
+        q2 = contact_force_torque(sc.normal_id, sc.tangential_id, P, 0, H2, 0, *(-n), delta, 0.0, 0.0, 0.0, *(-wk),
+                                  0.0, dt)
+        assert np.allclose(q2[6:], q1[6:], rtol=1e-12, atol=0.0)       # -M (-n) with M of -beta: the same
+    M = -float(np.dot(q1[6:], n))
+    assert np.allclose(np.cross(q1[6:], n), 0.0, atol=1e-12 * abs(M))
+    assert M == pytest.approx(cf.lubkin_moment(2.0 * b1, Gc, MU, N, a), abs=5e-3 * MU * N * a)
+    # batch = single step
+    tab = pair_table([Sphere(R, STEEL), Sphere(2 * R, GLASS)], [Wall(STEEL)], mu=MU, twist="deresiewicz")
+    rng = np.random.default_rng(2)
+    m = 6
+    nrm = rng.normal(size=(m, 3))
+    nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+    pair = rng.integers(0, tab.params.shape[0], size=m)
+    Hb, Hs = new_histories(m, tab.history_size), new_histories(m, tab.history_size)
+    for k in range(20):
+        vel = rng.normal(scale=0.01, size=(m, 3))
+        spins = rng.normal(scale=50.0, size=(m, 3))
+        dl = rng.uniform(5e-7, 2e-6, size=m)
+        f, t, q = np.zeros((m, 3)), np.zeros((m, 3)), np.zeros((m, 3))
+        contact_forces_serial(tab.normal_id, tab.tangential_id, tab.params, pair, Hb, nrm, dl, vel, np.zeros(m), dt,
+                              f, t, spins=spins, torques=q)
+        for c in range(m):
+            out = contact_force_torque(tab.normal_id, tab.tangential_id, tab.params, pair[c], Hs, c, *nrm[c], dl[c],
+                                       *vel[c], *spins[c], 0.0, dt)
+            assert tuple(q[c]) == out[6:] and tuple(f[c]) == out[:3]
+    assert np.array_equal(Hb, Hs) and np.abs(q).max() > 0.0

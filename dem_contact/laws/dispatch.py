@@ -16,14 +16,15 @@ from .tangential import ddm as t6
 from .tangential import mdr as t7
 from .tangential import mdr_adaptive as t8
 from .twist import none as q0
+from .twist import deresiewicz as q1
 from .rolling import none as r0
 
 NORMAL_NAMES = ('hertz', 'thornton', 'hertz_damped', 'linear',)
 NORMAL_IDS = tuple(range(4))
 TANGENTIAL_NAMES = ('md', 'md_rescale', 'mindlin_total', 'mindlin_incremental', 'mindlin_rescale', 'linear', 'ddm', 'mdr', 'mdr_adaptive',)
 TANGENTIAL_IDS = tuple(range(9))
-TWIST_NAMES = ('none',)
-TWIST_IDS = tuple(range(1))
+TWIST_NAMES = ('none', 'deresiewicz',)
+TWIST_IDS = tuple(range(2))
 ROLLING_NAMES = ('none',)
 ROLLING_IDS = tuple(range(1))
 
@@ -50,7 +51,7 @@ def normal_vector(nid, params, row, H, c, delta, vel):
 
 @njit(inline="always", cache=True)
 def twist_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return q0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
+    return q1.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 1 else q0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
@@ -75,7 +76,7 @@ def twist_base(nid):
 @njit(inline="always", cache=True)
 def rolling_base(nid, qid):
     """First slot after the twist law's state (``laws.table``: the layout of a 3D row)."""
-    return twist_base(nid) + (0)
+    return twist_base(nid) + (35 if qid == 1 else 0)
 
 
 @njit(inline="always", cache=True)

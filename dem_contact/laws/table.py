@@ -52,6 +52,7 @@ from .normal import linear as linear_normal
 from .rolling import none as rolling_none
 from .tangential import ddm, md, md_rescale, mdr, mdr_adaptive, mindlin_incremental, mindlin_rescale, mindlin_total
 from .tangential import linear as linear_tangential
+from .twist import deresiewicz
 from .twist import none as twist_none
 
 #: the laws of each family, in id order (the id of a law is its place here)
@@ -59,7 +60,7 @@ FAMILIES = MappingProxyType({
     "normal": (hertz, thornton, hertz_damped, linear_normal),
     "tangential": (md, md_rescale, mindlin_total, mindlin_incremental, mindlin_rescale, linear_tangential, ddm, mdr,
                    mdr_adaptive),
-    "twist": (twist_none,),
+    "twist": (twist_none, deresiewicz),
     "rolling": (rolling_none,),
 })
 

@@ -1,0 +1,83 @@
+"""Horak's spinning impact: a steel sphere spinning about the vertical at w0, dropped at vn on a steel plane
+(no tangential velocity), with the exact twist law (deresiewicz) and with no twist law; and an oblique impact
+with spin about the normal.
+
+The spin after the impact, w_r / w0, against Omega = I w0 / ((3 pi/16) mu int N a dt): the spin's angular
+momentum over the angular impulse of full slip (Lubkin's moment) during the impact. Full slip throughout
+gives w_r / w0 = 1 - 1/Omega (drawn); below Omega ~ 1 the contact holds the spin (partial slip, the twist
+stored elastically is given back in part).
+
+    python validation/twist/horak.py
+
+Writes validation/twist/horak.png and horak.json.
+"""
+import json
+import math
+import pathlib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from dem_contact.impacts.impact3d import impact3d  # noqa: E402
+from dem_contact.laws.model import Scene  # noqa: E402
+from dem_contact.materials import STEEL, Sphere, Wall  # noqa: E402
+
+HERE = pathlib.Path(__file__).parent
+R, MU = 5e-3, 0.3
+
+
+def main():
+    out = {"sphere": "steel R 5 mm on a steel plane", "mu": MU, "runs": []}
+    fig, axs = plt.subplots(1, 2, figsize=(11, 4.2))
+    for vn, mark in ((0.2, "o"), (2.0, "s")):
+        sc = Scene(Sphere(R, STEEL), Wall(STEEL), mu=MU, twist="deresiewicz")
+        base = impact3d(sc, vn, series=True)
+        s = base.series
+        a = np.sqrt(sc.pair.R_star * np.clip(s["overlap"], 0.0, None))
+        Na = np.trapezoid(np.clip(s["normal_force"], 0, None) * a, s["t"])
+        I = 0.4 * sc.sphere.mass * R * R
+        w_unit = 3 * math.pi / 16 * MU * Na / I          # w0 at Omega = 1
+        rows = []
+        for Om in np.geomspace(0.05, 20.0, 17):
+            w0 = Om * w_unit
+            r = impact3d(sc, vn, (0.0, 0.0), (0.0, 0.0, w0))
+            r0 = impact3d(sc.replace(twist="none"), vn, (0.0, 0.0), (0.0, 0.0, w0))
+            rows.append(dict(Omega=Om, w0=w0, ratio=r.spin_r[2] / w0, ratio_none=r0.spin_r[2] / w0,
+                             energy_error=r.energy.error / r.energy.initial, twist_work=r.energy.friction))
+        out["runs"].append({"vn": vn, "int_N_a_dt": Na, "w_at_Omega_1": w_unit, "rows": rows})
+        Om = np.array([x["Omega"] for x in rows])
+        axs[0].semilogx(Om, [x["ratio"] for x in rows], mark, label=f"deresiewicz, vn = {vn} m/s")
+        axs[0].semilogx(Om, [x["ratio_none"] for x in rows], "k" + mark, mfc="none", ms=4,
+                        label=f"no twist law, vn = {vn} m/s")
+    x = np.geomspace(1.0, 20.0, 100)
+    axs[0].semilogx(x, 1 - 1 / x, "r-", label="full slip throughout: 1 - 1/Omega")
+    axs[0].set_xlabel("Omega = I w0 / ((3 pi/16) mu int N a dt)")
+    axs[0].set_ylabel("w_r / w0 (spin about the normal after / before)")
+    axs[0].set_title("Horak: a spinning sphere dropped on a plane")
+    axs[0].legend(fontsize=7)
+    # oblique impact with spin about the normal: the spin plane turns
+    sc = Scene(Sphere(R, STEEL), Wall(STEEL), mu=MU, twist="deresiewicz")
+    obl = {}
+    for tw in ("none", "deresiewicz"):
+        r = impact3d(sc.replace(twist=tw), 1.0, (0.5, 0.0), (0.0, 0.0, 2000.0), series=True)
+        s = r.series
+        ang = np.degrees(np.arctan2(s["tangential_force_y"], s["tangential_force_x"]))
+        axs[1].plot(s["t"] * 1e6, s["spin_z"], label=f"spin about the normal, {tw}")
+        obl[tw] = {"spin_r": r.spin_r, "vt_r": r.vt_r, "out_of_plane_angle_deg": r.out_of_plane_angle_deg,
+                   "force_angle_deg_at_end": float(ang[len(ang) // 2]), "energy_error": r.energy.error / r.energy.initial}
+    axs[1].set_xlabel("t [us]")
+    axs[1].set_ylabel("w_z [rad/s]")
+    axs[1].set_title("oblique impact, vt 0.5 m/s, vn 1 m/s, w_z 2000 rad/s")
+    axs[1].legend(fontsize=7)
+    out["oblique"] = obl
+    fig.tight_layout()
+    fig.savefig(HERE / "horak.png", dpi=120)
+    (HERE / "horak.json").write_text(json.dumps(out, indent=1, default=float))
+    print(json.dumps(out, indent=1, default=float))
+
+
+if __name__ == "__main__":
+    main()
