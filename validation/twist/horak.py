@@ -2,10 +2,11 @@
 (no tangential velocity), with the exact twist law (deresiewicz) and with no twist law; and an oblique impact
 with spin about the normal.
 
-The spin after the impact, w_r / w0, against Omega = I w0 / ((3 pi/16) mu int N a dt): the spin's angular
-momentum over the angular impulse of full slip (Lubkin's moment) during the impact. Full slip throughout
-gives w_r / w0 = 1 - 1/Omega (drawn); below Omega ~ 1 the contact holds the spin (partial slip, the twist
-stored elastically is given back in part).
+The spin lost in the impact, 1 - w_r / w0, against Psi = w0 t_c / beta_1, the twist over the contact time in
+units of the no-slip twist at unit moment at the largest force (beta_1 = mu N a / ((16/3) G_c a^3)). Small
+Psi: the contact sticks and acts as a torsional spring (a loss independent of w0, set by the contact time
+and the torsional stiffness against the inertia); large Psi: full slip, the angular impulse of Lubkin's
+moment (3 pi/16) mu int N a dt, so 1 - w_r / w0 = (3 pi/16) mu int N a dt / (I w0) (drawn).
 
     python validation/twist/horak.py
 
@@ -23,6 +24,7 @@ import numpy as np  # noqa: E402
 
 from dem_contact.impacts.impact3d import impact3d  # noqa: E402
 from dem_contact.laws.model import Scene  # noqa: E402
+from dem_contact.laws.twist import deresiewicz as d  # noqa: E402
 from dem_contact.materials import STEEL, Sphere, Wall  # noqa: E402
 
 HERE = pathlib.Path(__file__).parent
@@ -39,24 +41,28 @@ def main():
         a = np.sqrt(sc.pair.R_star * np.clip(s["overlap"], 0.0, None))
         Na = np.trapezoid(np.clip(s["normal_force"], 0, None) * a, s["t"])
         I = 0.4 * sc.sphere.mass * R * R
-        w_unit = 3 * math.pi / 16 * MU * Na / I          # w0 at Omega = 1
+        dw_slip = 3 * math.pi / 16 * MU * Na / I          # the spin lost in full slip
+        Gc = d.twist_modulus(sc.sphere, sc.body2)
+        Nmax, amax = base.max_force, math.sqrt(sc.pair.R_star * base.max_overlap)
+        beta1 = MU * Nmax * amax / (16 / 3 * Gc * amax**3)
+        tc = base.contact_time
         rows = []
-        for Om in np.geomspace(0.05, 20.0, 17):
-            w0 = Om * w_unit
+        for Psi in np.geomspace(0.01, 1000.0, 21):
+            w0 = Psi * beta1 / tc
             r = impact3d(sc, vn, (0.0, 0.0), (0.0, 0.0, w0))
             r0 = impact3d(sc.replace(twist="none"), vn, (0.0, 0.0), (0.0, 0.0, w0))
-            rows.append(dict(Omega=Om, w0=w0, ratio=r.spin_r[2] / w0, ratio_none=r0.spin_r[2] / w0,
-                             energy_error=r.energy.error / r.energy.initial, twist_work=r.energy.friction))
-        out["runs"].append({"vn": vn, "int_N_a_dt": Na, "w_at_Omega_1": w_unit, "rows": rows})
-        Om = np.array([x["Omega"] for x in rows])
-        axs[0].semilogx(Om, [x["ratio"] for x in rows], mark, label=f"deresiewicz, vn = {vn} m/s")
-        axs[0].semilogx(Om, [x["ratio_none"] for x in rows], "k" + mark, mfc="none", ms=4,
-                        label=f"no twist law, vn = {vn} m/s")
-    x = np.geomspace(1.0, 20.0, 100)
-    axs[0].semilogx(x, 1 - 1 / x, "r-", label="full slip throughout: 1 - 1/Omega")
-    axs[0].set_xlabel("Omega = I w0 / ((3 pi/16) mu int N a dt)")
-    axs[0].set_ylabel("w_r / w0 (spin about the normal after / before)")
-    axs[0].set_title("Horak: a spinning sphere dropped on a plane")
+            rows.append(dict(Psi=Psi, w0=w0, lost=1 - r.spin_r[2] / w0, lost_none=1 - r0.spin_r[2] / w0,
+                             lost_full_slip=dw_slip / w0, energy_error=r.energy.error / r.energy.initial,
+                             twist_work=r.energy.friction))
+        out["runs"].append({"vn": vn, "int_N_a_dt": Na, "full_slip_spin_loss": dw_slip, "beta_1_at_max_force": beta1,
+                            "contact_time": tc, "rows": rows})
+        P = np.array([x["Psi"] for x in rows])
+        axs[0].loglog(P, [x["lost"] for x in rows], mark, label=f"deresiewicz, vn = {vn} m/s")
+        axs[0].loglog(P, [x["lost_full_slip"] for x in rows], "-", lw=0.8,
+                      label=f"full slip throughout, vn = {vn} m/s")
+    axs[0].set_xlabel("Psi = w0 t_c / beta_1 (beta_1 at the largest force)")
+    axs[0].set_ylabel("1 - w_r / w0 (spin about the normal lost)")
+    axs[0].set_title("Horak: a spinning sphere dropped on a plane (no twist law: no loss)")
     axs[0].legend(fontsize=7)
     # oblique impact with spin about the normal: the spin plane turns
     sc = Scene(Sphere(R, STEEL), Wall(STEEL), mu=MU, twist="deresiewicz")
