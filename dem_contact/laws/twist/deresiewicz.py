@@ -87,6 +87,8 @@ Q_CELLS = 3
 VECTOR_SLOTS = Q_CELLS + TWIST_CELLS
 #: nodes of the table of J(u) on 0 <= u <= 1
 TABLE_NODES = 1025
+#: margin of the table-free stick test (below the table's rounding, so that it never changes a result)
+CLEAR = 1.0 - 1e-9
 
 
 def _k_minus_e(u):
@@ -225,12 +227,17 @@ def advance(H, c, b, n, Gc, mu, R, N, a, a_old, dbeta):
         # limit theta_max = C (J(u1) - J(u0)) / w, C = 3 mu N a / (4 pi G_c) (module docstring)
         C = 3.0 * mu * N * a / (4.0 * math.pi * Gc)
         ia = 1.0 / a
+        # a cell sticks without the table when |theta| <= CLEAR C (pi/4)(1 - u1^2) / a^3: K - E >= (pi/4) m
+        # (series with positive terms) and the profile decreases, so (pi/4)(1 - u1^2) is below the cell's
+        # mean limit (K - E)(1 - u^2) (u1: the cell's outer end over a)
+        lo = CLEAR * 0.25 * math.pi * C * ia * ia * ia
         da = a - a_old
         m = int(max(a, a_old) / ds) + 1
         if m > n:
             m = n
         S = 0.0
         J0 = 0.0
+        known = True        # J0 = J(x0 / a) of the current cell is known
         for i in range(m):
             k = k0 + i
             x0 = i * ds
@@ -246,13 +253,20 @@ def advance(H, c, b, n, Gc, mu, R, N, a, a_old, dbeta):
                 wo = (xo * xo * xo - x0 * x0 * x0) / 3.0
                 xm = 0.5 * (xo + x1)
                 th = (th * wo + dbeta * (a - xm) / da * (w - wo)) / w
-            J1 = jtab(x1 * ia)
-            tmax = C * (J1 - J0) / w
-            J0 = J1
-            if th > tmax:
-                th = tmax
-            elif th < -tmax:
-                th = -tmax
+            u1 = x1 * ia
+            if abs(th) > lo * (1.0 - u1 * u1):
+                if not known:
+                    J0 = jtab(x0 * ia)
+                J1 = jtab(u1)
+                tmax = C * (J1 - J0) / w
+                J0 = J1
+                known = True
+                if th > tmax:
+                    th = tmax
+                elif th < -tmax:
+                    th = -tmax
+            else:
+                known = False
             H[c, k] = th
             S += th * w
         M = 16.0 * Gc * S
