@@ -78,7 +78,8 @@ def wall_impact_3d(nid, tid, P, H, m_wall, e1, e2, vn0, vt0, w10, inv_m, R, inv_
 
 def scene_history(sc, n=1):
     """Zeroed 3D histories of ``n`` contacts for the laws of Scene ``sc``."""
-    return new_histories(n, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING])))
+    return new_histories(n, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING]), sc.twist_id,
+                                         sc.rolling_id))
 
 
 def _scene(normal, tangential, vn):

@@ -336,6 +336,16 @@ def _prefetch_row(H, r):
 # prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
 # contact). One source, compiled serial and parallel (prange is range in a serial build).
 
+@njit(**JIT)
+def _torque_laws(nid, qid, rid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """The torques on body 1 of the twist law ``qid`` and the rolling law ``rid`` (their states after the
+    normal law's), not inlined: the batch loops call it only for rows that name such laws, and keep their
+    body as small as without them."""
+    qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), N, a, nx, ny, nz, wx, wy, wz, dt)
+    mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), N, a, nx, ny, nz, wx, wy, wz, dt)
+    return qx, qy, qz, mx, my, mz
+
+
 def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, spins, wn, dt, forces, tforces,
           torques):
     """Template of the batch loop of one tangential law (the global ``tangential``: the law's 3D kernel; the
@@ -343,10 +353,13 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
     in a serial build costs the loop its optimisations). spins, torques: float64[n, 3], or [0, 3] for none
     (no relative spin; the torques of the twist and rolling laws not kept). The body is the step of
     ``laws.compose`` written out: one level of inlined functions that take the arrays less, which the
-    default law's loop repays (about 10%)."""
+    default law's loop repays (about 10%); the twist and rolling laws are one call out of line
+    (``_torque_laws``), made only for rows that name such laws, so that the body of a loop over rows
+    without them stays as small (and as fast) as the step without torques."""
     n = overlaps.shape[0]
     spun = spins.shape[0] > 0
     kept = torques.shape[0] > 0
+    b0 = twist_base(nid)
     for k in loop_range(n):  # noqa: F821
         if k + AHEAD < n:
             _prefetch_row(H, rows[k + AHEAD])
@@ -360,14 +373,16 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
         vel, ddx, ddy, ddz, cs, sn = kinematics(nx, ny, nz, velocities[k, 0], velocities[k, 1], velocities[k, 2],
                                                 wn[k], dt)
         N, a, s0, s1, s2, s3, s4 = normal_vector(nid, params, row, H, c, overlaps[k], vel)
-        b = tangential_base(nid, qid, rid)
         Np = N if N > 0.0 else 0.0
-        wx = spins[k, 0] if spun else 0.0
-        wy = spins[k, 1] if spun else 0.0
-        wz = spins[k, 2] if spun else 0.0
-        qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), Np, a, nx, ny, nz, wx, wy, wz, dt)
-        mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), Np, a, nx, ny, nz, wx, wy, wz,
-                                    dt)
+        b = b0
+        qx = qy = qz = mx = my = mz = 0.0
+        if qid > 0 or rid > 0:
+            # the twist and rolling laws (none: no state, no torque, the tangential state at b0)
+            b = tangential_base(nid, qid, rid)
+            wx = spins[k, 0] if spun else 0.0
+            wy = spins[k, 1] if spun else 0.0
+            wz = spins[k, 2] if spun else 0.0
+            qx, qy, qz, mx, my, mz = _torque_laws(nid, qid, rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
         tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
         store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
         H[c, V_N] = Np

@@ -16,17 +16,20 @@ from .tangential import ddm as t6
 from .tangential import mdr as t7
 from .tangential import mdr_adaptive as t8
 from .twist import none as q0
-from .twist import deresiewicz as q1
+from .twist import marshall as q1
+from .twist import sds as q2
+from .twist import deresiewicz as q3
 from .rolling import none as r0
+from .rolling import sds as r1
 
 NORMAL_NAMES = ('hertz', 'thornton', 'hertz_damped', 'linear',)
 NORMAL_IDS = tuple(range(4))
 TANGENTIAL_NAMES = ('md', 'md_rescale', 'mindlin_total', 'mindlin_incremental', 'mindlin_rescale', 'linear', 'ddm', 'mdr', 'mdr_adaptive',)
 TANGENTIAL_IDS = tuple(range(9))
-TWIST_NAMES = ('none', 'deresiewicz',)
-TWIST_IDS = tuple(range(2))
-ROLLING_NAMES = ('none',)
-ROLLING_IDS = tuple(range(1))
+TWIST_NAMES = ('none', 'marshall', 'sds', 'deresiewicz',)
+TWIST_IDS = tuple(range(4))
+ROLLING_NAMES = ('none', 'sds',)
+ROLLING_IDS = tuple(range(2))
 
 
 @njit(inline="always", cache=True)
@@ -51,12 +54,12 @@ def normal_vector(nid, params, row, H, c, delta, vel):
 
 @njit(inline="always", cache=True)
 def twist_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return q1.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 1 else q0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
+    return q1.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 1 else q2.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 2 else q3.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 3 else q0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
 def rolling_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return r0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
+    return r1.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 1 else r0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
@@ -76,13 +79,13 @@ def twist_base(nid):
 @njit(inline="always", cache=True)
 def rolling_base(nid, qid):
     """First slot after the twist law's state (``laws.table``: the layout of a 3D row)."""
-    return twist_base(nid) + (35 if qid == 1 else 0)
+    return twist_base(nid) + (1 if qid == 1 else 1 if qid == 2 else 35 if qid == 3 else 0)
 
 
 @njit(inline="always", cache=True)
 def tangential_base(nid, qid, rid):
     """First slot after the rolling law's state (``laws.table``: the layout of a 3D row)."""
-    return rolling_base(nid, qid) + (0)
+    return rolling_base(nid, qid) + (3 if rid == 1 else 0)
 
 
 @njit(inline="always", cache=True)

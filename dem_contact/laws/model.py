@@ -81,8 +81,16 @@ class Scene:
         (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of
         the yielding body. Off by default.
     twist, rolling : the twist law (torque about the normal from the relative spin about it) and the rolling
-        law (torque across the normal from the relative rolling): ``"none"``, the only laws of these families
-        (the 3D kernels take the relative spin and return the torque, ``dem.contact3d.contact_force_torque``)
+        law (torque across the normal from the relative rolling), for the 3D kernels (which take the relative
+        spin and return the torque, ``dem.contact3d.contact_force_torque``): ``"none"`` (default), or LAMMPS's
+        engine models, which are not contact mechanics of smooth spheres: twist ``"marshall"`` (coefficients
+        from the tangential law and the contact radius) or ``"sds"``, rolling ``"sds"`` (``laws.twist``,
+        ``laws.rolling``)
+    k_twist, gamma_twist, mu_twist : twist="sds" only (then required): spring [N m/rad], dashpot
+        [N m s/rad] and slider [m] (the limit is mu_twist N), LAMMPS's ``twisting sds`` coefficients
+    k_roll, gamma_roll, mu_roll : rolling="sds" only (then required): spring [N/m], dashpot [N s/m] and
+        slider [-] (the limit of the pseudo-force is mu_roll N, of the torque mu_roll R* N), LAMMPS's
+        ``rolling sds`` coefficients
     model : a named model that sets the laws and the time step: ``MODELS`` (``"thornton2001"``: Thornton
         et al. 2001, thornton + md). Its laws are not to be given as well.
 
@@ -95,17 +103,21 @@ class Scene:
 
     #: the constructor's arguments, which ``replace`` accepts
     ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "e_n", "v_ref", "mdr_springs", "mdr_max_radius",
-                 "mdr_profile", "traction_yield", "model", "twist", "rolling")
+                 "mdr_profile", "traction_yield", "model", "twist", "rolling", "k_twist", "gamma_twist", "mu_twist",
+                 "k_roll", "gamma_roll", "mu_roll")
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = table.DEFAULTS["normal"],
                  tangential: str = table.DEFAULTS["tangential"], e_n: float | None = None, v_ref: float | None = None,
                  mdr_springs: int | None = None, mdr_max_radius: float | None = None,
                  mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None,
-                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"]):
+                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"],
+                 k_twist: float | None = None, gamma_twist: float | None = None, mu_twist: float | None = None,
+                 k_roll: float | None = None, gamma_roll: float | None = None, mu_roll: float | None = None):
         self._args = dict(sphere=sphere, body2=body2, mu=mu, normal=normal, tangential=tangential, e_n=e_n,
                           v_ref=v_ref, mdr_springs=mdr_springs, mdr_max_radius=mdr_max_radius,
                           mdr_profile=mdr_profile, traction_yield=traction_yield, model=model, twist=twist,
-                          rolling=rolling)
+                          rolling=rolling, k_twist=k_twist, gamma_twist=gamma_twist, mu_twist=mu_twist,
+                          k_roll=k_roll, gamma_roll=gamma_roll, mu_roll=mu_roll)
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):

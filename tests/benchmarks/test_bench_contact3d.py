@@ -415,3 +415,42 @@ def test_c(benchmark, c_batch, tangential):
 def test_numba(benchmark, tangential):
     """Hertz + the law, numba serial batch (ratio: min time of test_c / min time of this, same law)."""
     _run_numba(benchmark, tangential)
+
+
+# The twist and rolling engine models: the default law and mindlin_total, without them (no spins), with the
+# relative spins passed but no model, and with twist sds + rolling sds and twist marshall + rolling sds
+# (bytes per contact: 8 * PairTable.history_size, in extra_info).
+TORQUE_MODELS = {
+    "none": {},
+    "spins_only": {},
+    "twist_sds_rolling_sds": dict(twist="sds", k_twist=1e-3, gamma_twist=1e-9, mu_twist=1e-4, rolling="sds",
+                                  k_roll=1e4, gamma_roll=1e-3, mu_roll=0.1),
+    "twist_marshall_rolling_sds": dict(twist="marshall", rolling="sds", k_roll=1e4, gamma_roll=1e-3, mu_roll=0.1),
+}
+
+
+@pytest.mark.benchmark(group="contact3d-twist-rolling")
+@pytest.mark.parametrize("models", list(TORQUE_MODELS))
+@pytest.mark.parametrize("tangential", ["mdr_adaptive", "mindlin_total"])
+def test_bench_batch_twist_rolling(benchmark, tangential, models):
+    steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho)
+    tab = pair_table([Sphere(2e-3, steel), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))], [Wall(steel)],
+                     mu=0.4, tangential=tangential, v_ref=1.0, **TORQUE_MODELS[models])
+    rng = np.random.default_rng(0)
+    n = N_CONTACTS
+    nrm = rng.normal(size=(n, 3))
+    nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+    vel = rng.normal(scale=0.05, size=(n, 3))
+    delta = rng.uniform(1e-7, 3e-6, size=n)
+    wn = rng.normal(scale=100.0, size=n)
+    pair = rng.integers(0, tab.params.shape[0], size=n)
+    H = new_histories(n, tab.history_size)
+    spins = rng.normal(scale=100.0, size=(n, 3)) if models != "none" else None
+    torques = np.zeros((n, 3)) if models != "none" else None
+    args = (tab.normal_id, tab.tangential_id, tab.params, pair, H, nrm, delta, vel, wn, DT, np.zeros((n, 3)),
+            np.zeros((n, 3)))
+    kw = dict(spins=spins, torques=torques)
+    contact_forces_serial(*args, **kw)              # compile / load and warm up
+    benchmark.pedantic(contact_forces_serial, args=args, kwargs=kw, rounds=ROUNDS, iterations=1, warmup_rounds=2)
+    benchmark.extra_info["updates_per_s"] = N_CONTACTS / benchmark.stats.stats.min
+    benchmark.extra_info["bytes_per_contact"] = 8 * tab.history_size
