@@ -1,5 +1,6 @@
 """Horak's spinning impact: a steel sphere spinning about the vertical at w0, dropped at vn on a steel plane
-(no tangential velocity), with the exact twist law (deresiewicz) and with no twist law; and an oblique impact
+(no tangential velocity), with the exact twist law (deresiewicz), LAMMPS's engine models (marshall; sds with the Hertz values at the
+largest force) and with no twist law; and an oblique impact
 with spin about the normal.
 
 The spin lost in the impact, 1 - w_r / w0, against Psi = w0 t_c / beta_1, the twist over the contact time in
@@ -46,6 +47,11 @@ def main():
         Nmax, amax = base.max_force, math.sqrt(sc.pair.R_star * base.max_overlap)
         beta1 = MU * Nmax * amax / (16 / 3 * Gc * amax**3)
         tc = base.contact_time
+        # the engine models: marshall as LAMMPS derives it; sds with the Hertz values at the largest force
+        # (Lubkin's no-slip stiffness and full-slip moment per unit N), no dashpot
+        engines = {"marshall": sc.replace(twist="marshall"),
+                   "sds (Hertz values at F_max)": sc.replace(twist="sds", k_twist=16 / 3 * Gc * amax**3,
+                                                             gamma_twist=0.0, mu_twist=3 * math.pi / 16 * MU * amax)}
         rows = []
         for Psi in np.geomspace(0.01, 1000.0, 21):
             w0 = Psi * beta1 / tc
@@ -53,13 +59,17 @@ def main():
             r0 = impact3d(sc.replace(twist="none"), vn, (0.0, 0.0), (0.0, 0.0, w0))
             rows.append(dict(Psi=Psi, w0=w0, lost=1 - r.spin_r[2] / w0, lost_none=1 - r0.spin_r[2] / w0,
                              lost_full_slip=dw_slip / w0, energy_error=r.energy.error / r.energy.initial,
-                             twist_work=r.energy.friction))
+                             twist_work=r.energy.friction,
+                             **{f"lost {k}": 1 - impact3d(e, vn, (0.0, 0.0), (0.0, 0.0, w0)).spin_r[2] / w0
+                                for k, e in engines.items()}))
         out["runs"].append({"vn": vn, "int_N_a_dt": Na, "full_slip_spin_loss": dw_slip, "beta_1_at_max_force": beta1,
                             "contact_time": tc, "rows": rows})
         P = np.array([x["Psi"] for x in rows])
         axs[0].loglog(P, [x["lost"] for x in rows], mark, label=f"deresiewicz, vn = {vn} m/s")
         axs[0].loglog(P, [x["lost_full_slip"] for x in rows], "-", lw=0.8,
                       label=f"full slip throughout, vn = {vn} m/s")
+        for k, st in zip(engines, ("x", "+")):
+            axs[0].loglog(P, [x[f"lost {k}"] for x in rows], st, ms=5, label=f"{k}, vn = {vn} m/s")
     axs[0].set_xlabel("Psi = w0 t_c / beta_1 (beta_1 at the largest force)")
     axs[0].set_ylabel("1 - w_r / w0 (spin about the normal lost)")
     axs[0].set_title("Horak: a spinning sphere dropped on a plane (no twist law: no loss)")

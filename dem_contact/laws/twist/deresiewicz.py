@@ -37,10 +37,13 @@ so the row obeys Masing's rule M = M* - 2 M_L((beta* - beta) / 2) (Deresiewicz 1
 reversal its extension, with the slip annuli nested from the edge inwards as the exact solution has
 them. A varying normal force changes the limit profile mu L(s) under the springs: springs entering the
 contact start unstrained, springs leaving it are released, springs above a lowered limit slide. This is
-the spring-by-spring memory of the MDR tangential laws (``laws.tangential.mdr``), exact for the
-histories that the exact 3D solution builds from nested stick and slip annuli (loading, unloading,
-reversal, an increasing normal force); the 3D Coulomb inequality between the annuli is what the
-boundary-element reference with twist measures for general histories.
+the spring-by-spring memory of the MDR tangential laws (``laws.tangential.mdr``). It is exact where the
+3D solution is a stick disc inside nested annuli each at +-mu p or frozen (loading, unloading and
+reversal at constant N, a normal force raised at fixed twist: the cases checked in the tests); for
+general histories of N the springs keep |h| <= mu L everywhere, which implies the pointwise 3D Coulomb
+inequality only for such nested states: that is the approximation, to be measured against the
+boundary-element reference with twist. The springs never create energy (each is elastic-perfectly
+plastic; a spring leaving the contact takes its energy with it).
 
 What is not ring-local: the traction at a ring r depends on the springs s >= r (Lubkin's stick traction
 carries the 1/sqrt edge of every punch s > c); cells over r with memory per ring would not be exact.
