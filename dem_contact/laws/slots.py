@@ -37,6 +37,7 @@ P_MU_TWIST            twist slider: mu_twist [m] (twist sds; the limit is mu_twi
 P_K_ROLL              rolling spring k_roll [N/m] (rolling sds)
 P_GAMMA_ROLL          rolling dashpot gamma_roll [N s/m] (rolling sds)
 P_MU_ROLL             rolling slider mu_roll [-] (rolling sds; the limit of the pseudo-force is mu_roll N)
+P_G_TWIST             shear modulus of the twist G_c [Pa], 1/G_c = 1/G1 + 1/G2 (twist deresiewicz)
 ====================  =====================================================================
 
 History row (one per contact), updated in place: a header, then the normal slots, then the
@@ -72,7 +73,8 @@ P_MU_TWIST = 38
 P_K_ROLL = 39
 P_GAMMA_ROLL = 40
 P_MU_ROLL = 41
-N_PARAMS = 42
+P_G_TWIST = 42
+N_PARAMS = 43
 
 # history row: header
 H_N = 0        # normal force after the last step [N] (clamped at >= 0)

@@ -53,6 +53,7 @@ from .rolling import none as rolling_none
 from .rolling import sds as rolling_sds
 from .tangential import ddm, md, md_rescale, mdr, mdr_adaptive, mindlin_incremental, mindlin_rescale, mindlin_total
 from .tangential import linear as linear_tangential
+from .twist import deresiewicz
 from .twist import marshall as twist_marshall
 from .twist import none as twist_none
 from .twist import sds as twist_sds
@@ -62,7 +63,7 @@ FAMILIES = MappingProxyType({
     "normal": (hertz, thornton, hertz_damped, linear_normal),
     "tangential": (md, md_rescale, mindlin_total, mindlin_incremental, mindlin_rescale, linear_tangential, ddm, mdr,
                    mdr_adaptive),
-    "twist": (twist_none, twist_marshall, twist_sds),
+    "twist": (twist_none, twist_marshall, twist_sds, deresiewicz),
     "rolling": (rolling_none, rolling_sds),
 })
 
