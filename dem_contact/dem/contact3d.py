@@ -53,10 +53,9 @@ from numba.extending import intrinsic, overload
 
 from ..errors import InputError, NumericalError
 from ..laws import table
-from ..laws.compose import kinematics
+from ..laws.compose import kinematics, torque_laws
 from ..laws.dispatch import (NORMAL_IDS, NORMAL_NAMES, ROLLING_IDS, TANGENTIAL_IDS, TANGENTIAL_NAMES, TWIST_IDS,
-                             normal_vector, rolling_base, rolling_torque, store_normal, tangential_base, twist_base,
-                             twist_torque)
+                             normal_vector, rolling_base, store_normal, tangential_base, twist_base)
 from ..laws.dispatch3d import contact_leaf
 from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_NSPRING, P_ROLLING_LAW, P_RSTAR, P_TANGENTIAL_LAW, P_TWIST_LAW
 from ..laws.vector import JIT, V_A, V_N, W_WORK, W_X, renamed
@@ -336,16 +335,6 @@ def _prefetch_row(H, r):
 # prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
 # contact). One source, compiled serial and parallel (prange is range in a serial build).
 
-@njit(**JIT)
-def _torque_laws(nid, qid, rid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
-    """The torques on body 1 of the twist law ``qid`` and the rolling law ``rid`` (their states after the
-    normal law's), not inlined: the batch loops call it only for rows that name such laws, and keep their
-    body as small as without them."""
-    qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), N, a, nx, ny, nz, wx, wy, wz, dt)
-    mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), N, a, nx, ny, nz, wx, wy, wz, dt)
-    return qx, qy, qz, mx, my, mz
-
-
 def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, spins, wn, dt, forces, tforces,
           torques):
     """Template of the batch loop of one tangential law (the global ``tangential``: the law's 3D kernel; the
@@ -354,7 +343,7 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
     (no relative spin; the torques of the twist and rolling laws not kept). The body is the step of
     ``laws.compose`` written out: one level of inlined functions that take the arrays less, which the
     default law's loop repays (about 10%); the twist and rolling laws are one call out of line
-    (``_torque_laws``), made only for rows that name such laws, so that the body of a loop over rows
+    (``laws.compose.torque_laws``), made only for rows that name such laws, so that the body of a loop over rows
     without them stays as small (and as fast) as the step without torques."""
     n = overlaps.shape[0]
     spun = spins.shape[0] > 0
@@ -382,7 +371,7 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
             wx = spins[k, 0] if spun else 0.0
             wy = spins[k, 1] if spun else 0.0
             wz = spins[k, 2] if spun else 0.0
-            qx, qy, qz, mx, my, mz = _torque_laws(nid, qid, rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
+            qx, qy, qz, mx, my, mz = torque_laws(nid, qid, rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
         tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
         store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
         H[c, V_N] = Np

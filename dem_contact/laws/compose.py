@@ -31,6 +31,16 @@ def kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
     return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
 
 
+@njit(**JIT)
+def torque_laws(nid, qid, rid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """The torques on body 1 of the twist law ``qid`` and the rolling law ``rid`` (their states after the
+    normal law's), not inlined: one compiled function that every step calls, only for rows that name such
+    laws, so that neither the leaves nor the batch loops compile the twist and rolling laws into their body."""
+    qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), N, a, nx, ny, nz, wx, wy, wz, dt)
+    mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), N, a, nx, ny, nz, wx, wy, wz, dt)
+    return qx, qy, qz, mx, my, mz
+
+
 def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn, dt):
     """Template of the step of one tangential law (the global ``tangential``, bound per law by ``renamed``).
     (wx, wy, wz): relative spin w1 - w2 of the bodies [rad/s], for the twist and rolling laws (recorded in
@@ -43,8 +53,9 @@ def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn,
     b = tangential_base(nid, qid, rid)
     Np = N if N > 0.0 else 0.0
     # the twist and rolling laws before the tangential one (which writes the history row last)
-    qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), Np, a, nx, ny, nz, wx, wy, wz, dt)
-    mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), Np, a, nx, ny, nz, wx, wy, wz, dt)
+    qx = qy = qz = mx = my = mz = 0.0
+    if qid > 0 or rid > 0:
+        qx, qy, qz, mx, my, mz = torque_laws(nid, qid, rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
     tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
     store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
     H[c, V_N] = Np
