@@ -296,16 +296,24 @@ def test_a_wall_facing_away_from_the_atoms_is_refused():
     LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, 1.0))], v_max=1.0).run(2)
 
 
-def test_an_atom_started_deep_in_a_wall_is_reported():
-    """A sphere placed 80% of its radius into the floor (before: nothing said) overlaps it far more than an
-    impact at v_max presses: a warning before the run states the count and how deep; none for spheres
-    clear of the walls."""
+def test_an_atom_started_deep_in_a_wall_or_a_sphere_is_reported():
+    """A sphere placed 80% of its radius into the floor, or into another sphere (before: nothing said), overlaps
+    it far more than an impact at v_max presses: a warning at the set-up of the first run states the count and
+    how deep, however the run is started; none for spheres clear of the walls and of each other."""
     lmp = _box(n=1)
     floor = PlaneWall((0.0, 0.0, -0.2e-3), (0.0, 0.0, 1.0))        # the sphere (r = 1 mm) at z = 0
     bridge = LammpsContacts(lmp, _table(), [floor], v_max=1.0)
-    with pytest.warns(RuntimeWarning, match=r"^1 atoms on this rank overlap a wall by more than a head-on impact"):
+    with pytest.warns(RuntimeWarning, match=r"^1 contacts on this rank start with an overlap deeper than a head-on"):
         bridge.run(1)
     bridge.detach()
+    pair = _box(n=1)
+    pair.command("create_atoms 1 single 0 0 0.0012")                # 80% of the radius into the first
+    pair.command(f"set type 1 diameter {2e-3!r}")
+    pair.command(f"set type 1 density {GLASS.rho!r}")
+    LammpsContacts(pair, _table(), v_max=1.0)
+    with pytest.warns(RuntimeWarning, match=r"^1 contacts on this rank start with an overlap deeper than a head-on "
+                                            r"impact at v_max = 1 m/s would press them \(up to [0-9.]+ times"):
+        pair.command("run 1")
     import warnings
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)

@@ -51,6 +51,7 @@ import weakref
 import numpy as np
 
 from ..errors import InputError, NumericalError
+from ..laws.slots import P_MSTAR, P_RSTAR
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
@@ -322,6 +323,69 @@ def _check_pair_style(lmp):
                          f"twice; use `pair_style none` (or `zero`) with the bridge")
 
 
+def _run_steps(cmd) -> int | None:
+    """N of a LAMMPS command ``run N`` (with nothing after N), else None."""
+    words = str(cmd).split("#")[0].split()
+    if len(words) == 2 and words[0] == "run":
+        try:
+            return int(words[1])
+        except ValueError:
+            return None
+    return None
+
+
+#: the sizes the laws' rows are checked at: the first body's radius times this, the second's times the next
+_SIZE_PROBE = (1.7, 0.6)
+
+
+def _size_free(table) -> tuple:
+    """(whether every row of the table takes atoms of any radius, why not): the parameter row of the pair of
+    types built for other radii (a Scene with the first body 1.7 times larger and the second 0.6 times) must
+    be the row with that pair's R* and m* (``kernels._contact_row``: the slots of ``kernels.SIZE_SLOTS``
+    scaled by powers of R*, the rest unchanged), and its contact time must scale as Hertz's
+    (``kernels.size_factor``)."""
+    from ..materials import Sphere
+
+    for row, sc in enumerate(table.scenes):
+        name = f"{sc.normal} + {sc.tangential}"
+        s2 = sc.body2
+        one = Sphere(sc.sphere.radius * _SIZE_PROBE[0], sc.sphere.material)
+        two = Sphere(s2.radius * _SIZE_PROBE[1], s2.material) if isinstance(s2, Sphere) else s2
+        try:
+            other = sc.replace(sphere=one, body2=two)
+        except InputError as e:
+            return False, f"{name} for other radii: {e}"
+        p, q = sc.params, other.params
+        expect = p.copy()
+        ratio = other.pair.R_star / sc.pair.R_star
+        expect[P_RSTAR] = other.pair.R_star
+        expect[P_MSTAR] = other.pair.m_star
+        for slot, power in K.SIZE_SLOTS:
+            expect[slot] = p[slot] * ratio**power
+        if not np.allclose(q, expect, rtol=1e-12, atol=0.0):
+            return False, f"the parameters of {name} depend on the radii otherwise than through R* and m*"
+        scale = (other.pair.m_star**2 / other.pair.R_star / (sc.pair.m_star**2 / sc.pair.R_star)) ** 0.2
+        v = 1.0
+        if not math.isclose(other.contact_time(v) / sc.contact_time(v), scale, rel_tol=1e-9):
+            return False, f"the contact time of {name} does not scale with the sizes as Hertz's"
+    return True, ""
+
+
+def _row_info(table, v_max) -> np.ndarray:
+    """float64[n_rows, kernels.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
+    its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), and the overlap of a
+    head-on impact at v_max (the normal law's own)."""
+    info = np.zeros((len(table.scenes), K.N_ROWINFO))
+    for row, sc in enumerate(table.scenes):
+        tc = sc.contact_time(v_max)
+        info[row, K.RI_RSTAR] = sc.pair.R_star
+        info[row, K.RI_Q] = sc.pair.m_star**2 / sc.pair.R_star
+        info[row, K.RI_TC] = tc
+        info[row, K.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
+        info[row, K.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
+    return info
+
+
 class LammpsContacts:
     """The contact forces of a PairTable's laws, added to a LAMMPS instance every step.
 
@@ -345,7 +409,7 @@ class LammpsContacts:
 
     def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
                  skin: float | None = None, ghost_cutoff: float | None = None, frame_spin: bool = True,
-                 check_every: int = 100, huge_pages: bool = True, prefix: str = "dc"):
+                 check_every: int = 100, huge_pages: bool = True, prefix: str = "dc", r_max: float | None = None):
         if not isinstance(table, PairTable):
             raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
         other = _ATTACHED.get(lmp)
@@ -383,8 +447,17 @@ class LammpsContacts:
                              f"type k must be spheres[k - 1] of the table")
         spheres = [table.scenes[table.sphere_row[k, k]].sphere for k in range(nt)]
         self.radii = np.array([s.radius for s in spheres])
-        self.masses = np.array([s.mass for s in spheres])
-        self.rmax = float(self.radii.max())
+        self.densities = np.array([s.material.rho for s in spheres])
+        # atoms of any radius where the laws' rows depend on the sizes through R* and m* only (else each type's)
+        self.size_free, self._size_why = _size_free(table)
+        if r_max is not None and not (isinstance(r_max, (int, float)) and math.isfinite(r_max)
+                                      and r_max >= self.radii.max()):
+            raise InputError(f"r_max (largest atom radius, m) must be finite and >= the largest radius of the "
+                             f"table's Spheres ({self.radii.max():.6g} m), got {r_max!r}")
+        if r_max is not None and r_max > self.radii.max() and not self.size_free:
+            raise InputError(f"r_max = {r_max!r} m: atoms larger than their type's Sphere are not possible with "
+                             f"these laws ({self._size_why})")
+        self.rmax = float(self.radii.max() if r_max is None else r_max)
         self.walls, self.wall_mat = pack(walls, table.wall_row.shape[1])
         self.skin = 0.3 * self.rmax if skin is None else float(skin)
         if not (math.isfinite(self.skin) and self.skin > 0):
@@ -394,8 +467,9 @@ class LammpsContacts:
         if not self.ghost_cutoff >= need:
             raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
-        # the largest overlap of a head-on impact at v_max, per pair row (the normal law's own)
-        self._deepest = np.array([sc.max_contact_radius(self.v_max) ** 2 / sc.pair.R_star for sc in table.scenes])
+        # per pair row: R*, m*^2 / R*, the contact time at v_max and its exponent of the speed, the largest overlap
+        # of a head-on impact at v_max (the normal law's own): what the checks scale to each contact's sizes
+        self._rowinfo = _row_info(table, self.v_max)
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
         # per-atom arrays: d2_<prefix> the keys and the statistics (read at every step: kept narrow),
@@ -423,8 +497,11 @@ class LammpsContacts:
             lmp.command(cmd)
         _stat_computes(lmp, p, p, self.col_stat)
         for cmd in (
-            f"variable {p}_need equal c_{p}_max[{K.ST_NEED + 1}]",
-            f"fix {p}_halt all halt {self.check_every} v_{p}_need > {self.slots} error soft message no",
+            # a check of the callback that fails sets this variable on every rank, and LAMMPS stops the run with
+            # an error at the end of that step, whichever way the run was started (the error, said on each rank,
+            # is the exception of the LAMMPS instance's command: ``_wrap_commands``)
+            f"variable {p}_stop internal 0",
+            f"fix {p}_halt all halt 1 v_{p}_stop > 0 error hard message no",
             # the callback adds the contact forces to LAMMPS's own force array, for the atoms with contacts
             # only; fix external's array, which it would add for every atom at every step, is kept zero and
             # applied never (its period is the largest it takes)
@@ -435,7 +512,6 @@ class LammpsContacts:
         self._set_callback(f"{p}_ext")
         _ATTACHED[lmp] = self
         self.attached = True
-        self._ran = False              # a run was made since attaching
         self._last_step = None
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
         self._cand_rows = None         # history slots found for each candidate (-1: none yet)
@@ -449,7 +525,13 @@ class LammpsContacts:
         self._evals = 0                # calls of the callback (the mark of forces saved at a step)
         self._saved = None             # (mark, natoms) of the forces saved last
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
-        self._error = None             # an exception raised in the callback during the run under way
+        self._error = None             # the exception that stopped the last run (raised by run() and the commands)
+        self._local_error = None       # an exception of this rank's callback, not yet told to the others
+        self._onset = np.zeros(K.N_ONSET)      # contacts that began faster than v_max (kernels.ON_...)
+        self._onset_told = 0.0         # of them, those a warning was given for
+        self._onset[K.ON_STEPS] = math.inf
+        self._setups = 0               # set-up calls since attaching (the first run's checks the overlaps)
+        self._original = {}            # the LAMMPS instance's command methods (``_wrap_commands``)
         self._setup_pending = False    # run() started a run: its first call is the set-up
         self._nlocal_ref = -1          # local atoms when the Verlet lists were built
         self._near = None              # local atoms that may change rank before the next rebuild
@@ -462,6 +544,7 @@ class LammpsContacts:
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
+        self._wrap_commands()
 
     def detach(self):
         """Remove the bridge from its LAMMPS instance (its fixes, computes and variable, and the contact
@@ -469,7 +552,8 @@ class LammpsContacts:
         if not self.attached:
             return
         p = self.prefix
-        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_need delete", f"uncompute {p}_max",
+        self._unwrap_commands()
+        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_stop delete", f"uncompute {p}_max",
                     f"uncompute {p}_sum", f"uncompute {p}_stat", f"unfix {p}_hist", f"unfix {p}_side",
                     f"unfix {p}_data"):
             self.lmp.command(cmd)
@@ -480,51 +564,49 @@ class LammpsContacts:
 
     # -- set-up -------------------------------------------------------------------------------------
     def check(self):
-        """The checks that need the atoms and the time step (collective; ``run`` calls it before every run)."""
+        """The checks that need the atoms (collective): made at the set-up of every run, however it is started."""
         lmp = self.lmp
         nlocal = lmp.extract_setting("nlocal")
-        typ = lmp.numpy.extract_atom("type")[:nlocal]
-        rad = lmp.numpy.extract_atom("radius")[:nlocal]
-        mass = lmp.numpy.extract_atom("rmass")[:nlocal]
-        ids = lmp.numpy.extract_atom("id")[:nlocal]
+        ex = lmp.numpy.extract_atom
+        typ = ex("type")[:nlocal]
+        rad = ex("radius")[:nlocal]
+        mass = ex("rmass")[:nlocal]
+        ids = ex("id")[:nlocal]
         if nlocal:
-            r_err = np.abs(rad / self.radii[typ - 1] - 1.0)
-            m_err = np.abs(mass / self.masses[typ - 1] - 1.0)
+            r_err = np.zeros(nlocal) if self.size_free else np.abs(rad / self.radii[typ - 1] - 1.0)
+            m_err = np.abs(mass / (4.0 / 3.0 * math.pi * rad**3 * self.densities[typ - 1]) - 1.0)
+            big = np.maximum(rad / self.rmax - 1.0, 0.0)
         else:
-            r_err = m_err = np.zeros(0)
+            r_err = m_err = big = np.zeros(0)
         last_id = self._side()[:nlocal, self.col_saved + K.SF_ID]
         renumbered = ((last_id != 0.0) & (last_id != ids)).astype(float)
-        worst = [float(a.max()) if nlocal else 0.0 for a in (r_err, m_err, renumbered)]
-        # (which check fails anywhere: an MPI reduction of three flags; the values of another rank are not
+        worst = [float(a.max()) if nlocal else 0.0 for a in (r_err, m_err, renumbered, big)]
+        tols = (SIZE_TOL, SIZE_TOL, 0.0, SIZE_TOL)
+        # (which check fails anywhere: an MPI reduction of four flags; the values of another rank are not
         # needed to say what is wrong; several ranks without MPICH were refused at attach)
-        told = [max_rank(lmp, int(w > tol)) for w, tol in zip(worst, (SIZE_TOL, SIZE_TOL, 0.0))]
-        worst = [w if w > tol else (math.inf if t else 0.0)
-                 for w, t, tol in zip(worst, told, (SIZE_TOL, SIZE_TOL, 0.0))]
+        told = [max_rank(lmp, int(w > tol)) for w, tol in zip(worst, tols)]
+        worst = [w if w > tol else (math.inf if t else 0.0) for w, t, tol in zip(worst, told, tols)]
         if worst[2] > 0.0:
             raise InputError("atom ids changed since the last run (reset_atoms id?): the contact histories are "
                              "kept by the partner's atom id, so they would be lost or given to other contacts; "
                              "renumber the atoms before attaching the bridge, or not at all")
         if worst[0] > SIZE_TOL:
             raise InputError(f"an atom's radius differs from its type's Sphere radius by {_by(worst[0])} "
-                             f"(relative): set the diameter of type k to 2 spheres[k - 1].radius")
+                             f"(relative), and the laws cannot take other radii ({self._size_why}): set the "
+                             f"diameter of type k to 2 spheres[k - 1].radius")
+        if worst[3] > SIZE_TOL:
+            raise InputError(f"an atom's radius exceeds r_max = {self.rmax:.6g} m by {_by(worst[3])} (relative): "
+                             f"the contact search and the ghost cutoff are sized by r_max; attach the bridge "
+                             f"with r_max >= the largest radius")
         if worst[1] > SIZE_TOL:
-            raise InputError(f"an atom's mass differs from its type's Sphere mass by {_by(worst[1])} "
-                             f"(relative): set the density of type k to that of spheres[k - 1]")
-        behind = K.behind_walls(nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, self.walls)
+            raise InputError(f"an atom's mass differs from that of a sphere of its radius and its type's material "
+                             f"by {_by(worst[1])} (relative): set the density of type k to that of spheres[k - 1]")
+        behind = K.behind_walls(nlocal, ex("x")[:nlocal], rad, self.walls)
         for w in range(len(self.walls)):
             if max_rank(lmp, int(behind[w])):
                 raise InputError(f"walls[{w}]: atoms have their centre behind it (on this rank {int(behind[w])}): "
                                  f"its normal must point into the domain, towards the atoms, and no atom may "
                                  f"start through it")
-        # (at the first run only: at a later one a contact of the last run may be as deep as an impact at v_max)
-        count, worst = (0, 0.0) if self._ran else K.deep_wall_overlaps(
-            nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, typ, self.walls, self.wall_mat, self.table.wall_row,
-            self._deepest)
-        if count:
-            warnings.warn(f"{count} atoms on this rank overlap a wall by more than a head-on impact at v_max = "
-                          f"{self.v_max:g} m/s would press them (up to {worst:.3g} times that overlap): their "
-                          f"first contact force releases the energy of the overlap; place them apart from the "
-                          f"walls, or give the v_max that reaches it", RuntimeWarning, stacklevel=3)
         g = lmp.extract_global
         for d, lo, hi, periodic in zip("xyz", g("boxlo"), g("boxhi"), g("periodicity")):
             # (two periodic images of one partner are told apart by their separations, a period apart: a
@@ -534,14 +616,31 @@ class LammpsContacts:
                 raise InputError(f"the periodic box length along {d} ({hi - lo:.6g} m) must exceed the largest "
                                  f"diameter ({2.0 * self.rmax:.6g} m; a sphere would touch its own image) and twice "
                                  f"the skin ({2.0 * self.skin:.6g} m)")
-        dt = lmp.extract_global("dt")
-        tcs = [sc.contact_time(self.v_max) for sc in self.table.scenes]
-        k = int(np.argmin(tcs))
-        limit = tcs[k] / MIN_STEPS_PER_CONTACT
-        if not dt <= limit:
-            raise InputError(f"timestep {dt:g} s cannot resolve the stiffest contact "
-                             f"({self._row_name(k)}: contact time {tcs[k]:.4g} s at v_max = {self.v_max:g} "
-                             f"m/s): it must be <= t_c / {MIN_STEPS_PER_CONTACT:g} = {limit:.4g} s")
+        _check_pair_style(lmp)
+        if lmp.extract_setting("ghost_velocity") != 1:
+            raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
+        settings = tuple(lmp.extract_setting(k) for k in ("neigh_every", "neigh_delay", "neigh_dist_check"))
+        if settings != (1, 0, 1):
+            raise InputError(f"LAMMPS must check its neighbour lists at every step: keep `neigh_modify delay 0 "
+                             f"every 1 check yes` (now every {settings[0]}, delay {settings[1]}, check "
+                             f"{'yes' if settings[2] else 'no'})")
+
+    def _check_time_step(self, cand):
+        """The time step against the stiffest contact present (the candidates of the Verlet lists, at every
+        rebuild): dt <= t_c / MIN_STEPS_PER_CONTACT, t_c the contact time at v_max of the pair with its sizes."""
+        t = self.table
+        ex = self.lmp.numpy.extract_atom
+        nall = self.lmp.extract_setting("nall")
+        tc, row, i, j = K.stiffest_candidate(*cand, ex("radius", nelem=nall), ex("rmass", nelem=nall),
+                                             ex("type", nelem=nall), self.wall_mat, t.sphere_row, t.wall_row,
+                                             self._rowinfo)
+        limit = tc / MIN_STEPS_PER_CONTACT
+        if not self.dt <= limit:
+            radius = ex("radius", nelem=nall)
+            what = (f"radii {radius[i]:.4g} and {radius[j]:.4g} m" if j >= 0 else f"radius {radius[i]:.4g} m")
+            raise InputError(f"timestep {self.dt:g} s cannot resolve the stiffest contact present ({self._row_name(row)}, "
+                             f"{what}: contact time {tc:.4g} s at v_max = {self.v_max:g} m/s): it must be <= "
+                             f"t_c / {MIN_STEPS_PER_CONTACT:g} = {limit:.4g} s")
 
     def _row_name(self, row):
         nt = self.table.sphere_row.shape[0]
@@ -556,17 +655,25 @@ class LammpsContacts:
 
     # -- running -------------------------------------------------------------------------------------
     def run(self, nsteps: int):
-        """``run nsteps`` in LAMMPS after the checks; raises InputError (on every rank) if an atom needed
-        more history rows than ``slots``, NumericalError if a contact force was not finite. An exception
-        raised while computing the contact forces stops the run at the next check (every ``check_every``
-        steps; no contact forces are applied from then on) and is raised here on its rank (NumericalError
-        on the others: told through the atoms' statistics, and through an MPI reduction for a rank that
-        owns no atom, whose run goes on to its end; the reduction needs MPICH, which the extra installs).
-        After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a later run starts
-        afresh."""
-        # (at every run: radii, masses and the time step may have been changed between runs)
+        """``run nsteps`` in LAMMPS, the same as ``lmp.command(f"run {nsteps}")`` once the bridge is attached.
+
+        Checks at every run, however it is started (this, ``lmp.command("run N")``, a ``run`` of an input file
+        read by ``lmp.file``): the set-up of the run checks the atoms (radii, masses, ids, walls; the time step
+        against the stiffest contact present, again at every rebuild of the lists); every ``check_every``
+        steps, and at the last step of a run whose end is known (``run N`` as one command), the ranks check
+        together the history slots and the contact forces. A check that fails stops the run with a LAMMPS
+        error at the end of that step: the command raises the check's exception (InputError, NumericalError;
+        on the other ranks one that says it failed elsewhere; the reduction needs MPICH, which the extra
+        installs). A ``run N`` command is checked before it too (the ghost cutoff, the order of the fixes),
+        and the contact forces of its last step are saved for the next run's set-up, so that runs of n and m
+        steps give one run of n + m steps."""
         if not self.attached:
             raise InputError("this bridge was detached: attach a new one (LammpsContacts) to run with the laws")
+        self.lmp.command(f"run {int(nsteps)}")
+
+    def _pre_run(self, nsteps):
+        """Before a ``run nsteps`` command: the checks that need LAMMPS commands (the ghost cutoff, the order of
+        the fixes), LAMMPS's settings the bridge's lists follow set again, and the run's last step noted."""
         # what LAMMPS warned of since the last run (read_restart, ...), and the ghost cutoff it uses now
         cutoff, said = _comm_cutoff(self.lmp)
         _pass_on_warnings(said)
@@ -578,33 +685,19 @@ class LammpsContacts:
                              f"{self.ghost_cutoff!r}` or larger")
         if (self.lmp.extract_global("pair_style") or "none") == "none":
             # LAMMPS sorts no atoms without a pair cutoff anyway, and would warn at every run that it does not
-            self.lmp.command("atom_modify sort 0 0.0")
+            self._original["command"](self.lmp, "atom_modify sort 0 0.0")
         _check_pair_style(self.lmp)
-        self.check()
         moving = self._check_fixes()
-        if self.lmp.extract_setting("ghost_velocity") != 1:
-            raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
         # the lists follow LAMMPS's rebuilds: its skin must be the bridge's and it must rebuild (LAMMPS's skin
         # and `once` cannot be read back: they are set again before every run)
-        self.lmp.command(f"neighbor {self.skin!r} bin")
-        self.lmp.command("neigh_modify once no")
-        settings = tuple(self.lmp.extract_setting(k) for k in ("neigh_every", "neigh_delay", "neigh_dist_check"))
-        if settings != (1, 0, 1):
-            raise InputError(f"LAMMPS must check its neighbour lists at every step: keep `neigh_modify delay 0 "
-                             f"every 1 check yes` (now every {settings[0]}, delay {settings[1]}, check "
-                             f"{'yes' if settings[2] else 'no'})")
-        nlocal = self.lmp.extract_setting("nlocal")
-        self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
+        self._original["command"](self.lmp, f"neighbor {self.skin!r} bin")
+        self._original["command"](self.lmp, "neigh_modify once no")
         self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
-        self._error = None
         self._setup_pending = True
         self._sync_all = moving
-        try:
-            self.lmp.command(f"run {int(nsteps)}")
-        finally:
-            self._end_step = None
-            self._ran = True
-            _pass_on_warnings(lammps_warnings(self.lmp))
+
+    def _after_run(self):
+        """After a ``run N`` command: the state the saved forces belong to, and the atom ids."""
         if self._saved is not None and self._saved[0] == self._evals:
             # the state the saved forces belong to is that at the end of the step: the velocities and
             # spins after the step's final integration (the callback saw those of its half-step)
@@ -613,34 +706,119 @@ class LammpsContacts:
             saved = self._side()[:nlocal, self.col_saved:self.col_saved + K.N_SAVED]
             saved[:, K.SF_V:K.SF_V + 3] = ex("v")[:nlocal]
             saved[:, K.SF_W:K.SF_W + 3] = ex("omega")[:nlocal]
+
+    def _wrap_commands(self):
+        """The LAMMPS instance's command methods (command, file, commands_list, commands_string) replaced on the
+        instance by ones that check: a ``run N`` command as ``_pre_run``, and after any command in which a run
+        was made, its last steps (``_collective_check``, for a run whose end was not known) and the exception
+        of a check that stopped it (LAMMPS's error names the bridge's fix halt; the check's exception is raised
+        instead). LAMMPS's warnings are passed on."""
+        lmp = self.lmp
+        self._original = {}
+        for name in ("command", "file", "commands_list", "commands_string"):
+            original = getattr(type(lmp), name)
+            self._original[name] = original
+
+            def wrapped(*args, _original=original, _name=name, **kwargs):
+                n = _run_steps(args[0]) if _name == "command" and args else None
+                evals = self._evals
+                try:
+                    if n is not None:
+                        self._pre_run(n)
+                    try:
+                        out = _original(lmp, *args, **kwargs)
+                    except Exception as e:
+                        if self._error is not None and f"{self.prefix}_halt" in str(e):
+                            raise self._error from None
+                        raise
+                    if self._evals != evals:
+                        if self._error is None and self._last_step != self._end_step:
+                            self._collective_check()
+                        if self._error is not None:
+                            raise self._error
+                        if n is not None:
+                            self._after_run()
+                finally:
+                    self._end_step = None
+                    self._setup_pending = False
+                    if self._evals != evals:
+                        nlocal = lmp.extract_setting("nlocal")
+                        self._side()[:nlocal, self.col_saved + K.SF_ID] = lmp.numpy.extract_atom("id")[:nlocal]
+                        _pass_on_warnings(lammps_warnings(lmp))
+                return out
+
+            setattr(lmp, name, wrapped)
+
+    def _unwrap_commands(self):
+        for name in self._original:
+            self.lmp.__dict__.pop(name, None)
+
+    def _fail(self, error):
+        """Stop the run under way at the end of this step with ``error`` (every rank calls it: the variable
+        that the bridge's fix halt reads is set on each)."""
+        self._error = error
+        self.lmp.set_internal_variable(f"{self.prefix}_stop", 1.0)
+        # (told: the next run starts afresh)
+        self._local_error = None
+        self._onset[K.ON_STEPS] = math.inf
         nlocal = self.lmp.extract_setting("nlocal")
-        self._side()[:nlocal, self.col_saved + K.SF_ID] = self.lmp.numpy.extract_atom("id")[:nlocal]
-        error, self._error = self._error, None
-        # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
-        kind = max_rank(self.lmp, 0 if error is None else 2 if isinstance(error, StaleHistoryError) else 1)
-        elsewhere = kind > 0            # (several ranks without MPICH were refused at attach)
-        need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
-        if error is not None or elsewhere or not need <= self.slots:
-            # the checks stopped the run through LAMMPS's timer timeout (fix halt ... error soft), which
-            # would stop every later run at once
-            self.lmp.command("timer timeout off")
-        if error is not None:
-            raise error
-        if kind == 2:
-            raise StaleHistoryError("a contact on another rank would continue from an out-of-date copy of its "
-                                    "history (said there): write restart files between runs (bridge.run(n), "
-                                    "then write_restart), or read the file on the processor grid it was written on")
-        if elsewhere:
-            raise NumericalError("the callback that computes the contact forces raised an error on another "
-                                 "rank (raised there): the run is not valid")
-        if not math.isfinite(need):
-            raise NumericalError("the contact forces failed during the run: a contact law returned a non-finite "
-                                 "force or torque (a contact outgrew the springs of the mdr law: raise v_max; or the "
-                                 "time step is too long for the contact), or the callback raised an error on "
-                                 "another rank: the run is not valid")
-        if need > self.slots:
-            raise InputError(f"too few history slots: an atom had {int(need)} contacts at once but slots = "
-                             f"{self.slots}; attach with slots >= {int(need)} (the run stopped there)")
+        self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
+
+    def _begin_run(self):
+        """At the set-up of a run, however started (collective): the checks of the atoms, the restart file's
+        histories, LAMMPS's warnings."""
+        self._local_error = None
+        self.lmp.set_internal_variable(f"{self.prefix}_stop", 0.0)
+        try:
+            said = _warnings_in(_new_log_text(self.lmp))
+            _pass_on_warnings(said)
+            lost = next((w for w in said if "Unused restart file peratom fix info" in w), None) if said else None
+            if max_rank(self.lmp, int(lost is not None)):
+                raise InputError(
+                    "the restart file read holds per-atom data of fixes that no fix of that id took (LAMMPS: "
+                    f"{lost or 'said on rank 0'}): if they are a bridge's contact histories (fixes <prefix>_data, "
+                    f"<prefix>_side, <prefix>_hist), attach the bridge with the prefix it was written with (here "
+                    f"prefix={self.prefix!r}), or every contact would start again with no history")
+            self.check()
+        except InputError as e:
+            self._fail(e)
+
+    def _collective_check(self):
+        """The ranks check together (every ``check_every`` steps, at the last step of a run whose end is known,
+        and after a run otherwise): an exception of a callback, the history slots the atoms needed, a contact
+        force that was not finite. A failure stops the run (``_fail``). Contacts that began faster than v_max
+        since the last check are told (a warning, on their rank)."""
+        lmp = self.lmp
+        nlocal = lmp.extract_setting("nlocal")
+        err = self._local_error
+        need = float(self._data()[:nlocal, self.col_stat + K.ST_NEED].max()) if nlocal else 0.0
+        kind = max_rank(lmp, 0 if err is None else 2 if isinstance(err, StaleHistoryError) else 1)
+        need_all = max_rank(lmp, int(min(need, 2**30)))
+        fast = self._onset[K.ON_FAST]
+        if fast > self._onset_told:
+            warnings.warn(f"{int(fast - self._onset_told)} contacts on this rank began at a normal speed above v_max = "
+                          f"{self.v_max:g} m/s (the largest {self._onset[K.ON_VMAX]:.4g} m/s; the fewest time steps "
+                          f"per contact among them {self._onset[K.ON_STEPS]:.3g}): attach with the v_max that is "
+                          f"reached, and a time step that resolves those contacts", RuntimeWarning, stacklevel=2)
+            self._onset_told = fast
+        if not (kind or need_all > self.slots):
+            return
+        if err is None:
+            if kind == 2:
+                err = StaleHistoryError("a contact on another rank would continue from an out-of-date copy of its "
+                                        "history (said there): write restart files between runs (bridge.run(n), "
+                                        "then write_restart), or read the file on the processor grid it was written on")
+            elif kind:
+                err = NumericalError("the callback that computes the contact forces raised an error on another "
+                                     "rank (raised there): the run is not valid")
+            elif need_all >= 2**30:
+                err = NumericalError("the contact forces failed during the run: a contact law returned a non-finite "
+                                     "force or torque (a contact outgrew the springs of the mdr law: raise v_max; or "
+                                     "the time step is too long for the contact): the run is not valid")
+            else:
+                err = InputError(f"too few history slots: an atom had {need_all} contacts at once but slots = "
+                                 f"{self.slots}; attach with slots >= {need_all} (the run stopped there)")
+        self._fail(err)
 
     def _check_fixes(self) -> bool:
         """Refuse a fix ahead of the bridge's in LAMMPS's list of fixes that may read or overwrite the total
@@ -784,36 +962,43 @@ class LammpsContacts:
         # (a call that does not follow the last step is a set-up: after a reset_timestep too)
         setup = self._setup_pending or self._last_step is None or ntimestep != self._last_step + 1
         if setup and not self._setup_pending:
-            # a run not started by run(): its end is not known, so no step of it can be the one at which the
-            # second copies of the histories are brought up to date before the next run: all are written
-            # at every step of it
+            # a run whose end is not known: no step of it can be the one at which the second copies of the
+            # histories are brought up to date before the next run: all are written at every step of it
             self._sync_all = True
+            self._end_step = None
         self._setup_pending = False
         self._last_step = ntimestep
         same = False
+        if setup:
+            # (collective) the last run's last steps if they were not checked, then this run's checks
+            self._error = None
+            self._collective_check()
+            if self._error is None:
+                self._begin_run()
         try:
             self._zero_fext(fext_address, nlocal)
             self.dt = self.lmp.extract_global("dt")     # at every step: fix dt/reset may change it in a run
             if setup:
                 # a new run: arrays may have been reallocated, atoms changed between runs
                 self._view_key = None
+                self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
                 same = self._error is None and self._saved_match(nlocal)
         except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
-            self._error = e
+            self._local_error = self._local_error or e
         # The forces saved at the last call are reapplied at a set-up (a reset_timestep between the runs
         # changes nothing) if every atom is where it was then, with its radius, on every rank; else they
         # are recomputed (atoms added, removed, moved or resized since). Every rank makes the set-up call,
         # and this reduction in it, whatever happened before (collective).
         reapply = setup and any_rank(self.lmp, not same) is False
         try:
-            if self._error is None:
+            if self._error is None and self._local_error is None:
                 self._step(ntimestep, nlocal, setup, reapply)
         except BaseException as e:
-            self._error = e
-        if self._error is not None:
-            # no contact forces from here on (the forces are added by the last kernel of a step: none
-            # were): the run stops at the next check and run() raises
-            self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
+            self._local_error = e
+        # (no contact forces after an error on this rank: the forces are added by the last kernel of a step;
+        # the ranks tell each other at the next check, which stops the run)
+        if not setup and self._error is None and (ntimestep % self.check_every == 0 or ntimestep == self._end_step):
+            self._collective_check()
         self.callback_s += time.perf_counter() - t0
 
     def _box(self):
@@ -849,7 +1034,12 @@ class LammpsContacts:
         # between its rebuilds no atom moves skin/2, so the lists stay valid. (Radii changed between runs
         # are taken at the set-up.)
         if self._cand is None or ago == 0 or nlocal != self._nlocal_ref:
+            if nall and float(radius[:nall].max()) > self.rmax * (1.0 + SIZE_TOL):
+                raise InputError(f"an atom's radius ({float(radius[:nall].max()):.6g} m) exceeds r_max = "
+                                 f"{self.rmax:.6g} m (atoms inserted during the run?): the contact search and the "
+                                 f"ghost cutoff are sized by r_max; attach the bridge with r_max >= the largest radius")
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            self._check_time_step(self._cand)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._nlocal_ref = nlocal
             self._rebuilt = True
@@ -866,7 +1056,7 @@ class LammpsContacts:
             # (at a set-up too: the subdomains may have changed between runs)
             self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
-            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16)
+            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.table.params.shape[1])
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
         acc, touched, prev = self._atom_scratch(nlocal)
@@ -884,12 +1074,29 @@ class LammpsContacts:
                 self._near_all = np.ones(2 * nlocal + 16, dtype=np.bool_)
             near = self._near_all
         n_prev = max(self._n_prev, 0)
-        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces, spins, torques = self._buffers
+        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, pc, forces, tforces, spins, torques, crows = \
+            self._buffers
         t = self.table
+        sized = self.size_free
         m, n_touched, stale = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, sep, self._sep_tol2, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt,
-            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
+            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, t.params, self._rowinfo, sized,
+            self.v_max, self._onset, *self._buffers[:11])
+        if not setup and self._onset[K.ON_STEPS] < MIN_STEPS_PER_CONTACT:
+            raise InputError(f"a contact began at a normal speed of {self._onset[K.ON_VMAX]:.4g} m/s, above v_max = "
+                             f"{self.v_max:g} m/s, which the time step resolves with {self._onset[K.ON_STEPS]:.3g} "
+                             f"steps per contact time, fewer than {MIN_STEPS_PER_CONTACT:g}: attach with the v_max "
+                             f"that is reached, and a time step that resolves those contacts")
+        if setup and self._setups == 0:
+            count, worst = K.deep_overlaps(m, body, overlaps, radius, rmass, rows, self._rowinfo)
+            if count:
+                warnings.warn(f"{count} contacts on this rank start with an overlap deeper than a head-on impact at "
+                              f"v_max = {self.v_max:g} m/s would press them (up to {worst:.3g} times that overlap): "
+                              f"their first contact force releases the energy of the overlap; place the atoms apart, "
+                              f"or give the v_max that reaches it", RuntimeWarning, stacklevel=2)
+        if setup:
+            self._setups += 1
         if stale:
             raise StaleHistoryError(
                 f"{stale} contact(s) on this rank would continue from an out-of-date copy of their history: their "
@@ -904,7 +1111,8 @@ class LammpsContacts:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
         K.relative_spins(omega, body, m, spins)
-        self._law(t.normal_id, t.tangential_id, t.params, rows[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
+        params, prow = (pc, crows[:m]) if sized else (t.params, rows[:m])
+        self._law(t.normal_id, t.tangential_id, params, prow, Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
                   spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False
