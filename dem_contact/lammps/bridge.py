@@ -528,7 +528,6 @@ class LammpsContacts:
         self._error = None             # the exception that stopped the last run (raised by run() and the commands)
         self._local_error = None       # an exception of this rank's callback, not yet told to the others
         self._onset = np.zeros(K.N_ONSET)      # contacts that began faster than v_max (kernels.ON_...)
-        self._onset_told = 0.0         # of them, those a warning was given for
         self._onset[K.ON_STEPS] = math.inf
         self._setups = 0               # set-up calls since attaching (the first run's checks the overlaps)
         self._original = {}            # the LAMMPS instance's command methods (``_wrap_commands``)
@@ -733,7 +732,7 @@ class LammpsContacts:
                         raise
                     if self._evals != evals:
                         if self._error is None and self._last_step != self._end_step:
-                            self._collective_check()
+                            self._collective_check(final=True)
                         if self._error is not None:
                             raise self._error
                         if n is not None:
@@ -760,7 +759,7 @@ class LammpsContacts:
         self.lmp.set_internal_variable(f"{self.prefix}_stop", 1.0)
         # (told: the next run starts afresh)
         self._local_error = None
-        self._onset[K.ON_STEPS] = math.inf
+        self._onset[:] = (0.0, 0.0, math.inf)
         nlocal = self.lmp.extract_setting("nlocal")
         self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
 
@@ -770,24 +769,27 @@ class LammpsContacts:
         self._local_error = None
         self.lmp.set_internal_variable(f"{self.prefix}_stop", 0.0)
         try:
-            said = _warnings_in(_new_log_text(self.lmp))
-            _pass_on_warnings(said)
-            lost = next((w for w in said if "Unused restart file peratom fix info" in w), None) if said else None
-            if max_rank(self.lmp, int(lost is not None)):
+            text = _new_log_text(self.lmp)
+            _pass_on_warnings(_warnings_in(text))
+            # (LAMMPS lists at a run's init the per-atom data of a restart file that no fix took, on rank 0)
+            lost = re.findall(r"^\s*fix style: property/atom, fix ID: (\S+)_hist\s*$",
+                              (text or "").partition("Unused restart file peratom fix info")[2], flags=re.M)
+            if max_rank(self.lmp, int(bool(lost))):
+                which = f"prefix {lost[0]!r}" if lost else "another prefix (named on rank 0)"
                 raise InputError(
-                    "the restart file read holds per-atom data of fixes that no fix of that id took (LAMMPS: "
-                    f"{lost or 'said on rank 0'}): if they are a bridge's contact histories (fixes <prefix>_data, "
-                    f"<prefix>_side, <prefix>_hist), attach the bridge with the prefix it was written with (here "
-                    f"prefix={self.prefix!r}), or every contact would start again with no history")
+                    f"the restart file read holds the contact histories of a bridge attached with {which} (its fix "
+                    f"property/atom), which no fix took: the bridge here has prefix {self.prefix!r}, so every "
+                    f"contact would start again with no history; attach it with the prefix the file was written "
+                    f"with" + (f" (prefix={lost[0]!r})" if lost else ""))
             self.check()
         except InputError as e:
             self._fail(e)
 
-    def _collective_check(self):
-        """The ranks check together (every ``check_every`` steps, at the last step of a run whose end is known,
-        and after a run otherwise): an exception of a callback, the history slots the atoms needed, a contact
-        force that was not finite. A failure stops the run (``_fail``). Contacts that began faster than v_max
-        since the last check are told (a warning, on their rank)."""
+    def _collective_check(self, final=False):
+        """The ranks check together (every ``check_every`` steps, and ``final``ly at the last step of a run whose
+        end is known, after a run otherwise): an exception of a callback, the history slots the atoms needed, a
+        contact force that was not finite. A failure stops the run (``_fail``). At the final check, the contacts
+        that began faster than v_max during the run are told (a warning, on their rank)."""
         lmp = self.lmp
         nlocal = lmp.extract_setting("nlocal")
         err = self._local_error
@@ -795,12 +797,12 @@ class LammpsContacts:
         kind = max_rank(lmp, 0 if err is None else 2 if isinstance(err, StaleHistoryError) else 1)
         need_all = max_rank(lmp, int(min(need, 2**30)))
         fast = self._onset[K.ON_FAST]
-        if fast > self._onset_told:
-            warnings.warn(f"{int(fast - self._onset_told)} contacts on this rank began at a normal speed above v_max = "
-                          f"{self.v_max:g} m/s (the largest {self._onset[K.ON_VMAX]:.4g} m/s; the fewest time steps "
-                          f"per contact among them {self._onset[K.ON_STEPS]:.3g}): attach with the v_max that is "
-                          f"reached, and a time step that resolves those contacts", RuntimeWarning, stacklevel=2)
-            self._onset_told = fast
+        if final and fast > 0:
+            warnings.warn(f"{int(fast)} contacts on this rank began at a normal speed above v_max = {self.v_max:g} m/s "
+                          f"during the run (the largest {self._onset[K.ON_VMAX]:.4g} m/s; the fewest time steps per "
+                          f"contact time among them {self._onset[K.ON_STEPS]:.3g}): the time step and the checks "
+                          f"assume v_max; attach with the v_max that is reached", RuntimeWarning, stacklevel=2)
+            self._onset[:] = (0.0, 0.0, math.inf)
         if not (kind or need_all > self.slots):
             return
         if err is None:
@@ -972,7 +974,7 @@ class LammpsContacts:
         if setup:
             # (collective) the last run's last steps if they were not checked, then this run's checks
             self._error = None
-            self._collective_check()
+            self._collective_check(final=True)
             if self._error is None:
                 self._begin_run()
         try:
@@ -998,7 +1000,7 @@ class LammpsContacts:
         # (no contact forces after an error on this rank: the forces are added by the last kernel of a step;
         # the ranks tell each other at the next check, which stops the run)
         if not setup and self._error is None and (ntimestep % self.check_every == 0 or ntimestep == self._end_step):
-            self._collective_check()
+            self._collective_check(final=ntimestep == self._end_step)
         self.callback_s += time.perf_counter() - t0
 
     def _box(self):
