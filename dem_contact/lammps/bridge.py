@@ -518,6 +518,7 @@ class LammpsContacts:
         ):
             lmp.command(cmd)
         self._fext_key = None          # (address, nlocal) of fix external's force array when last zeroed
+        self._fast_getters()
         self._set_callback(f"{p}_ext")
         _ATTACHED[lmp] = self
         self.attached = True
@@ -892,7 +893,7 @@ class LammpsContacts:
         H, stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
         whenever nmax (the allocated length) or nall changes."""
         lmp = self.lmp
-        nmax = lmp.extract_setting("nmax")
+        nmax = self._setting(b"nmax")
         if self._view_key != (nmax, nall):
             ex = lmp.numpy.extract_atom
             data = self._data()
@@ -953,6 +954,23 @@ class LammpsContacts:
         with ExceptionCheck(lmp):
             setter(lmp.lmp, fix_id.encode(), func, self)
 
+    def _fast_getters(self):
+        """LAMMPS's settings read at every step without the lammps module's wrappers (which cost microseconds
+        each): ``_setting(b"name")`` (lammps_extract_setting), and the time step, read from LAMMPS's own
+        double (``_dt.value``; its address is that of the instance's Update, which lives as long as it)."""
+        import ctypes
+
+        lmp = self.lmp
+        handle = lmp.lmp
+        setting = lmp.lib["lammps_extract_setting"]         # (function objects of their own: the lammps module
+        setting.argtypes = [ctypes.c_void_p, ctypes.c_char_p]  # changes the restype of its own at every call)
+        setting.restype = ctypes.c_int
+        self._setting = lambda key: setting(handle, key)
+        glob = lmp.lib["lammps_extract_global"]
+        glob.argtypes = [ctypes.c_void_p, ctypes.c_char_p]
+        glob.restype = ctypes.POINTER(ctypes.c_double)
+        self._dt = glob(handle, b"dt").contents
+
     def _zero_fext(self, address, nlocal):
         """Keep fix external's own force array zero (double **: address of the row pointers; LAMMPS does not
         zero the rows it allocates): it is zeroed whenever it was reallocated or the local atoms changed."""
@@ -988,7 +1006,7 @@ class LammpsContacts:
                 self._begin_run()
         try:
             self._zero_fext(fext_address, nlocal)
-            self.dt = self.lmp.extract_global("dt")     # at every step: fix dt/reset may change it in a run
+            self.dt = self._dt.value       # at every step: fix dt/reset may change it in a run
             if setup:
                 # a new run: arrays may have been reallocated, atoms changed between runs
                 self._view_key = None
@@ -1036,8 +1054,8 @@ class LammpsContacts:
     def _step(self, ntimestep, nlocal, setup, reapply):
         """The contact forces and torques of one step (or a run's set-up: ``setup``; ``reapply``: the
         forces saved at the last call), added to LAMMPS's."""
-        nall = self.lmp.extract_setting("nall")
-        ago = self.lmp.extract_setting("neigh_ago")       # steps since LAMMPS rebuilt its lists
+        nall = self._setting(b"nall")
+        ago = self._setting(b"neigh_ago")       # steps since LAMMPS rebuilt its lists
         xa, v, omega, radius, rmass, ids, typ, f, torque, keys, sep, H, stat, saved = self._views(nall)
         # Our Verlet lists are rebuilt exactly when LAMMPS rebuilds its own (neigh_ago 0: at a run's set-up,
         # and when an atom has moved skin/2, with our skin and `neigh_modify delay 0 every 1 check yes`,
@@ -1062,6 +1080,10 @@ class LammpsContacts:
             self._sep_tol2 = (0.5 * min(lengths)) ** 2 if lengths else math.inf
         if reapply:
             K.reapply_saved(nlocal, f, torque, saved)
+            return
+        if not setup and self._n_prev == 0 and not self._rebuilt and ntimestep != self._end_step and (
+                len(self._cand[0]) + len(self._cand[1]) == 0 or not K.any_touching(xa, radius, self.walls, *self._cand)):
+            # no contact now nor at the last step, and nothing to free or to save: nothing to do
             return
         if self._near is None or setup:
             # (at a set-up too: the subdomains may have changed between runs)

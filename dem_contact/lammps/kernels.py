@@ -323,6 +323,21 @@ def overlapping(x, radius, walls, cand, cand_walls):
 
 
 @njit(cache=True)
+def any_touching(x, radius, walls, cand, cand_walls):
+    """Whether any candidate of the Verlet lists is in contact now (a step without contacts is skipped)."""
+    for c in range(cand.shape[0]):
+        _, _, _, r2, rs = _separation(x, radius, cand[c, 0], cand[c, 1])
+        if r2 < rs * rs:
+            return True
+    for c in range(cand_walls.shape[0]):
+        i = cand_walls[c, 0]
+        gap, _, _, _ = W.contact(walls, cand_walls[c, 1], x[i, 0], x[i, 1], x[i, 2], radius[i])
+        if gap < radius[i]:
+            return True
+    return False
+
+
+@njit(cache=True)
 def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
     """The contacts of the local atoms now (candidates with no skin, then their overlaps)."""
     cand, cand_walls = candidates(nlocal, nall, x, radius, tag, walls, rmax, 0.0)
