@@ -146,13 +146,19 @@ class Sphere:
 
 @dataclass(frozen=True)
 class Wall:
-    """A flat wall of infinite mass, with its own ``material`` (``Material.rigid()`` for a rigid wall)."""
+    """A wall of infinite mass, with its own ``material`` (``Material.rigid()`` for a rigid wall), flat
+    (default) or with the ``curvature`` k = 1/R2 [1/m] at its contacts (> 0 convex, < 0 concave): the
+    effective radius of a sphere on it is R* = 1 / (1/R1 + k) (Johnson 1985, Contact Mechanics, section
+    4.2). A curved wall of ``dem_contact.walls`` states the k its material must carry (``CylinderWall``:
+    ``curvature_for_rstar``)."""
 
     material: Material
+    curvature: float = 0.0
 
     def __post_init__(self):
         if not isinstance(self.material, Material):
             raise InputError(f"material of a Wall must be a Material, got {self.material!r}")
+        object.__setattr__(self, "curvature", check_finite("curvature (1/m)", self.curvature))
 
     @classmethod
     def rigid(cls) -> "Wall":
@@ -187,7 +193,7 @@ def pair_properties(body1: Sphere, body2: Sphere | Wall) -> PairProperties:
     """Effective E*, G*, R*, m*, kappa of sphere ``body1`` against a sphere or a wall ``body2``.
 
     1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2,  1/G* = (2-nu1)/G1 + (2-nu2)/G2,  1/R* = 1/R1 + 1/R2,
-    1/m* = 1/m1 + 1/m2 (a wall has 1/R2 = 0, 1/m2 = 0), kappa = 4 G*/E*  (Johnson 1985; Wu et al. 2009).
+    1/m* = 1/m1 + 1/m2 (a wall has 1/R2 = its curvature, 0 if flat, and 1/m2 = 0), kappa = 4 G*/E*  (Johnson 1985; Wu et al. 2009).
     """
     m1, m2 = body1.material, body2.material
     cE = _compliance_E(m1) + _compliance_E(m2)
@@ -198,7 +204,10 @@ def pair_properties(body1: Sphere, body2: Sphere | Wall) -> PairProperties:
         R_star = 1.0 / (1.0 / body1.radius + 1.0 / body2.radius)
         m_star = 1.0 / (1.0 / body1.mass + 1.0 / body2.mass)
     else:
-        R_star = body1.radius
+        if not 1.0 / body1.radius + body2.curvature > 0.0:
+            raise InputError(f"a sphere of radius {body1.radius:g} m does not fit a wall of curvature "
+                             f"{body2.curvature:g} 1/m: 1/R1 + curvature must be > 0")
+        R_star = body1.radius if body2.curvature == 0.0 else 1.0 / (1.0 / body1.radius + body2.curvature)
         m_star = body1.mass
     E_star = 1.0 / cE
     G_star = 1.0 / cG

@@ -16,6 +16,7 @@ CASES = {
                               "--steps", "100"],
     "lammps_impact.py": ["--angle", "30", "--json"],
     "lammps_pour.py": ["--small", "--json"],
+    "make_hopper_stl.py": ["--out", "hopper_copy.stl", "--binary"],
 }
 NEEDS_LAMMPS = {"lammps_impact.py", "lammps_pour.py"}
 

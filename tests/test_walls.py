@@ -32,11 +32,11 @@ def _oblique(seed):
 
 @njit
 def _kernels(walls, w, x, y, z, r):
-    s, nx, ny, nz = T.contact(walls, w, x, y, z, r)
+    s, nx, ny, nz = T.contact(walls, w, 0, x, y, z, r)
     cx, cy, cz = x + s * nx, y + s * ny, z + s * nz
     vx, vy, vz = T.velocity(walls, w, cx, cy, cz)
-    e = T.element(walls, w, x, y, z)
-    return s, nx, ny, nz, vx, vy, vz, T.curvature(walls, w, cx, cy, cz), e, T.history_key(walls, w, e)
+    return s, nx, ny, nz, vx, vy, vz, T.curvature(walls, w, 0, cx, cy, cz), T.elements(walls, w), \
+        T.history_key(walls, w, 0)
 
 
 def test_plane_kernels_are_the_closed_form():
@@ -56,18 +56,18 @@ def test_plane_kernels_are_the_closed_form():
             assert [nx, ny, nz] == (-m).tolist()
             want_v = [0.0, 0.0, 0.0] if w == 0 else (0.3 * t).tolist()
             assert np.allclose([vx, vy, vz], want_v, rtol=0, atol=1e-16)
-            assert (k, e, key) == (0.0, 0, -(w + 1.0))
+            assert (k, e, key) == (0.0, 1, -(w + 1.0))
 
 
 def test_pack_checks_every_wall():
     ok = PlaneWall.axis("x", 0.0, "lo")
     cases = [
-        ([ok, "floor"], "walls[1] must be a wall (PlaneWall)"),
+        ([ok, "floor"], "walls[1] must be a wall (PlaneWall, CylinderWall, MeshWall)"),
         ([PlaneWall((0, 0, 0), (0, 0, 2.0))], "walls[0].normal must be a unit vector"),
         ([PlaneWall((0, 0, math.nan), (0, 0, 1.0))], "walls[0].point must be 3 finite numbers"),
         ([PlaneWall((0, 0), (0, 0, 1.0))], "walls[0].point must be 3 finite numbers"),
-        ([ok, PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=(0.1, 0.0, 1e-3))],
-         "walls[1].velocity must lie in the wall's plane"),
+        ([ok, PlaneWall((0, 0, 0), (0, 0, 1.0), angular_velocity=(0.1, None, 1e-3))],
+         "walls[1].angular_velocity must be 3 finite numbers"),
         ([PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=(0.1, "a", 0.0))], "walls[0].velocity must be 3 finite"),
         ([PlaneWall((0, 0, 0), (0, 0, 1.0), wall=-1)], "walls[0].wall = -1 must index the table's walls"),
         ([PlaneWall((0, 0, 0), (0, 0, 1.0), wall=True)], "walls[0].wall = True must index"),
@@ -79,9 +79,11 @@ def test_pack_checks_every_wall():
         pack([PlaneWall((0, 0, 0), (0, 0, 1.0), wall=2)], n_materials=2)
     with pytest.raises(InputError, match="side must be 'lo' or 'hi'"):
         PlaneWall.axis("z", 0.0, "up")
-    # a normal part within the tolerance is removed: the surface stays where it is
-    rows, _ = pack([PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=(0.1, 0.0, 1e-12))])
-    assert rows[0, -3:].tolist() == [0.1, 0.0, 0.0]
+    # a motion in the plane leaves the surface where it is; any other moves it
+    for v, om, moves in (((0.1, 0.0, 0.0), (0.0, 0.0, 3.0), 0.0), ((0.1, 0.0, 1e-3), (0.0, 0.0, 0.0), 1.0),
+                         ((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 1.0)):
+        rows, _ = pack([PlaneWall((0, 0, 0), (0, 0, 1.0), velocity=v, angular_velocity=om)])
+        assert rows[0, T.MOVES] == moves
 
 
 def test_the_dispatch_of_several_kinds_calls_each_kinds_kernel():
@@ -90,11 +92,11 @@ def test_the_dispatch_of_several_kinds_calls_each_kinds_kernel():
     other = types.ModuleType("other_kind")
 
     @njit(inline="always")
-    def contact(walls, w, x, y, z, r):
+    def contact(walls, w, e, x, y, z, r):
         return -7.0, 0.0, 0.0, 1.0
 
     other.contact = contact
-    assert len(KINDS) == 1 and "if" not in T.contact.py_func.source        # one kind: a direct call
+    assert T.contact.py_func.source.count("if walls[w, KIND] ==") == len(KINDS) - 1
     two = T._dispatch("contact", ((0, plane), (1, other)))
     assert "if walls[w, KIND] == 0.0:" in two.py_func.source
     rows, _ = pack([PlaneWall.axis("z", 0.0, "lo"), PlaneWall.axis("z", 0.0, "lo")])
@@ -102,12 +104,12 @@ def test_the_dispatch_of_several_kinds_calls_each_kinds_kernel():
 
     @njit
     def both(walls):
-        return two(walls, 0, 0.0, 0.0, 0.5, 1.0)[0], two(walls, 1, 0.0, 0.0, 0.5, 1.0)[0]
+        return two(walls, 0, 0, 0.0, 0.0, 0.5, 1.0)[0], two(walls, 1, 0, 0.0, 0.0, 0.5, 1.0)[0]
 
     assert both(rows) == (0.5, -7.0)
 
     @njit(inline="always")
-    def bad(walls, w, x, y, z):
+    def bad(walls, w, x, y, z, r):
         return 0.0, 0.0, 0.0, 1.0
 
     other.contact = bad
@@ -146,13 +148,14 @@ def _bridge_wall_contacts(x, radius, walls, v, omega, table):
     tag = np.arange(1, n + 1, dtype=np.int64)
     cand = K.candidates(n, n, x, radius, tag, rows, radius.max(), 1e-4)
     cand_rows = np.full((len(cand[0]) + len(cand[1]), 2), -1, dtype=np.int64)
-    buf = K.contact_buffers(2 * len(cand_rows) + 16)
+    buf = K.contact_buffers(2 * len(cand_rows) + 16, table.params.shape[1])
     m, _, _ = K.gather_contacts(
         n, x, v, omega, radius, np.ones(n), tag, np.ones(n, dtype=np.int64), rows, mats, *cand, cand_rows,
         np.zeros((n, slots)), np.zeros((n, 4 * slots)), np.inf, np.zeros((n * slots, table.history_size)),
         table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, np.zeros((n, K.N_STAT)),
         np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
-        np.zeros(n, dtype=np.int64), *buf[:10])
+        np.zeros(n, dtype=np.int64), table.params, np.zeros((len(table.params), K.N_ROWINFO)), False, 1.0,
+        np.zeros(K.N_ONSET), *buf[:11])
     _, body, _, _, _, prow, normals, overlaps, vel, wn = buf[:10]
     k = np.flatnonzero(body[:m, 1] < 0)
     return body[k, 0], -(body[k, 1] + 1), normals[k], overlaps[k], vel[k], wn[k], prow[k]
@@ -220,7 +223,7 @@ def test_wall_contacts_checks_its_inputs():
         (([[0, 0, 0]], [math.inf], floor), r"radii\[0\] = inf must be finite and > 0"),
         (([[0, 0]], [1e-3], floor), r"centres must have shape \(n, 3\)"),
         (([[0, 0, 0], [0, math.nan, 0]], [1e-3, 1e-3], floor), r"centres\[1\] must be finite"),
-        (([[0, 0, 0]], [1e-3], [floor[0], None]), r"walls\[1\] must be a wall \(PlaneWall\)"),
+        (([[0, 0, 0]], [1e-3], [floor[0], None]), r"walls\[1\] must be a wall \(PlaneWall, "),
         (([[0, 0, 0]], [1e-3], 3), r"walls must be a list of walls"),
     ]
     for args, message in cases:

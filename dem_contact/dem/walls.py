@@ -7,14 +7,17 @@ bridge computes, for any kind of wall of the table.
     v = contacts.relative_velocities(velocities, spins)      # v_i + R_i w_i x n - v_wall
     contact_forces(nid, tid, table.params, rows, H, contacts.normals, contacts.overlaps, v,
                    contacts.frame_spin(spins), dt, forces, tforces, history_rows=...)
+    loads = contacts.loads(forces)                            # each wall's force, torque, power
 
 Body 1 is the sphere, body 2 the wall: ``normals`` point from the sphere toward the wall, ``forces`` is the
 force on the sphere; its torque is R n x F_t (the arm of a wall contact is the full radius, as in LAMMPS's
-``fix wall/gran``). ``keys`` identify each contact's history (one per wall and element) from one step to
-the next.
+``fix wall/gran``). ``keys`` identify each contact's history (one per wall and patch: a contact that moves
+across a mesh's flat patch keeps its key) from one step to the next. Walls that move are placed at the
+``time`` given (their pose at time 0 and their rigid motion: ``walls.contract``).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,15 +29,17 @@ from ..walls import table as W
 
 @njit(cache=True)
 def _find(x, radius, walls):
-    """The sphere-wall pairs in contact (overlap > 0), in the order of the spheres, then the walls."""
+    """The sphere-wall contacts (overlap > 0), in the order of the spheres, then the walls, then their
+    elements."""
     n = x.shape[0]
-    nw = walls.shape[0]
+    nw = W.count(walls)
     m = 0
     for i in range(n):
         for w in range(nw):
-            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            if radius[i] - s > 0.0:
-                m += 1
+            for e in range(W.elements(walls, w)):
+                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                if radius[i] - s > 0.0:
+                    m += 1
     ids = np.empty((m, 3), dtype=np.int64)
     keys = np.empty(m)
     normals = np.empty((m, 3))
@@ -45,28 +50,28 @@ def _find(x, radius, walls):
     k = 0
     for i in range(n):
         for w in range(nw):
-            s, nx, ny, nz = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            delta = radius[i] - s
-            if not delta > 0.0:
-                continue
-            cx = x[i, 0] + s * nx
-            cy = x[i, 1] + s * ny
-            cz = x[i, 2] + s * nz
-            e = W.element(walls, w, x[i, 0], x[i, 1], x[i, 2])
-            ids[k, 0] = i
-            ids[k, 1] = w
-            ids[k, 2] = e
-            keys[k] = W.history_key(walls, w, e)
-            normals[k, 0] = nx
-            normals[k, 1] = ny
-            normals[k, 2] = nz
-            overlaps[k] = delta
-            points[k, 0] = cx
-            points[k, 1] = cy
-            points[k, 2] = cz
-            vel[k, 0], vel[k, 1], vel[k, 2] = W.velocity(walls, w, cx, cy, cz)
-            curv[k] = W.curvature(walls, w, cx, cy, cz)
-            k += 1
+            for e in range(W.elements(walls, w)):
+                s, nx, ny, nz = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                delta = radius[i] - s
+                if not delta > 0.0:
+                    continue
+                cx = x[i, 0] + s * nx
+                cy = x[i, 1] + s * ny
+                cz = x[i, 2] + s * nz
+                ids[k, 0] = i
+                ids[k, 1] = w
+                ids[k, 2] = e
+                keys[k] = W.history_key(walls, w, e)
+                normals[k, 0] = nx
+                normals[k, 1] = ny
+                normals[k, 2] = nz
+                overlaps[k] = delta
+                points[k, 0] = cx
+                points[k, 1] = cy
+                points[k, 2] = cz
+                vel[k, 0], vel[k, 1], vel[k, 2] = W.velocity(walls, w, cx, cy, cz)
+                curv[k] = W.curvature(walls, w, e, cx, cy, cz)
+                k += 1
     return ids, keys, normals, overlaps, points, vel, curv
 
 
@@ -97,7 +102,8 @@ class WallContacts:
     toward the wall; overlaps: float64[m] > 0 [m]; points: float64[m, 3] the contact points on the wall's
     surface [m]; wall_velocities: float64[m, 3] the wall's velocity there [m/s]; curvature: float64[m]
     1 / R2 of the wall there [1/m] (0 for a plane: R* = R of the sphere, as ``pairs.pair_table``'s
-    sphere-wall rows); radii: float64[m] the spheres' radii."""
+    sphere-wall rows); radii: float64[m] the spheres' radii; centres: float64[n_walls, 3] each wall's centre of
+    rotation at this time (``loads`` takes torques about it)."""
 
     sphere: np.ndarray
     wall: np.ndarray
@@ -111,6 +117,7 @@ class WallContacts:
     curvature: np.ndarray
     radii: np.ndarray
     n_spheres: int
+    centres: np.ndarray = None
 
     def __len__(self):
         return len(self.overlaps)
@@ -135,6 +142,29 @@ class WallContacts:
         n = self.normals
         return 0.5 * (w[:, 0] * n[:, 0] + w[:, 1] * n[:, 1] + w[:, 2] * n[:, 2])
 
+    def loads(self, forces, torques=None) -> "WallLoads":
+        """Each wall's load from the contacts' forces on the spheres (float64[m, 3], as ``contact_forces``
+        writes them; torques: float64[m, 3] the twist and rolling torques on the spheres, if any): the force
+        on the wall, -sum F; its torque about its centre of rotation, sum (c - C) x (-F) - M (c: the contact
+        point); and the power the wall gives the spheres, sum F . v_wall(c) [W] (a drum's drive power)."""
+        f = np.asarray(forces, dtype=np.float64)
+        if f.shape != (len(self), 3):
+            raise InputError(f"forces must have shape ({len(self)}, 3) (one row per contact), got {f.shape}")
+        nw = len(self.centres)
+        force = np.zeros((nw, 3))
+        torque = np.zeros((nw, 3))
+        power = np.zeros(nw)
+        arm = self.points - self.centres[self.wall]
+        np.add.at(force, self.wall, -f)
+        np.add.at(torque, self.wall, -np.cross(arm, f))
+        if torques is not None:
+            m = np.asarray(torques, dtype=np.float64)
+            if m.shape != (len(self), 3):
+                raise InputError(f"torques must have shape ({len(self)}, 3) (one row per contact), got {m.shape}")
+            np.add.at(torque, self.wall, -m)
+        np.add.at(power, self.wall, np.einsum("ij,ij->i", f, self.wall_velocities))
+        return WallLoads(force, torque, power, self.centres.copy())
+
     def pair_rows(self, table, types) -> np.ndarray:
         """int64[m]: the parameter row of each contact, table.wall_row[types[sphere], material]. types: the
         sphere type (0-based: the table's spheres[k]) of every sphere."""
@@ -153,13 +183,44 @@ class WallContacts:
             k = int(np.argmax(self.material >= nm))
             raise InputError(f"walls[{int(self.wall[k])}].wall = {int(self.material[k])} must index the "
                              f"table's walls (0 ... {nm - 1})")
+        check_curvatures(table, self.material, self.curvature, self.wall)
         return np.ascontiguousarray(wall_row[t[self.sphere], self.material], dtype=np.int64)
 
 
-def wall_contacts(centres, radii, walls) -> WallContacts:
+@dataclass(frozen=True, eq=False)
+class WallLoads:
+    """Loads of the walls (``WallContacts.loads``), one row per wall: force float64[n, 3] on the wall [N],
+    torque float64[n, 3] on it about its centre of rotation [N m], power float64[n] it gives the spheres
+    [W], centre float64[n, 3] that centre [m]. The torque about an axis u through the centre: torque @ u."""
+
+    force: np.ndarray
+    torque: np.ndarray
+    power: np.ndarray
+    centre: np.ndarray
+
+
+def check_curvatures(table, material, curvature, wall):
+    """InputError unless each contact's curvature (float64[m]) is that of its wall material in the table
+    (``materials.Wall.curvature``), which its parameter row's R* was built with."""
+    scenes = getattr(table, "scenes", ())
+    nt, nm = table.wall_row.shape
+    if not len(material) or not scenes:
+        return
+    have = np.array([scenes[table.wall_row[0, m]].body2.curvature for m in range(nm)])
+    bad = np.flatnonzero(have[material] != curvature)
+    if len(bad):
+        k = bad[0]
+        raise InputError(f"walls[{int(wall[k])}] has curvature {float(curvature[k])!r} 1/m at its contacts, but its "
+                         f"material (the table's walls[{int(material[k])}]) has curvature {float(have[material[k]])!r}: "
+                         f"build the table with Wall(material, curvature={float(curvature[k])!r}) for it, or give "
+                         f"the wall curved=False (R* = R1)")
+
+
+def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     """The contacts of spheres (centres float64[n, 3] [m], radii float64[n] > 0 [m]) with ``walls`` (a list
-    of walls of ``dem_contact.walls``: ``PlaneWall``), as the batch kernels take them (``WallContacts``).
-    Checked: ``InputError`` naming the parameter and its valid range. O(n x number of walls)."""
+    of walls of ``dem_contact.walls``: ``PlaneWall``, ``CylinderWall``, ``MeshWall``) at ``time`` [s] (the
+    walls' poses are those at time 0), as the batch kernels take them (``WallContacts``). Checked:
+    ``InputError`` naming the parameter and its valid range. O(n x number of wall elements)."""
     x = _points("centres", centres)
     try:
         r = np.array(radii, dtype=np.float64)
@@ -172,6 +233,12 @@ def wall_contacts(centres, radii, walls) -> WallContacts:
         k = int(np.argmax(bad))
         raise InputError(f"radii[{k}] = {float(r[k])!r} must be finite and > 0 [m]")
     rows, mats = W.pack(walls)
+    t = float(time)
+    if not math.isfinite(t):
+        raise InputError(f"time must be finite [s], got {time!r}")
+    if t != 0.0:
+        W.place_walls(rows, t)
     ids, keys, normals, overlaps, points, vel, curv = _find(x, r, rows)
+    nw = len(mats)
     return WallContacts(ids[:, 0].copy(), ids[:, 1].copy(), ids[:, 2].copy(), mats[ids[:, 1]], keys, normals,
-                        overlaps, points, vel, curv, r[ids[:, 0]], len(x))
+                        overlaps, points, vel, curv, r[ids[:, 0]], len(x), rows[:nw, W.CENTRE:W.CENTRE + 3].copy())

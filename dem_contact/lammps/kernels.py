@@ -7,8 +7,11 @@ property/atom d2_...``, which migrate with the atom between ranks and survive ne
 atom sorting): the keys of its rows, ``keys`` (nmax, slots), in a narrow array read at every step; for
 each row the separation of its contact when it was last matched and a mark of an out-of-date second copy
 (see below), ``sep`` (nmax, 4 slots), in another; and the rows in a third, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
-partner's atom id (> 0), the wall's key (< 0, ``walls.contract.history_key``: -(w + 1) for wall w when
-every wall has one element, as planes) for a wall, or 0 for a free row. A contact is the partner and the
+partner's atom id (> 0), the wall's key (< 0, ``walls.table.history_key``: -(w + 1) for wall w when
+every wall has one patch, as planes and cylinders; one per flat patch of a mesh) for a wall, or 0 for a
+free row. A wall contact that moves from one element to another of its patch (a mesh's triangles) keeps
+its row: the row of a wall contact that ended is freed only after the new contacts of the step have
+looked for their rows by key. A contact is the partner and the
 periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
 two images of one partner, each its own contact with its own row, told apart by the separation
 (x_partner - x_atom, continuous in time whatever the atoms' wraps), which is stored with the row when it
@@ -45,8 +48,8 @@ and R for a wall.
 
 Walls: packed rows of ``walls.table.pack`` (float64[n_walls, walls.ROW_SIZE]), read only through the wall
 kernels of ``walls.table`` (``contact``: distance and normal; ``velocity``: the wall's velocity at the
-contact point, subtracted from the sphere's; ``element`` and ``history_key``: the key of the contact's
-history), so that every kind of wall of the table works here.
+contact point, subtracted from the sphere's; ``history_key``: the key of the contact's history), so that
+every kind of wall of the table works here; ``wall_loads`` sums each wall's force, torque and power.
 """
 import math
 
@@ -83,7 +86,8 @@ RI_Q = 1         # m*^2 / R* of the row: a Hertzian contact time and largest ove
 RI_TC = 2        # contact time of the row at v_max [s]
 RI_ALPHA = 3     # exponent of the speed in the contact time: t_c(v) = t_c(v_max) (v_max / v)^alpha
 RI_DEEPEST = 4   # overlap of a head-on impact of the row at v_max [m]
-N_ROWINFO = 5
+RI_CURV = 5      # a wall row: the curvature of the wall's material, 1/R2 in R* (0: flat; a sphere row: 0)
+N_ROWINFO = 6
 #: slots of the parameter row that scale with R*^power (the rest but R* and m* do not depend on the sizes;
 #: the bridge checks this for each law at attach)
 SIZE_SLOTS = ((P_DELTA_Y, 1.0), (P_F_Y, 2.0))
@@ -261,17 +265,24 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         fill[first[c]] = q + 1
         pairs[q, 0] = first[c]
         pairs[q, 1] = second[c]
-    nw = walls.shape[0]
-    hits = np.empty((max(nlocal * nw, 1), 3), dtype=np.int64)
-    kw = 0
-    for i in range(nlocal):
-        for w in range(nw):
-            gap, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            if gap < radius[i] + skin:
-                hits[kw, 0] = i
-                hits[kw, 1] = w
-                hits[kw, 2] = W.element(walls, w, x[i, 0], x[i, 1], x[i, 2])
-                kw += 1
+    nw = W.count(walls)
+    cap = nlocal * nw + 16
+    while True:
+        hits = np.empty((cap, 3), dtype=np.int64)
+        kw = 0
+        for i in range(nlocal):
+            for w in range(nw):
+                for e in range(W.elements(walls, w)):
+                    gap, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                    if gap < radius[i] + skin:
+                        if kw < cap:
+                            hits[kw, 0] = i
+                            hits[kw, 1] = w
+                            hits[kw, 2] = e
+                        kw += 1
+        if kw <= cap:
+            break
+        cap = kw
     return pairs, hits[:kw]
 
 
@@ -309,7 +320,7 @@ def overlapping(x, radius, walls, cand, cand_walls):
     for c in range(cand_walls.shape[0]):
         i = cand_walls[c, 0]
         w = cand_walls[c, 1]
-        gap, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, _, _, _ = W.contact(walls, w, cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
         d = radius[i] - gap
         if d > 0.0:
             wkeep[kw] = c
@@ -331,7 +342,7 @@ def any_touching(x, radius, walls, cand, cand_walls):
             return True
     for c in range(cand_walls.shape[0]):
         i = cand_walls[c, 0]
-        gap, _, _, _ = W.contact(walls, cand_walls[c, 1], x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, _, _, _ = W.contact(walls, cand_walls[c, 1], cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
         if gap < radius[i]:
             return True
     return False
@@ -447,10 +458,12 @@ def _contact_row(params, row, pc, n, rowinfo, rstar, mstar):
 
 
 @njit(inline="always", cache=True)
-def _effective(radius, rmass, a, b):
-    """(R*, m*) of atoms a and b (b < 0: a wall, 1/R2 = 0 and 1/m2 = 0), as LAMMPS's granular models."""
+def _effective(radius, rmass, a, b, rowinfo, row):
+    """(R*, m*) of atoms a and b of parameter row ``row``, as LAMMPS's granular models (b < 0: a wall, 1/R2 its
+    material's curvature RI_CURV, 0 if flat, and 1/m2 = 0)."""
     if b < 0:
-        return radius[a], rmass[a]
+        k = rowinfo[row, RI_CURV]
+        return (radius[a] if k == 0.0 else 1.0 / (1.0 / radius[a] + k)), rmass[a]
     return radius[a] * radius[b] / (radius[a] + radius[b]), rmass[a] * rmass[b] / (rmass[a] + rmass[b])
 
 
@@ -472,7 +485,7 @@ def stiffest_candidate(cand, cand_walls, radius, rmass, typ, wall_mat, sphere_ro
             i = cand_walls[c - cand.shape[0], 0]
             j = -1
             row = wall_row[typ[i] - 1, wall_mat[cand_walls[c - cand.shape[0], 1]]]
-        rs, ms = _effective(radius, rmass, i, j)
+        rs, ms = _effective(radius, rmass, i, j, rowinfo, row)
         tc = rowinfo[row, RI_TC] * size_factor(rowinfo, row, rs, ms)
         if tc < best:
             best = tc
@@ -492,7 +505,7 @@ def deep_overlaps(m, body, overlaps, radius, rmass, pair_rows, rowinfo):
         a = body[k, 0]
         b = body[k, 1]
         row = pair_rows[k]
-        rs, ms = _effective(radius, rmass, a, b)
+        rs, ms = _effective(radius, rmass, a, b, rowinfo, row)
         ratio = overlaps[k] / (rowinfo[row, RI_DEEPEST] * size_factor(rowinfo, row, rs, ms))
         if ratio > 1.0:
             count += 1
@@ -580,7 +593,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             i = cand_walls[c - npc, 0]
             w = cand_walls[c - npc, 1]
             j = -1
-            gap, nx, ny, nz = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
+            gap, nx, ny, nz = W.contact(walls, w, cand_walls[c - npc, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
             delta = radius[i] - gap
             touch = delta > 0.0
             local_j = False
@@ -637,7 +650,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             vz = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
             pair_rows[n] = sphere_row[typ[a] - 1, typ[b] - 1]
             if sized:
-                rs, ms = _effective(radius, rmass, a, b)
+                rs, ms = _effective(radius, rmass, a, b, rowinfo, pair_rows[n])
                 _contact_row(params, pair_rows[n], pc, n, rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
@@ -658,7 +671,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             vz = v[i, 2] - uwz + (wx * ny - wy * nx)
             pair_rows[n] = wall_row[typ[i] - 1, wall_mat[w]]
             if sized:
-                _contact_row(params, pair_rows[n], pc, n, rowinfo, radius[i], rmass[i])
+                rs, ms = _effective(radius, rmass, i, -1, rowinfo, pair_rows[n])
+                _contact_row(params, pair_rows[n], pc, n, rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
                 wn[n] = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
@@ -741,7 +755,7 @@ def _onset(late, work, body, hrow, H, normals, velocities, radius, rmass, pair_r
               + velocities[n, 2] * normals[n, 2])
         if vn > v_max:
             row = pair_rows[n]
-            rs, ms = _effective(radius, rmass, body[n, 0], body[n, 1])
+            rs, ms = _effective(radius, rmass, body[n, 0], body[n, 1], rowinfo, row)
             tc = rowinfo[row, RI_TC] * size_factor(rowinfo, row, rs, ms) * (v_max / vn) ** rowinfo[row, RI_ALPHA]
             onset[ON_FAST] += 1.0
             onset[ON_VMAX] = max(onset[ON_VMAX], vn)
@@ -762,10 +776,16 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
     left_out = 0
     stale = 0
     for k in range(ended):
-        # contacts that ended free their rows (reset)
+        # contacts that ended free their rows (reset); a wall contact's row only after the new contacts
+        # have looked for theirs (the contact may have moved to another element of its patch: the row is
+        # kept in cand_rows[c, 1] till then)
         c = work[k, 2]
         i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
         r = cand_rows[c, 0]
+        if j < 0:
+            cand_rows[c, 0] = -1
+            cand_rows[c, 1] = r
+            continue
         if r >= 0 and keys[i, r] == key_i:
             _release(keys, H, i, r)
         r = cand_rows[c, 1]
@@ -789,6 +809,23 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
             cand_rows[c, 1] = rj
             if full and rj >= 0:
                 used[j, rj] = True
+    for k in range(ended):
+        # the rows of wall contacts that ended, unless a new contact of the atom took them over
+        c = work[k, 2]
+        i, j, key_i, _ = _candidate(cand, cand_walls, walls, c, tag, nlocal)
+        if j >= 0:
+            continue
+        r = cand_rows[c, 1]
+        cand_rows[c, 1] = -1
+        if r < 0 or keys[i, r] != key_i:
+            continue
+        taken = False
+        for q in range(late):
+            c2 = work[q, 1]
+            if c2 >= cand.shape[0] and cand_walls[c2 - cand.shape[0], 0] == i and cand_rows[c2, 0] == r:
+                taken = True
+        if not taken:
+            _release(keys, H, i, r)
     if full:
         # after a rebuild: the rows no contact uses are freed (contacts that ended, rows that came with
         # an atom from another rank) before new contacts take rows
@@ -861,6 +898,61 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
     return left_out, stale
 
 
+@njit(cache=True)
+def wall_loads(x, radius, walls, m, body, normals, overlaps, forces, torques, loads):
+    """loads float64[n_walls, 7]: each wall's force (3) [N], torque about its centre of rotation (3) [N m]
+    and the power it gives the spheres [W], from the m contacts of this rank (forces, torques: on body 1,
+    the sphere; each wall contact is its local atom's, so the ranks' loads add up): -F, (c - C) x (-F) - M
+    and F . v_wall(c), with c = x + (R - delta) n the contact point on the wall's surface."""
+    loads[:, :] = 0.0
+    for n in range(m):
+        b = body[n, 1]
+        if b >= 0:
+            continue
+        w = -b - 1
+        a = body[n, 0]
+        s = radius[a] - overlaps[n]
+        cx = x[a, 0] + s * normals[n, 0]
+        cy = x[a, 1] + s * normals[n, 1]
+        cz = x[a, 2] + s * normals[n, 2]
+        fx = forces[n, 0]
+        fy = forces[n, 1]
+        fz = forces[n, 2]
+        rx = cx - walls[w, W.CENTRE]
+        ry = cy - walls[w, W.CENTRE + 1]
+        rz = cz - walls[w, W.CENTRE + 2]
+        loads[w, 0] -= fx
+        loads[w, 1] -= fy
+        loads[w, 2] -= fz
+        loads[w, 3] -= ry * fz - rz * fy + torques[n, 0]
+        loads[w, 4] -= rz * fx - rx * fz + torques[n, 1]
+        loads[w, 5] -= rx * fy - ry * fx + torques[n, 2]
+        vx, vy, vz = W.velocity(walls, w, cx, cy, cz)
+        loads[w, 6] += fx * vx + fy * vy + fz * vz
+
+
+@njit(cache=True)
+def moved(nlocal, x, x_ref):
+    """The largest displacement of the local atoms from x_ref[:nlocal] [m]."""
+    big = 0.0
+    for i in range(nlocal):
+        d = (x[i, 0] - x_ref[i, 0]) ** 2 + (x[i, 1] - x_ref[i, 1]) ** 2 + (x[i, 2] - x_ref[i, 2]) ** 2
+        big = max(big, d)
+    return math.sqrt(big)
+
+
+@njit(cache=True)
+def carry_wall_rows(old, old_rows, new, new_rows):
+    """new_rows[c, 0] := old_rows[c', 0] for the wall candidates (i, w, e) found in both lists (each in the
+    order of i, w, e): the history rows of contacts that continue across a rebuild of the wall list."""
+    p = 0
+    for c in range(new.shape[0]):
+        while p < old.shape[0] and (old[p, 0], old[p, 1], old[p, 2]) < (new[c, 0], new[c, 1], new[c, 2]):
+            p += 1
+        if p < old.shape[0] and old[p, 0] == new[c, 0] and old[p, 1] == new[c, 1] and old[p, 2] == new[c, 2]:
+            new_rows[c, 0] = old_rows[p, 0]
+
+
 def contact_buffers(n, n_params):
     """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, hrow, pair_rows, normals,
     overlaps, velocities, wn, pc, forces, tforces, spins, torques, contact_rows (0, 1, ..., n - 1))."""
@@ -874,13 +966,15 @@ def contact_buffers(n, n_params):
 def behind_walls(nlocal, x, radius, walls):
     """int64[n_walls]: the local atoms whose centre is behind each wall (signed distance to its surface < 0:
     a wall that faces away from the domain, or atoms placed through it)."""
-    nw = walls.shape[0]
+    nw = W.count(walls)
     count = np.zeros(max(nw, 1), dtype=np.int64)
     for i in range(nlocal):
         for w in range(nw):
-            s, _, _, _ = W.contact(walls, w, x[i, 0], x[i, 1], x[i, 2], radius[i])
-            if s < 0.0:
-                count[w] += 1
+            for e in range(W.elements(walls, w)):
+                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                if s < 0.0:
+                    count[w] += 1
+                    break
     return count[:nw]
 
 

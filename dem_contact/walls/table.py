@@ -5,13 +5,13 @@ dispatch of the contract's kernels (``contract``) on the kind of each row.
 ``contract.KIND`` of each packed wall; the module is ``walls/<kind>.py``, whose ``CLASS`` names its user
 class.
 
-Adding a kind: write ``walls/<kind>.py`` keeping the contract (its user class, ``N_DATA``, ``ELEMENTS``,
-``CLASS`` naming the class, and the kernels ``contact``, ``velocity``, ``curvature``, ``element`` with the
-contract's signatures), then add its row to ``KINDS``. Nothing else: ``pack`` accepts its class, ``ROW_SIZE``
-grows to its numbers, and the dispatch functions here (``contact``, ``velocity``, ``curvature``,
-``element``) are generated from ``KINDS`` when the module is imported: with one kind each is a direct call
-of that kind's kernel; with several, a chain of ``if walls[w, KIND] == id`` branches, one per kind, each a
-direct call (inlined: the callers compile the branches of every kind in the table).
+Adding a kind: write ``walls/<kind>.py`` keeping the contract (its user class, ``N_DATA``,
+``PAYLOAD_WIDTH``, ``CLASS`` naming the class, and the kernels ``contact``, ``curvature``, ``patch``,
+``place`` with the contract's signatures), then add its row to ``KINDS``. Nothing else: ``pack`` accepts its
+class, ``ROW_SIZE`` grows to its numbers, and the dispatch functions here (``contact``, ``curvature``,
+``patch``, ``place``) are generated from ``KINDS`` when the module is imported: a chain of ``if walls[w,
+KIND] == id`` branches, one per kind, each a direct call (inlined: the callers compile the branches of
+every kind in the table). ``history_key`` and ``place_walls`` are written on them.
 """
 from __future__ import annotations
 
@@ -21,54 +21,89 @@ import numpy as np
 from numba import njit
 
 from ..errors import InputError
-from . import plane
-from .contract import DATA, KEY_BASE, KIND, history_key  # noqa: F401  (history_key: part of the table's face)
+from . import cylinder, mesh, plane
+from .contract import (CENTRE, CENTRE0, DATA, FIRST, KEY_BASE, KIND, MOVES, NELEM, OMEGA, PAYLOAD, VEL,  # noqa: F401
+                       count, elements, velocity)
 
 #: The kinds of wall: (kind id = row index, module).
 KINDS = (
     (0, plane),
+    (1, cylinder),
+    (2, mesh),
 )
 
 #: the contract's per-kind kernels, dispatched on the kind of the row
-KERNELS = ("contact", "velocity", "curvature", "element")
+KERNELS = ("contact", "curvature", "patch", "place")
 
 #: The user classes of the kinds, in the order of KINDS.
 CLASSES = tuple(getattr(mod, mod.CLASS) for _, mod in KINDS)
 
-#: Columns of a packed wall row: the kind, the key base and the largest kind's numbers.
-ROW_SIZE = DATA + max(mod.N_DATA for _, mod in KINDS)
+#: Columns of a packed wall row: the contract's and the largest kind's numbers (or payload row).
+ROW_SIZE = max(max(DATA + mod.N_DATA for _, mod in KINDS), 1 + max(mod.PAYLOAD_WIDTH for _, mod in KINDS))
 
 
 def pack(walls, n_materials=None):
-    """float64[n, ROW_SIZE] rows (``contract``) and int64[n] material indices of a list of walls (checked:
-    ``InputError`` naming ``walls[k]``). n_materials: the number of wall materials of the PairTable, if
-    the material indices are to be checked against it."""
+    """float64[n + p, ROW_SIZE] rows (``contract``: the n walls' rows, then their p payload rows) and
+    int64[n] material indices of a list of walls (checked: ``InputError`` naming ``walls[k]``).
+    n_materials: the number of wall materials of the PairTable, if the material indices are to be checked
+    against it."""
     try:
         walls = list(walls)
     except TypeError:
         raise InputError(f"walls must be a list of walls ({', '.join(c.__name__ for c in CLASSES)}), "
                          f"got {type(walls).__name__}") from None
+    names = ", ".join(c.__name__ for c in CLASSES)
     rows = np.zeros((len(walls), ROW_SIZE))
     mats = np.zeros(len(walls), dtype=np.int64)
+    payloads = []
     key = 0
+    first = len(walls)
     for k, wall in enumerate(walls):
         kid = next((i for i, c in enumerate(CLASSES) if isinstance(wall, c)), None)
         if kid is None:
-            raise InputError(f"walls[{k}] must be a wall ({', '.join(c.__name__ for c in CLASSES)}), "
-                             f"got {type(wall).__name__}")
+            raise InputError(f"walls[{k}] must be a wall ({names}), got {type(wall).__name__}")
         mod = KINDS[kid][1]
-        data = wall.row_data(k)
+        data, payload, n_elements, n_keys, moves = wall.packed(k)
         m = wall.wall
         if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 0 or (
                 n_materials is not None and m >= n_materials):
             upper = "any" if n_materials is None else n_materials - 1
             raise InputError(f"walls[{k}].wall = {m!r} must index the table's walls (0 ... {upper})")
+        v, om, c = (tuple(float(q) for q in a) for a in (wall.velocity, wall.angular_velocity,
+                                                          wall.centre if wall.centre is not None else (0, 0, 0)))
+        if wall.centre is None:
+            # (the kind's default centre: the one its packed() used)
+            c = _default_centre(mod, data, payload)
         rows[k, KIND] = KINDS[kid][0]
         rows[k, KEY_BASE] = key
+        rows[k, NELEM] = n_elements
+        rows[k, MOVES] = 1.0 if moves else 0.0
+        rows[k, VEL:VEL + 3] = v
+        rows[k, OMEGA:OMEGA + 3] = om
+        rows[k, CENTRE:CENTRE + 3] = c
+        rows[k, CENTRE0:CENTRE0 + 3] = c
+        rows[k, FIRST] = -1.0
         rows[k, DATA:DATA + mod.N_DATA] = data
+        if payload is not None:
+            rows[k, FIRST] = first
+            block = np.zeros((len(payload), ROW_SIZE))
+            block[:, KIND] = PAYLOAD
+            block[:, 1:1 + payload.shape[1]] = payload
+            payloads.append(block)
+            first += len(payload)
         mats[k] = m
-        key += mod.ELEMENTS
-    return rows, mats
+        key += n_keys
+    if payloads:
+        rows = np.concatenate([rows] + payloads)
+    return np.ascontiguousarray(rows), mats
+
+
+def _default_centre(mod, data, payload):
+    """The centre of rotation a kind takes when none is given: the plane's point, the cylinder's axis point,
+    the mean of a mesh's vertices."""
+    if payload is not None:
+        return tuple(payload[:, mesh._V0 - 1:mesh._V0 + 8].reshape(-1, 3).mean(axis=0).tolist())
+    return tuple(data[:3])
 
 
 def _dispatch(name, kinds):
@@ -101,6 +136,21 @@ def _dispatch(name, kinds):
 
 
 contact = _dispatch("contact", KINDS)
-velocity = _dispatch("velocity", KINDS)
 curvature = _dispatch("curvature", KINDS)
-element = _dispatch("element", KINDS)
+patch = _dispatch("patch", KINDS)
+place = _dispatch("place", KINDS)
+
+
+@njit(inline="always")
+def history_key(walls, w, e):
+    """Key of the history of a contact with element e of wall w: -(first key of wall w + its patch + 1)
+    (negative; ``contract``)."""
+    return -(walls[w, KEY_BASE] + patch(walls, w, e) + 1.0)
+
+
+@njit
+def place_walls(walls, t):
+    """Every wall whose motion moves its surface, placed at time t [s] (in place)."""
+    for w in range(count(walls)):
+        if walls[w, MOVES] != 0.0:
+            place(walls, w, t)

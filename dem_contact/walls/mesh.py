@@ -1,0 +1,341 @@
+"""Triangle-mesh walls (``MeshWall``, from vertices and triangles or an STL file), two-sided, moving by a
+prescribed rigid motion (``contract``). Each triangle is an element; the history keys are the mesh's flat
+patches (connected sets of coplanar triangles).
+
+Contact rule (one contact per sphere and contact region, none counted twice where triangles meet). For a
+sphere's centre x and each triangle T, the closest point of T to x is a point of its face (x projects
+inside T), of an edge or a vertex (Ericson 2005, Real-Time Collision Detection, sec. 5.1.5). Then:
+
+- a face contact of T counts, unless a neighbour of T across an edge, in T's patch and of lower index,
+  has a face contact too (two nearly coplanar triangles: one contact);
+- an edge contact counts once, for the triangle of lowest index sharing the edge, and only if every
+  triangle sharing the edge has its closest point on that edge (else a face, or another feature, of the
+  neighbour is nearer: the edge is shadowed);
+- a vertex contact counts once, for the triangle of lowest index around the vertex, and only if every
+  triangle around it has that vertex as its closest point (every edge at the vertex points away from x).
+
+So a sphere on a flat patch (triangulated plane) has one contact wherever it is, at a seam or a vertex
+too, with the plane's distance and normal; over a convex edge or vertex one contact whose normal turns
+continuously from one face to the next; in a concave corner one contact per face it touches. This is the
+rule of LIGGGHTS (``tri_mesh_I.h``, ``resolveTriSphereContactBary``: barycentric regions, a shared edge and
+a corner owned by one triangle) with the shadowing decided from the geometry of the neighbours at each
+step (no state). A contact keeps its history while it moves across its patch (keyed by the patch, not
+the triangle: LIGGGHTS copies the history onto a coplanar neighbour); crossing a non-coplanar edge starts
+a new history. An edge shared by more than two triangles is refused. The mesh is two-sided: the normal
+points from the sphere's centre to the closest point, whichever side the sphere is on; a sphere whose
+centre crosses the surface is pushed out on the other side.
+
+Payload rows (one per triangle, from column 1): the vertices now (9) and at time 0 (9), the vertex ids
+(3), the neighbour across each edge k = (V_k, V_k+1) (3; -1: none) and the patch. Row data: the number
+of triangles.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ..errors import InputError
+from . import checks
+from .contract import DATA, FIRST, move_point, rigid
+
+CLASS = "MeshWall"
+N_DATA = 1
+PAYLOAD_WIDTH = 25
+_V = 1          # payload: vertices now (9)
+_V0 = 10        # vertices at time 0 (9)
+_ID = 19        # vertex ids (3)
+_NB = 22        # neighbour triangle across edge k (3)
+_PATCH = 25     # patch
+DATA_NT = DATA  # row data: the number of triangles
+
+#: triangles whose unit normals differ by less than this angle [rad] across an edge are one patch
+COPLANAR = 1e-5
+#: longest walk around a vertex (triangles)
+MAX_FAN = 256
+
+
+@dataclass(frozen=True, eq=False)
+class MeshWall:
+    """A triangle mesh: ``vertices`` float[nv, 3] [m] (its pose at time 0) and ``triangles`` int[nt, 3]
+    (vertex indices); ``wall``: index of its material in the PairTable's walls. Rigid motion as
+    ``PlaneWall``: ``velocity``, ``angular_velocity`` about ``centre`` (default: the vertices' mean).
+    Contact rule and history: see the module's docstring."""
+
+    vertices: np.ndarray
+    triangles: np.ndarray
+    wall: int = 0
+    velocity: tuple = (0.0, 0.0, 0.0)
+    angular_velocity: tuple = (0.0, 0.0, 0.0)
+    centre: tuple | None = None
+
+    @classmethod
+    def from_stl(cls, path, scale: float = 1.0, offset=(0.0, 0.0, 0.0), **kw) -> "MeshWall":
+        """The mesh of an STL file (ASCII or binary, ``stl.read_stl``), its coordinates times ``scale``
+        plus ``offset`` [m]; other arguments as the class."""
+        from .stl import read_stl
+
+        v, t = read_stl(path)
+        return cls(v * float(scale) + np.asarray(offset, dtype=np.float64), t, **kw)
+
+    def topology(self, k: int = 0):
+        """(vertices float64[nv, 3], triangles int64[nt, 3], neighbours int64[nt, 3] across each edge
+        (V_k, V_k+1), -1 none, patches int64[nt]), checked (InputError naming walls[k])."""
+        try:
+            v = np.array(self.vertices, dtype=np.float64)
+            t = np.array(self.triangles)
+        except (TypeError, ValueError):
+            raise InputError(f"walls[{k}].vertices and .triangles must be arrays of numbers") from None
+        if v.ndim != 2 or v.shape[1] != 3 or not np.isfinite(v).all():
+            raise InputError(f"walls[{k}].vertices must be finite numbers of shape (nv, 3), got shape {v.shape}")
+        if t.ndim != 2 or t.shape[1] != 3 or len(t) == 0 or not np.issubdtype(t.dtype, np.integer):
+            raise InputError(f"walls[{k}].triangles must be integers of shape (nt >= 1, 3), got shape {t.shape}")
+        t = t.astype(np.int64)
+        if t.min() < 0 or t.max() >= len(v):
+            raise InputError(f"walls[{k}].triangles must index the vertices (0 ... {len(v) - 1})")
+        c = v[t]
+        n = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+        area = np.linalg.norm(n, axis=1)
+        scale = np.linalg.norm(c - c.mean(axis=1, keepdims=True), axis=2).max(axis=1)
+        bad = ~(area > 1e-12 * scale ** 2)
+        if bad.any():
+            j = int(np.argmax(bad))
+            raise InputError(f"walls[{k}].triangles[{j}] is degenerate (zero area, or repeated vertices)")
+        unit = n / area[:, None]
+        edges = {}
+        for j, tri in enumerate(t.tolist()):
+            for q in range(3):
+                a, b = tri[q], tri[(q + 1) % 3]
+                edges.setdefault((min(a, b), max(a, b)), []).append((j, q))
+        nb = np.full((len(t), 3), -1, dtype=np.int64)
+        parent = list(range(len(t)))
+
+        def root(i):
+            while parent[i] != i:
+                parent[i] = parent[parent[i]]
+                i = parent[i]
+            return i
+
+        for (a, b), owners in edges.items():
+            if len(owners) > 2:
+                raise InputError(f"walls[{k}]: the edge between vertices {a} and {b} is shared by {len(owners)} "
+                                 f"triangles (at most 2)")
+            if len(owners) == 2:
+                (j1, q1), (j2, q2) = owners
+                nb[j1, q1] = j2
+                nb[j2, q2] = j1
+                if np.linalg.norm(np.cross(unit[j1], unit[j2])) <= COPLANAR:
+                    parent[root(j1)] = root(j2)
+        roots = [root(j) for j in range(len(t))]
+        _, patches = np.unique(roots, return_inverse=True)
+        return v, t, nb, patches.astype(np.int64)
+
+    def packed(self, k: int):
+        """(data, payload, n_elements, n_keys, moves): see ``contract`` (k: the wall's index, for messages)."""
+        v, t, nb, patches = self.topology(k)
+        vel, om, _ = checks.motion(k, self, tuple(v.mean(axis=0).tolist()))
+        payload = np.zeros((len(t), PAYLOAD_WIDTH + 1))
+        payload[:, _V:_V + 9] = v[t].reshape(-1, 9)
+        payload[:, _V0:_V0 + 9] = payload[:, _V:_V + 9]
+        payload[:, _ID:_ID + 3] = t
+        payload[:, _NB:_NB + 3] = nb
+        payload[:, _PATCH] = patches
+        moves = checks.norm(vel) > 0.0 or checks.norm(om) > 0.0
+        return (float(len(t)),), payload[:, 1:], len(t), int(patches.max()) + 1, moves
+
+
+@njit(inline="always", cache=True)
+def _closest(walls, q, x, y, z):
+    """The closest point of triangle row q to (x, y, z): (feature: 0 face, 1 edge, 2 vertex; its local
+    index (edge k = (V_k, V_k+1), vertex k); the point; the squared distance; the unit normal (face); the
+    signed distance along it). Edges are parametrised from their lower vertex id, so that the two
+    triangles of an edge find the same point."""
+    ax = walls[q, _V]
+    ay = walls[q, _V + 1]
+    az = walls[q, _V + 2]
+    e1x = walls[q, _V + 3] - ax
+    e1y = walls[q, _V + 4] - ay
+    e1z = walls[q, _V + 5] - az
+    e2x = walls[q, _V + 6] - ax
+    e2y = walls[q, _V + 7] - ay
+    e2z = walls[q, _V + 8] - az
+    nx = e1y * e2z - e1z * e2y
+    ny = e1z * e2x - e1x * e2z
+    nz = e1x * e2y - e1y * e2x
+    nn = math.sqrt(nx * nx + ny * ny + nz * nz)
+    nx /= nn
+    ny /= nn
+    nz /= nn
+    inside = True
+    for k in range(3):
+        c0 = _V + 3 * k
+        c1 = _V + 3 * ((k + 1) % 3)
+        px = walls[q, c0]
+        py = walls[q, c0 + 1]
+        pz = walls[q, c0 + 2]
+        ex = walls[q, c1] - px
+        ey = walls[q, c1 + 1] - py
+        ez = walls[q, c1 + 2] - pz
+        rx = x - px
+        ry = y - py
+        rz = z - pz
+        if (ey * rz - ez * ry) * nx + (ez * rx - ex * rz) * ny + (ex * ry - ey * rx) * nz <= 0.0:
+            inside = False
+    d = (x - ax) * nx + (y - ay) * ny + (z - az) * nz
+    if inside:
+        return 0, 0, x - d * nx, y - d * ny, z - d * nz, d * d, nx, ny, nz, d
+    best = math.inf
+    feat = 1
+    idx = 0
+    bx = by = bz = 0.0
+    for k in range(3):
+        k1 = (k + 1) % 3
+        lo, hi = (k, k1) if walls[q, _ID + k] < walls[q, _ID + k1] else (k1, k)
+        px = walls[q, _V + 3 * lo]
+        py = walls[q, _V + 3 * lo + 1]
+        pz = walls[q, _V + 3 * lo + 2]
+        ex = walls[q, _V + 3 * hi] - px
+        ey = walls[q, _V + 3 * hi + 1] - py
+        ez = walls[q, _V + 3 * hi + 2] - pz
+        t = ((x - px) * ex + (y - py) * ey + (z - pz) * ez) / (ex * ex + ey * ey + ez * ez)
+        f = 1
+        i = k
+        if t <= 0.0:
+            cx, cy, cz = px, py, pz
+            f = 2
+            i = lo
+        elif t >= 1.0:
+            cx = walls[q, _V + 3 * hi]
+            cy = walls[q, _V + 3 * hi + 1]
+            cz = walls[q, _V + 3 * hi + 2]
+            f = 2
+            i = hi
+        else:
+            cx = px + t * ex
+            cy = py + t * ey
+            cz = pz + t * ez
+        d2 = (x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2
+        if d2 < best:
+            best = d2
+            feat = f
+            idx = i
+            bx, by, bz = cx, cy, cz
+    return feat, idx, bx, by, bz, best, nx, ny, nz, d
+
+
+@njit(inline="always", cache=True)
+def _local(walls, q, vid):
+    """The local index of vertex id vid in triangle row q (-1: not there)."""
+    for k in range(3):
+        if walls[q, _ID + k] == vid:
+            return k
+    return -1
+
+
+@njit(inline="always", cache=True)
+def _clear(walls, q, k, x, y, z):
+    """Whether both edges of triangle row q at its vertex k have their closest point to x at that vertex
+    (the parametrisation of ``_closest``)."""
+    vid = walls[q, _ID + k]
+    for kk in (k, (k + 2) % 3):
+        other = (kk + 1) % 3 if kk == k else kk
+        lo, hi = (k, other) if vid < walls[q, _ID + other] else (other, k)
+        px = walls[q, _V + 3 * lo]
+        py = walls[q, _V + 3 * lo + 1]
+        pz = walls[q, _V + 3 * lo + 2]
+        ex = walls[q, _V + 3 * hi] - px
+        ey = walls[q, _V + 3 * hi + 1] - py
+        ez = walls[q, _V + 3 * hi + 2] - pz
+        t = ((x - px) * ex + (y - py) * ey + (z - pz) * ez) / (ex * ex + ey * ey + ez * ez)
+        if (lo == k and t > 0.0) or (hi == k and t < 1.0):
+            return False
+    return True
+
+
+@njit(inline="always", cache=True)
+def _vertex_counts(walls, first, e, k, x, y, z):
+    """Whether the vertex contact of triangle e at its vertex k counts: e is the lowest triangle around
+    the vertex and the vertex is the closest point of each (walk around it across the edges)."""
+    vid = walls[first + e, _ID + k]
+    closed = False
+    for direction in range(2):
+        if closed:
+            break
+        prev = e
+        nxt = int(walls[first + e, _NB + (k if direction == 0 else (k + 2) % 3)])
+        for _ in range(MAX_FAN):
+            if nxt < 0:
+                break
+            if nxt == e:
+                closed = True
+                break
+            if nxt < e:
+                return False
+            q = first + nxt
+            kk = _local(walls, q, vid)
+            if kk < 0 or not _clear(walls, q, kk, x, y, z):
+                return False
+            a = int(walls[q, _NB + kk])
+            b = int(walls[q, _NB + (kk + 2) % 3])
+            prev, nxt = nxt, (b if a == prev else a)
+    return True
+
+
+@njit(inline="always", cache=True)
+def contact(walls, w, e, x, y, z, r):
+    """(s, nx, ny, nz) of triangle e (the rule of the module's docstring; s = inf: no contact counted)."""
+    first = int(walls[w, FIRST])
+    q = first + e
+    feat, idx, px, py, pz, d2, fx, fy, fz, d = _closest(walls, q, x, y, z)
+    if feat == 0:
+        for k in range(3):
+            nb = int(walls[q, _NB + k])
+            if 0 <= nb < e and walls[first + nb, _PATCH] == walls[q, _PATCH]:
+                if _closest(walls, first + nb, x, y, z)[0] == 0:
+                    return math.inf, 0.0, 0.0, 0.0
+        if d >= 0.0:
+            return d, -fx, -fy, -fz
+        return -d, fx, fy, fz
+    if feat == 1:
+        nb = int(walls[q, _NB + idx])
+        if nb >= 0:
+            if nb < e:
+                return math.inf, 0.0, 0.0, 0.0
+            qn = first + nb
+            a = _local(walls, qn, walls[q, _ID + idx])
+            b = _local(walls, qn, walls[q, _ID + (idx + 1) % 3])
+            kn = a if (a + 1) % 3 == b else b
+            f2, i2, _, _, _, _, _, _, _, _ = _closest(walls, qn, x, y, z)
+            if f2 != 1 or i2 != kn:
+                return math.inf, 0.0, 0.0, 0.0
+    elif not _vertex_counts(walls, first, e, idx, x, y, z):
+        return math.inf, 0.0, 0.0, 0.0
+    s = math.sqrt(d2)
+    if s == 0.0:
+        return 0.0, -fx, -fy, -fz
+    return s, (px - x) / s, (py - y) / s, (pz - z) / s
+
+
+@njit(inline="always", cache=True)
+def curvature(walls, w, e, cx, cy, cz):
+    """Triangles are flat: 0 (an edge or a vertex is taken as flat too)."""
+    return 0.0
+
+
+@njit(inline="always", cache=True)
+def patch(walls, w, e):
+    """The flat patch of triangle e."""
+    return int(walls[int(walls[w, FIRST]) + e, _PATCH])
+
+
+@njit(inline="always", cache=True)
+def place(walls, w, t):
+    """The vertices at time t."""
+    rot = rigid(walls, w, t)
+    first = int(walls[w, FIRST])
+    for e in range(int(walls[w, DATA_NT])):
+        q = first + e
+        for k in range(3):
+            move_point(walls, w, rot, q, _V + 3 * k, q, _V0 + 3 * k)
