@@ -1081,9 +1081,12 @@ class LammpsContacts:
         if setup:
             # (collective) the last run's last steps if they were not checked, then this run's checks
             self._error = None
-            self._collective_check(final=True)
-            if self._error is None:
-                self._begin_run()
+            try:
+                self._collective_check(final=True)
+                if self._error is None:
+                    self._begin_run()
+            except BaseException as e:    # (not a failed check: told to the other ranks at the next check)
+                self._local_error = self._local_error or e
         try:
             self._zero_fext(fext_address, nlocal)
             self.dt = self._dt.value       # at every step: fix dt/reset may change it in a run
@@ -1107,7 +1110,10 @@ class LammpsContacts:
         # (no contact forces after an error on this rank: the forces are added by the last kernel of a step;
         # the ranks tell each other at the next check, which stops the run)
         if not setup and self._error is None and (ntimestep % self.check_every == 0 or ntimestep == self._end_step):
-            self._collective_check(final=ntimestep == self._end_step)
+            try:
+                self._collective_check(final=ntimestep == self._end_step)
+            except BaseException as e:    # (a warning made an error by the user's filter)
+                self._local_error = self._local_error or e
         self.callback_s += time.perf_counter() - t0
 
     def _box(self):
