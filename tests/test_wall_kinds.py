@@ -299,16 +299,17 @@ def test_stl_files_ascii_and_binary_and_the_hopper():
 # ------------------------------------------------------------------------------------------------ LAMMPS
 
 def _floor_run(mesh):
-    """Forces on a sphere pressed onto a floor, sliding and spinning across it for 120 steps, in LAMMPS
-    through the bridge: a triangulated floor (MeshWall) or the plane."""
+    """Forces, torques and positions of a sphere pressed onto a floor (0.05 N), sliding and spinning across
+    it for 600 steps (every 5th), in LAMMPS through the bridge: a triangulated floor (MeshWall) or the
+    plane."""
     from dem_contact.lammps import LammpsContacts, new_lammps
 
     lmp = new_lammps()
     for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
                 "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
-                "create_atoms 1 single -0.0031 -0.0025 0.00099", "set type 1 diameter 0.002",
+                "create_atoms 1 single -0.0031 -0.0025 0.0009874", "set type 1 diameter 0.002",
                 f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix nve all nve/sphere",
-                "fix g all gravity 9.81 vector 0 0 -1"):
+                "fix press all addforce 0.0 0.0 -0.05"):
         lmp.command(cmd)
     lmp.numpy.extract_atom("v")[0] = (5.0, 4.0, 0.0)
     lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
@@ -318,7 +319,7 @@ def _floor_run(mesh):
     bridge = LammpsContacts(lmp, _table(), [wall], slots=2, v_max=6.0, frame_spin=False)
     rows = []
     for _ in range(120):
-        bridge.run(1)
+        bridge.run(5)
         rows.append(np.concatenate([lmp.numpy.extract_atom("f")[0], lmp.numpy.extract_atom("torque")[0],
                                     lmp.numpy.extract_atom("x")[0]]))
     lmp.close()
@@ -330,7 +331,7 @@ def test_a_triangulated_floor_in_lammps_is_the_plane():
     """Through the LAMMPS bridge, a sphere sliding across the seams and vertices of a triangulated floor
     feels the plane's forces and torques step for step (its history row carried from triangle to triangle)."""
     ours, plane = _floor_run(True), _floor_run(False)
-    assert np.ptp(plane[:, 6]) > 0.004 and np.abs(plane[:, :2]).max() > 0
+    assert np.ptp(plane[:, 6]) > 0.004 and np.abs(plane[:, :2]).max() > 0 and (plane[:, 2] + 0.05 > 0.01).all()
     assert np.abs(ours - plane).max() <= 1e-12 * np.abs(plane).max()
 
 
@@ -391,7 +392,7 @@ def test_a_rotating_drum_is_lammps_wall_gran_region():
     per-atom contacts array) to 1e-9 of its largest (rounding, grown by the chaos of 900 steps of
     collisions). Taken flat (curved=False), or at rest, the drum gives other results."""
     ours, native = _drum_run(False), _drum_run(True)
-    assert native[-1, 2] >= 3 and np.count_nonzero(native[:, 1]) >= 3
+    assert native[:, 2].max() >= 3 and np.count_nonzero(native[:, 1]) >= 3
     assert np.array_equal(ours[:, 2], native[:, 2])
     assert np.abs(ours[:, 0] - native[:, 0]).max() <= 1e-12 * native[:, 0].max()
     assert np.abs(ours[:, 1] - native[:, 1]).max() <= 1e-9 * np.abs(native[:, 1]).max()

@@ -273,8 +273,7 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         for i in range(nlocal):
             for w in range(nw):
                 for e in range(W.elements(walls, w)):
-                    gap, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
-                    if gap < radius[i] + skin:
+                    if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
                         if kw < cap:
                             hits[kw, 0] = i
                             hits[kw, 1] = w

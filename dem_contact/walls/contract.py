@@ -28,6 +28,10 @@ Each kind of wall is one module of this package that provides:
       element reports no contact for that sphere, as a mesh edge shadowed by a face), and the unit normal
       at the contact point, from the sphere's centre toward the wall (body 1 = the sphere, body 2 = the
       wall). The overlap is delta = r - s (contact when delta > 0), the contact point c = x + s n;
+  ``distance(walls, w, e, x, y, z) -> d``
+      the distance from (x, y, z) to element e's surface [m] whichever element reports the contact (a
+      lower bound of the s of ``contact`` where it is finite): Verlet lists keep the elements within
+      r + skin by it, so that an element that takes over a contact (a mesh's neighbour) is in the list;
   ``curvature(walls, w, e, cx, cy, cz) -> k``
       1 / R2 [1/m] of the surface at c that enters R* = 1 / (1 / R1 + k): 0 for a plane, > 0 convex, < 0
       concave. The parameter rows of the contacts (``pairs.pair_table``) carry it through the wall's

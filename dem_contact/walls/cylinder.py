@@ -116,6 +116,12 @@ def contact(walls, w, e, x, y, z, r):
 
 
 @njit(inline="always", cache=True)
+def distance(walls, w, e, x, y, z):
+    """The signed distance of ``contact``."""
+    return contact(walls, w, e, x, y, z, 0.0)[0]
+
+
+@njit(inline="always", cache=True)
 def curvature(walls, w, e, cx, cy, cz):
     """-1/(2 Rc) inside, +1/(2 Rc) outside, 0 if taken flat (module docstring)."""
     return walls[w, _K]

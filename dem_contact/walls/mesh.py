@@ -319,6 +319,12 @@ def contact(walls, w, e, x, y, z, r):
 
 
 @njit(inline="always", cache=True)
+def distance(walls, w, e, x, y, z):
+    """The distance from (x, y, z) to triangle e, whatever the rule of ``contact``."""
+    return math.sqrt(_closest(walls, int(walls[w, FIRST]) + e, x, y, z)[5])
+
+
+@njit(inline="always", cache=True)
 def curvature(walls, w, e, cx, cy, cz):
     """Triangles are flat: 0 (an edge or a vertex is taken as flat too)."""
     return 0.0

@@ -80,6 +80,12 @@ def contact(walls, w, e, x, y, z, r):
 
 
 @njit(inline="always", cache=True)
+def distance(walls, w, e, x, y, z):
+    """The signed distance of ``contact``."""
+    return contact(walls, w, e, x, y, z, 0.0)[0]
+
+
+@njit(inline="always", cache=True)
 def curvature(walls, w, e, cx, cy, cz):
     """A plane is flat: 1 / R2 = 0."""
     return 0.0

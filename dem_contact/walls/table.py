@@ -6,10 +6,10 @@ dispatch of the contract's kernels (``contract``) on the kind of each row.
 class.
 
 Adding a kind: write ``walls/<kind>.py`` keeping the contract (its user class, ``N_DATA``,
-``PAYLOAD_WIDTH``, ``CLASS`` naming the class, and the kernels ``contact``, ``curvature``, ``patch``,
-``place`` with the contract's signatures), then add its row to ``KINDS``. Nothing else: ``pack`` accepts its
-class, ``ROW_SIZE`` grows to its numbers, and the dispatch functions here (``contact``, ``curvature``,
-``patch``, ``place``) are generated from ``KINDS`` when the module is imported: a chain of ``if walls[w,
+``PAYLOAD_WIDTH``, ``CLASS`` naming the class, and the kernels ``contact``, ``distance``, ``curvature``,
+``patch``, ``place`` with the contract's signatures), then add its row to ``KINDS``. Nothing else: ``pack`` accepts its
+class, ``ROW_SIZE`` grows to its numbers, and the dispatch functions here (``contact``, ``distance``,
+``curvature``, ``patch``, ``place``) are generated from ``KINDS`` when the module is imported: a chain of ``if walls[w,
 KIND] == id`` branches, one per kind, each a direct call (inlined: the callers compile the branches of
 every kind in the table). ``history_key`` and ``place_walls`` are written on them.
 """
@@ -33,7 +33,7 @@ KINDS = (
 )
 
 #: the contract's per-kind kernels, dispatched on the kind of the row
-KERNELS = ("contact", "curvature", "patch", "place")
+KERNELS = ("contact", "distance", "curvature", "patch", "place")
 
 #: The user classes of the kinds, in the order of KINDS.
 CLASSES = tuple(getattr(mod, mod.CLASS) for _, mod in KINDS)
@@ -136,6 +136,7 @@ def _dispatch(name, kinds):
 
 
 contact = _dispatch("contact", KINDS)
+distance = _dispatch("distance", KINDS)
 curvature = _dispatch("curvature", KINDS)
 patch = _dispatch("patch", KINDS)
 place = _dispatch("place", KINDS)
