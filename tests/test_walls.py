@@ -154,7 +154,7 @@ def _bridge_wall_contacts(x, radius, walls, v, omega, table):
         np.zeros((n, slots)), np.zeros((n, 4 * slots)), np.inf, np.zeros((n * slots, table.history_size)),
         table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, np.zeros((n, K.N_STAT)),
         np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
-        np.zeros(n, dtype=np.int64), table.params, np.zeros((len(table.params), K.N_ROWINFO)), False, 1.0,
+        np.zeros(n, dtype=np.int64), table.params, np.ones((len(table.params), K.N_ROWINFO)), False, np.inf,
         np.zeros(K.N_ONSET), *buf[:11])
     _, body, _, _, _, prow, normals, overlaps, vel, wn = buf[:10]
     k = np.flatnonzero(body[:m, 1] < 0)
