@@ -131,7 +131,7 @@ def main(argv=None):
     p.add_argument("--omega", type=float, default=2.0, help="drum angular velocity [rad/s] (2)")
     p.add_argument("--r50", type=float, default=2e-3, help="median sphere radius [m] (0.002)")
     p.add_argument("--sigma", type=float, default=0.2, help="log standard deviation of the radii (0 ... 0.4; 0.2)")
-    p.add_argument("--v-max", type=float, default=2.0, help="largest impact speed expected [m/s] (2)")
+    p.add_argument("--v-max", type=float, default=3.0, help="largest impact speed expected [m/s] (3)")
     p.add_argument("--steps-per-contact", type=float, default=20.0,
                    help="time steps per contact time of the stiffest pair at --v-max (>= 10; 20)")
     p.add_argument("--slots", type=int, default=14, help="history rows per atom (14)")
@@ -140,14 +140,14 @@ def main(argv=None):
     p.add_argument("--seed", type=int, default=1, help="random seed (radii, types, velocities)")
     p.add_argument("--speed", type=float, default=0.3, help="rms initial speed per axis [m/s] (0.3)")
     p.add_argument("--small", action="store_true",
-                   help="a test-sized run: --n 150 --steps 600 --radius 0.02")
+                   help="a test-sized run: --n 150 --steps 1000 --radius 0.02")
     p.add_argument("--csv", help="write the series to this CSV file (rank 0)")
     p.add_argument("--figure", help="draw the series (torque and angle of repose over time) to this PNG (rank 0)")
     p.add_argument("--vtk", help="write the contact network every --every steps into this folder (VTK, ParaView)")
     p.add_argument("--json", action="store_true", help="print one JSON object (rank 0)")
+    if p.parse_args(argv).small:        # (its sizes as defaults: an option given still counts)
+        p.set_defaults(n=150, steps=1000, radius=0.02)
     a = p.parse_args(argv)
-    if a.small:
-        a.n, a.steps, a.radius = 150, 600, 0.02
     try:
         return run(a)
     except InputError as e:
@@ -266,11 +266,19 @@ def run(a):
     go(0)                       # set-up (first lists, compiled kernels loaded): not timed
     series = []
 
+    sink = None
+    if a.csv and me == 0:
+        sink = open(a.csv, "w", newline="")
+        csv.writer(sink).writerow(["time_s", "kinetic_energy_J", "wall_torque_Nm", "angle_of_repose_deg"])
+
     def record(step):
         xa = np.ctypeslib.as_array(lmp.gather_atoms("x", 1, 3)).reshape(-1, 3)
         ra = np.ctypeslib.as_array(lmp.gather_atoms("radius", 1, 1))
         ke = scalar("ke") + scalar("rke")
         series.append((step * dt, ke, torque(), repose_angle(xa, ra, a.r50)))
+        if sink is not None:               # (as the run goes: a long run can be followed)
+            csv.writer(sink).writerow(series[-1])
+            sink.flush()
 
     done, wall_s = 0, 0.0
     while done < a.steps:
@@ -295,12 +303,9 @@ def run(a):
         out["angle_of_repose_std_deg"] = float(np.nanstd(late[:, 3]))
         out["wall_torque_mean_late"] = float(late[:, 2].mean())
     lmp.close()
+    if sink is not None:
+        sink.close()
     if me == 0:
-        if a.csv and series:
-            with open(a.csv, "w", newline="") as f:
-                wr = csv.writer(f)
-                wr.writerow(["time_s", "kinetic_energy_J", "wall_torque_Nm", "angle_of_repose_deg"])
-                wr.writerows(series)
         if a.figure and series:
             figure(np.array(series), a, out)
         if a.json:
