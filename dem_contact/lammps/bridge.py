@@ -526,6 +526,7 @@ class LammpsContacts:
         spheres = [table.scenes[table.sphere_row[k, k]].sphere for k in range(nt)]
         self.radii = np.array([s.radius for s in spheres])
         self.densities = np.array([s.material.rho for s in spheres])
+        self._type_size = np.array([[s.radius, s.mass] for s in spheres])     # (the sizes of the table's rows)
         # atoms of any radius where the laws' rows depend on the sizes through R* and m* only (else each type's)
         self.size_free, self._size_why = _size_free(table)
         if r_max is not None and not (isinstance(r_max, (int, float)) and math.isfinite(r_max)
@@ -1002,8 +1003,8 @@ class LammpsContacts:
                              "a run of at least one step (a run's set-up that reapplied the saved forces does not "
                              "evaluate them), before atoms are added, removed or moved between ranks")
         m = self._m_last
-        (_, body, _, _, _, rows, normals, overlaps, _, _, _, forces, tforces, _, torques, _) = (
-            self._buffers if m else K.contact_buffers(0, self.table.params.shape[1]))
+        (_, body, _, _, _, rows, normals, overlaps, _, _, _, _, forces, tforces, _, torques) = (
+            self._buffers if m else K.contact_buffers(0, self.table.params))
         k = np.flatnonzero(body[:m, 0] < nlocal)
         a, b = body[k, 0], body[k, 1]
         ex = lmp.numpy.extract_atom
@@ -1334,7 +1335,7 @@ class LammpsContacts:
             # (at a set-up too: the subdomains may have changed between runs)
             self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
-            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.table.params.shape[1])
+            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.table.params)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
         acc, touched, prev = self._atom_scratch(nlocal)
@@ -1352,15 +1353,14 @@ class LammpsContacts:
                 self._near_all = np.ones(2 * nlocal + 16, dtype=np.bool_)
             near = self._near_all
         n_prev = max(self._n_prev, 0)
-        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, pc, forces, tforces, spins, torques, crows = \
+        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, pc, prow, forces, tforces, spins, torques = \
             self._buffers
         t = self.table
-        sized = self.size_free
         m, n_touched, stale = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, sep, self._sep_tol2, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt,
-            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, t.params, self._rowinfo, sized,
-            self.v_max, self._onset, *self._buffers[:11])
+            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, t.params, self._rowinfo,
+            self.size_free, self._type_size, self.v_max, self._onset, *self._buffers[:12])
         if not setup and self._onset[K.ON_STEPS] < MIN_STEPS_PER_CONTACT:
             raise InputError(f"a contact began at a normal speed of {self._onset[K.ON_VMAX]:.4g} m/s, above v_max = "
                              f"{self.v_max:g} m/s, which the time step resolves with {self._onset[K.ON_STEPS]:.3g} "
@@ -1389,8 +1389,7 @@ class LammpsContacts:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
         K.relative_spins(omega, body, m, spins)
-        params, prow = (pc, crows[:m]) if sized else (t.params, rows[:m])
-        self._law(t.normal_id, t.tangential_id, params, prow, Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
+        self._law(t.normal_id, t.tangential_id, pc, prow[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
                   spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False

@@ -457,6 +457,14 @@ def _contact_row(params, row, pc, n, rowinfo, rstar, mstar):
 
 
 @njit(inline="always", cache=True)
+def _resized(radius, rmass, typ, type_size, i):
+    """Whether atom i's radius or mass is not its type's (type_size[type - 1] = (radius, mass), to 1e-12)."""
+    t = typ[i] - 1
+    return abs(radius[i] - type_size[t, 0]) > 1e-12 * type_size[t, 0] or \
+        abs(rmass[i] - type_size[t, 1]) > 1e-12 * type_size[t, 1]
+
+
+@njit(inline="always", cache=True)
 def _effective(radius, rmass, a, b, rowinfo, row):
     """(R*, m*) of atoms a and b of parameter row ``row``, as LAMMPS's granular models (b < 0: a wall, 1/R2 its
     material's curvature RI_CURV, 0 if flat, and 1/m2 = 0)."""
@@ -515,8 +523,8 @@ def deep_overlaps(m, body, overlaps, radius, rmass, pair_rows, rowinfo):
 @njit(cache=True)
 def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
                     keys, sep, sep_tol2, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near,
-                    all_atoms, prev, n_prev, touched, params, rowinfo, sized, v_max, onset, work, body, src, dst, hrow,
-                    pair_rows, normals, overlaps, velocities, wn, pc):
+                    all_atoms, prev, n_prev, touched, params, rowinfo, sized, type_size, v_max, onset, work, body, src,
+                    dst, hrow, pair_rows, normals, overlaps, velocities, wn, pc, prow):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
     (``dem.contact3d.batch_loop``), with the H rows of their histories.
 
@@ -538,10 +546,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     scratch; near: bool[>= nlocal] the local atoms that may change rank before the lists are rebuilt
     (``near_boundary``).
 
-    Sizes: params float64[n_rows, N_PARAMS] and rowinfo float64[n_rows, N_ROWINFO] (RI_...); sized: each
-    contact gets its own parameter row, pc[k] (float64[:, N_PARAMS], a buffer like the others), the row of its
-    pair of types with the R* and m* of its two atoms (``_contact_row``), for atoms whose radius is not their
-    type's. onset float64[N_ONSET]: the contacts that begin (advance only) at a normal speed above v_max
+    Sizes: params float64[n_rows, N_PARAMS] and rowinfo float64[n_rows, N_ROWINFO] (RI_...); prow int64[:]
+    receives the row of each contact in pc (float64[n_rows + buffer length, N_PARAMS], whose first n_rows rows
+    are params): its pair's row, or where ``sized`` and an atom of the contact has not its type's radius and
+    mass (type_size float64[n_types, 2], to 1e-12), pc[n_rows + k], the row of its pair of types with the R*
+    and m* of its two atoms (``_contact_row``). onset float64[N_ONSET]: the contacts that begin (advance only) at a normal speed above v_max
     [m/s] are counted there (ON_...), with the fewest time steps per contact time among them.
 
     Per-atom work in proportion to the contacts: the statistics columns ST_PAIRS, ST_WALLS, ST_OVERLAP are
@@ -647,10 +656,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             vx = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
             vy = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
             vz = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
-            pair_rows[n] = sphere_row[typ[a] - 1, typ[b] - 1]
-            if sized:
+            pair_rows[n] = prow[n] = sphere_row[typ[a] - 1, typ[b] - 1]
+            if sized and (_resized(radius, rmass, typ, type_size, a) or _resized(radius, rmass, typ, type_size, b)):
                 rs, ms = _effective(radius, rmass, a, b, rowinfo, pair_rows[n])
-                _contact_row(params, pair_rows[n], pc, n, rowinfo, rs, ms)
+                prow[n] = params.shape[0] + n
+                _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
                 wn[n] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
@@ -668,10 +678,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             vx = v[i, 0] - uwx + (wy * nz - wz * ny)
             vy = v[i, 1] - uwy + (wz * nx - wx * nz)
             vz = v[i, 2] - uwz + (wx * ny - wy * nx)
-            pair_rows[n] = wall_row[typ[i] - 1, wall_mat[w]]
-            if sized:
+            pair_rows[n] = prow[n] = wall_row[typ[i] - 1, wall_mat[w]]
+            if sized and _resized(radius, rmass, typ, type_size, i):
                 rs, ms = _effective(radius, rmass, i, -1, rowinfo, pair_rows[n])
-                _contact_row(params, pair_rows[n], pc, n, rowinfo, rs, ms)
+                prow[n] = params.shape[0] + n
+                _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
                 wn[n] = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
@@ -706,9 +717,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 pair_rows[k] = pair_rows[q]
                 overlaps[k] = overlaps[q]
                 wn[k] = wn[q]
-                if sized:
+                prow[k] = prow[q]
+                if prow[q] >= params.shape[0]:
+                    prow[k] = params.shape[0] + k
                     for d in range(pc.shape[1]):
-                        pc[k, d] = pc[q, d]
+                        pc[prow[k], d] = pc[prow[q], d]
                 for d in range(3):
                     normals[k, d] = normals[q, d]
                     velocities[k, d] = velocities[q, d]
@@ -952,13 +965,16 @@ def carry_wall_rows(old, old_rows, new, new_rows):
             new_rows[c, 0] = old_rows[p, 0]
 
 
-def contact_buffers(n, n_params):
-    """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, hrow, pair_rows, normals,
-    overlaps, velocities, wn, pc, forces, tforces, spins, torques, contact_rows (0, 1, ..., n - 1))."""
+def contact_buffers(n, params):
+    """The buffers of ``gather_contacts`` for n candidates and the parameter table params: (work, body, src, dst,
+    hrow, pair_rows, normals, overlaps, velocities, wn, pc (params, then n rows), prow, forces, tforces, spins,
+    torques)."""
+    pc = np.empty((len(params) + n, params.shape[1]))
+    pc[:len(params)] = params
     return (np.empty((n, 3), dtype=np.int64), np.empty((n, 2), dtype=np.int64), np.empty(n, dtype=np.int64),
             np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64),
-            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), np.empty((n, n_params)), np.empty((n, 3)),
-            np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)), np.arange(n, dtype=np.int64))
+            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), pc, np.empty(n, dtype=np.int64),
+            np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)))
 
 
 @njit(cache=True)
