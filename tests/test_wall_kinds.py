@@ -50,7 +50,8 @@ class _Histories:
         H = H.reshape(len(c), t.history_size)
         f, ft = np.zeros((len(c), 3)), np.zeros((len(c), 3))
         contact_forces(t.normal_id, t.tangential_id, t.params, c.pair_rows(t, np.zeros(c.n_spheres, dtype=np.int64)),
-                       H, c.normals, c.overlaps, c.relative_velocities(v, w), np.zeros(len(c)), dt, f, ft)
+                       H, c.normals, c.overlaps, c.relative_velocities(v, w), np.zeros(len(c)), dt, f, ft,
+                       parallel=False)
         self.rows = {(i, k): H[q] for q, (i, k) in enumerate(zip(c.sphere, c.keys))}
         return f
 

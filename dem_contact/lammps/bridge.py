@@ -12,7 +12,8 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   own radius (up to ``r_max``) and the mass of its radius and its type's density, and every contact the
   parameter row of its pair of types with its own R* and m*, for laws whose parameters depend on the sizes
   through R* and m* only (checked at attach: ``_size_free``; other laws take atoms of their type's radius);
-- walls of the kinds of ``dem_contact.walls`` (``PlaneWall``: at rest or sliding in its plane), each with
+- walls of the kinds of ``dem_contact.walls`` (``PlaneWall``, ``CylinderWall``, ``MeshWall``, each moving by
+  a prescribed rigid motion; ``wall_loads()`` gives their forces, torques and power), each with
   a wall material of the table;
 - ghost atoms within ``2 r_max + skin`` of every subdomain, with their velocities and spins
   (``comm_modify vel yes cutoff ...``, issued here) and neighbour lists rebuilt before any atom moves
@@ -340,7 +341,7 @@ def _stats(lmp, prefix):
 class Census:
     """Global number of contacts and the largest overlap of a LAMMPS run with any pair style (LAMMPS's
     own granular styles included), found from the positions by the bridge's contact search.
-    walls: a list of walls (``dem_contact.walls``: PlaneWall); rmax: the largest radius [m]; the ghost
+    walls: a list of walls (``dem_contact.walls``: PlaneWall, ...; moving walls at their pose of time 0); rmax: the largest radius [m]; the ghost
     cutoff must be >= 2 rmax. Calling it is collective (every rank calls it)."""
 
     def __init__(self, lmp, rmax: float, walls=(), prefix: str = "dcc"):
@@ -467,7 +468,8 @@ class LammpsContacts:
 
     lmp: a ``lammps.lammps`` instance with the box, the atom types and (usually) the atoms created;
     table: ``dem.pairs.pair_table(spheres, walls, ...)``, atom type k is spheres[k - 1];
-    walls: a list of walls (``dem_contact.walls``: PlaneWall), each with a wall material of the table;
+    walls: a list of walls (``dem_contact.walls``: PlaneWall, CylinderWall, MeshWall), each with a wall material
+    of the table (a curved wall's with its curvature: ``materials.Wall``);
     slots: history rows per atom; v_max: largest normal impact speed expected [m/s] (time-step check);
     skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
     ghost cutoff [m] (default and minimum 2 r_max + skin); frame_spin: pass the spin of the contact

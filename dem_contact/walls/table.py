@@ -149,7 +149,7 @@ def history_key(walls, w, e):
     return -(walls[w, KEY_BASE] + patch(walls, w, e) + 1.0)
 
 
-@njit
+@njit(cache=True)
 def place_walls(walls, t):
     """Every wall whose motion moves its surface, placed at time t [s] (in place)."""
     for w in range(count(walls)):
