@@ -302,8 +302,9 @@ def run(a):
     if series:
         s = np.array(series)
         late = s[len(s) // 2:]
-        out["angle_of_repose_deg"] = float(np.nanmean(late[:, 3]))
-        out["angle_of_repose_std_deg"] = float(np.nanstd(late[:, 3]))
+        ok = late[np.isfinite(late[:, 3]), 3]
+        out["angle_of_repose_deg"] = float(ok.mean()) if len(ok) else None
+        out["angle_of_repose_std_deg"] = float(ok.std()) if len(ok) else None
         out["wall_torque_mean_late"] = float(late[:, 2].mean())
     lmp.close()
     if sink is not None:
@@ -330,8 +331,8 @@ def figure(s, a, out):
     ax1.set_title(f"drum R = {a.radius * 1e3:g} mm, {out['natoms']} spheres, {a.omega:g} rad/s, "
                   f"{out['laws']['normal']} + {out['laws']['tangential']}", fontsize=9)
     ax2.plot(s[:, 0], s[:, 3], lw=1)
-    ax2.axhline(out.get("angle_of_repose_deg", math.nan), ls="--", color="k", lw=0.8,
-                label=f"mean over the second half: {out.get('angle_of_repose_deg', math.nan):.1f} deg")
+    mean = out.get("angle_of_repose_deg") or math.nan
+    ax2.axhline(mean, ls="--", color="k", lw=0.8, label=f"mean over the second half: {mean:.1f} deg")
     ax2.set_ylabel("dynamic angle of repose [deg]")
     ax2.set_xlabel("time [s]")
     ax2.legend(fontsize=8)
