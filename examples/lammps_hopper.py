@@ -163,7 +163,8 @@ def run(a):
     for c in ("units si", "atom_style sphere", "boundary f f f", "newton off", "atom_modify map array",
               "processors * * 1",
               f"region box block {lo[0] - pad!r} {hi[0] + pad!r} {lo[1] - pad!r} {hi[1] + pad!r} "
-              f"{z_out - pad!r} {z_top!r}", "create_box 2 box", f"region out block INF INF INF INF INF {z_out!r}"):
+              f"{z_out - a.drop - pad!r} {z_top!r}", "create_box 2 box",
+              f"region out block INF INF INF INF INF {z_out!r}"):
         lmp.command(c)
     lmp.create_atoms(a.n, list(range(1, a.n + 1)), [int(t) for t in types], x.ravel().tolist(), vel.ravel().tolist())
     nlocal = lmp.extract_setting("nlocal")
