@@ -1010,7 +1010,10 @@ class LammpsContacts:
         k = np.flatnonzero(body[:m, 0] < nlocal)
         a, b = body[k, 0], body[k, 1]
         ex = lmp.numpy.extract_atom
-        x, radius, ids = ex("x", nelem=nall, dim=3), ex("radius", nelem=nall), ex("id", nelem=nall)
+        if nall:
+            x, radius, ids = ex("x", nelem=nall, dim=3), ex("radius", nelem=nall), ex("id", nelem=nall)
+        else:                     # (a rank without atoms)
+            x, radius, ids = np.zeros((0, 3)), np.zeros(0), np.zeros(0, dtype=np.int64)
         pair = b >= 0
         bb = np.where(pair, b, 0)
         n = normals[k].copy()
