@@ -218,7 +218,7 @@ def run(a):
     out = {"natoms": int(lmp.get_natoms()), "steps": done, "contacts": st["contacts"],
            "kinetic_energy": scalar("ke") + scalar("rke") if lmp.get_natoms() else 0.0,
            "wall_force_z": float(s[-1, 2]) if len(s) else 0.0,
-           "mean_z": scalar("mz") if lmp.get_natoms() else math.nan, "discharged": a.n - int(lmp.get_natoms()),
+           "mean_z": scalar("mz") if lmp.get_natoms() else None, "discharged": a.n - int(lmp.get_natoms()),
            "discharge_rate_kg_s": None if math.isnan(rate) else rate, "wall_s": wall_s, "dt": dt, "ranks": nranks,
            "engine": "dem_contact", "laws": {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential}}
     lmp.close()
