@@ -378,10 +378,11 @@ def curves_figure(panels, path, *, ncols: int = 2, title=None):
     return _save(fig, path)
 
 
-def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=None):
+def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=None, moment=None):
     """A prescribed path and the force along it: the tangential path (ux, uy) and the force vector
     -T/(mu N) drawn on it; Tx/(mu N), Ty/(mu N) and |T|/(mu N) against the row. ``reference``: optional
-    (N, Tx, Ty) of a reference drawn dashed."""
+    (N, Tx, Ty) of a reference drawn dashed; ``moment``: optional Mz/(mu N a) per row (the moment about
+    the normal, a the contact radius), drawn dotted."""
     N = np.asarray(N, dtype=float)
     muN = np.where(N > 0, mu * N, np.nan)
     rows = np.arange(len(N))
@@ -408,8 +409,10 @@ def path_figure(delta, ux, uy, N, Tx, Ty, mu, path, *, title=None, reference=Non
         a1.plot(rows, Txr / muNr, "C0--", lw=1.0, label="reference")
         a1.plot(rows, Tyr / muNr, "C1--", lw=1.0)
         a1.plot(rows, np.hypot(Txr, Tyr) / muNr, "k--", lw=1.0)
+    if moment is not None:
+        a1.plot(rows, np.asarray(moment, dtype=float), "C2:", lw=1.5, label="Mz/(mu N a)")
     a1.set_xlabel("row")
-    a1.set_ylabel("tangential force on body 1 / (mu N)")
+    a1.set_ylabel("on body 1: T / (mu N)" + (", Mz / (mu N a)" if moment is not None else ""))
     a1.axhline(0, color="0.7", lw=0.5)
     a1.legend(fontsize=8)
     if title:

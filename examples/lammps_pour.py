@@ -1,6 +1,7 @@
 """Spheres of two materials poured into a box with walls, in LAMMPS, with dem_contact's contact laws
 (``dem_contact.lammps``) or, with --native, LAMMPS's own ``pair granular hertz/material ... tangential
-mindlin`` and ``fix wall/gran`` (no damping) on the same scene. Runs under MPI: ``mpirun -np 2 python
+mindlin`` and ``fix wall/gran`` (no damping) on the same scene; --twist and --rolling add LAMMPS's engine
+models (twisting marshall or sds, rolling sds) to either. Runs under MPI: ``mpirun -np 2 python
 examples/lammps_pour.py ...``.
 
 Scene: a lattice of spheres (type 1: glass-like, type 2: polymer-like, each with its radius, or with
@@ -10,7 +11,7 @@ material). The time step is the shortest elastic contact time of the table at --
 --steps-per-contact.
 
 Output: with --json one object (rank 0) with natoms, steps, contacts (at the end), kinetic_energy
-(translational + rotational, J), mean_z (m), max_overlap (m, at the end), wall_s (the runs' wall time,
+(translational + rotational, J), rotational_energy (J), mean_z (m), max_overlap (m, at the end), wall_s (the runs' wall time,
 after a set-up ``run 0`` that is not timed),
 contact_updates_per_s (contacts counted every --every steps, times the steps, over wall_s; with its value
 per rank), contact_s (the contact work of the timed runs on one rank: ours, the time of the bridge's
@@ -80,6 +81,16 @@ def main(argv=None):
     p.add_argument("--normal", default="hertz", help="normal law (default hertz)")
     p.add_argument("--tangential", default=None, help="tangential law (default: the library default)")
     p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (default 0.5)")
+    p.add_argument("--twist", choices=("none", "marshall", "sds"), default="none",
+                   help="twist model (LAMMPS's twisting marshall or sds; default none)")
+    p.add_argument("--rolling", choices=("none", "sds"), default="none",
+                   help="rolling model (LAMMPS's rolling sds; default none)")
+    p.add_argument("--k-twist", type=float, default=1e-5, help="twist sds spring [N m/rad] (1e-5)")
+    p.add_argument("--gamma-twist", type=float, default=4e-9, help="twist sds dashpot [N m s/rad] (4e-9)")
+    p.add_argument("--mu-twist", type=float, default=1e-4, help="twist sds slider [m] (1e-4)")
+    p.add_argument("--k-roll", type=float, default=50.0, help="rolling sds spring [N/m] (50)")
+    p.add_argument("--gamma-roll", type=float, default=1e-2, help="rolling sds dashpot [N s/m] (1e-2)")
+    p.add_argument("--mu-roll", type=float, default=0.1, help="rolling sds slider [-] (0.1)")
     p.add_argument("--native", action="store_true",
                    help="LAMMPS's own pair granular hertz/material + tangential mindlin + fix wall/gran")
     p.add_argument("--frame-spin", choices=("on", "off"), default="on",
@@ -126,6 +137,11 @@ def run(a):
                          "--spread in [0, 0.15]")
     tangential = "mindlin_total" if a.native and a.tangential is None else a.tangential
     laws = {} if tangential is None else {"tangential": tangential}
+    laws.update(twist=a.twist, rolling=a.rolling)
+    if a.twist == "sds":
+        laws.update(k_twist=a.k_twist, gamma_twist=a.gamma_twist, mu_twist=a.mu_twist)
+    if a.rolling == "sds":
+        laws.update(k_roll=a.k_roll, gamma_roll=a.gamma_roll, mu_roll=a.mu_roll)
     radii = (RADII[1], RADII[1]) if a.same_size else RADII
     spheres = [Sphere(radii[0], GLASS), Sphere(radii[1], POLYMER)]
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
@@ -217,7 +233,8 @@ def run(a):
     L_ = lammps_module()
     scalar = lambda name: lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR)
     out = {"natoms": int(lmp.get_natoms()), "steps": a.steps, "contacts": st["contacts"],
-           "kinetic_energy": float(scalar("ke") + scalar("rke")), "mean_z": float(scalar("mz")),
+           "kinetic_energy": float(scalar("ke") + scalar("rke")), "rotational_energy": float(scalar("rke")),
+           "mean_z": float(scalar("mz")),
            "max_overlap": st["max_overlap"], "wall_s": wall_s,
            "contact_updates_per_s": updates / wall_s if wall_s > 0 else None,
            "contact_updates_per_s_per_rank": updates / wall_s / nranks if wall_s > 0 else None,
@@ -229,6 +246,7 @@ def run(a):
            "list_builds_rank0": None if bridge is None else bridge.list_builds,
            "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
                     {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
+    out["laws"].update(twist=a.twist, rolling=a.rolling)
     lmp.close()
     if log is not None:
         os.remove(log)

@@ -265,3 +265,127 @@ def test_random_closed_loops_never_create_energy(vertices):
     du = np.diff(path, axis=0)
     work = -np.sum(0.5 * (Tx[1:] + Tx[:-1]) * du[:, 0] + 0.5 * (Ty[1:] + Ty[:-1]) * du[:, 1])
     assert work > -1e-4 * 0.3 * N * s
+
+
+# -- twist about the normal ---------------------------------------------------------------------------
+def _lubkin(E1, nu1, E2, nu2, mu, beta):
+    """Monotonic twist of a Hertz contact (Lubkin 1951), from the superposition of twisted flat punches of
+    radius b (Reissner-Sagoci traction (4 G_c phi_b / pi) r / sqrt(b^2 - r^2)) for c < b < a: with
+    k = sqrt(1 - c^2/a^2), beta = mu p0 (K(k) - E(k)) / (2 G_c) and M = (8/3) mu p0 integral_c^a b^2 E(k_b) db.
+    Returns M / (mu N a)."""
+    from scipy import optimize, special
+    _, _, a, N = effective(nu1)
+    Gc = 1 / sum(2 * (1 + nu) / e for e, nu in ((E1, nu1), (E2, nu2)) if not math.isinf(e))
+    p0 = 3 * N / (2 * math.pi * a * a)
+
+    def ek(k):
+        return special.ellipe(k * k), special.ellipk(k * k)
+    if beta <= 0:
+        return 0.0
+    c = optimize.brentq(lambda c: mu * p0 / (2 * Gc) * (ek(math.sqrt(1 - c * c))[1] - ek(math.sqrt(1 - c * c))[0])
+                        - beta, 1e-300, 1 - 1e-16, xtol=1e-16, rtol=1e-15)
+    m = integrate.quad(lambda t: t * t * ek(math.sqrt(1 - t * t))[0], c, 1, epsabs=1e-15, epsrel=1e-13)[0]
+    return 8 / 3 * mu * p0 * a**3 * m / (mu * N * a)
+
+
+def _beta_1(E1, nu1, E2, nu2, mu=0.3):
+    from dem_contact.reference.paths import no_slip_twist, twist_modulus
+    E_star = 1 / sum((1 - nu**2) / e for e, nu in ((E1, nu1), (E2, nu2)) if not math.isinf(e))
+    return no_slip_twist(DELTA, mu, R, E_star, twist_modulus(E1, nu1, E2, nu2))
+
+
+def test_lubkin_closed_form_limits():
+    """The closed form used below meets its own limits: no-slip stiffness (16/3) G_c a^3 (Johnson 1985,
+    section 7.4), full slip (3 pi/16) mu N a as beta -> infinity."""
+    b1 = _beta_1(E, 0.3, E, 0.3)
+    assert _lubkin(E, 0.3, E, 0.3, 0.3, 1e-6 * b1) == pytest.approx(1e-6, rel=1e-5)     # M = mu N a beta/beta_1
+    assert _lubkin(E, 0.3, E, 0.3, 0.3, 1e3 * b1) == pytest.approx(3 * math.pi / 16, rel=1e-9)
+
+
+@pytest.mark.parametrize("E2, nu2", [(E, 0.3), (70e9, 0.33), (math.inf, 0.0)])
+def test_stuck_twist_has_the_torsion_stiffness(E2, nu2):
+    """No slip (mu large): M = -(16/3) G_c a^3 beta on body 1, 1/G_c = 1/G1 + 1/G2 (Johnson 1985 section
+    7.4), to the grid's accuracy (0.5% at 32 elements across); no force."""
+    nu = 0.3
+    Gc = 1 / sum(2 * (1 + v) / e for e, v in ((E, nu), (E2, nu2)) if not math.isinf(e))
+    a = math.sqrt(R * DELTA)
+    beta = 1e-3
+    _, Tx, Ty, Mz = B.bem_path(E, nu, E2, nu2, R, 1e6, [DELTA, DELTA], [0.0, 0.0], [0.0, 0.0], [0.0, beta],
+                               n_across=32)
+    assert -Mz[1] / beta == pytest.approx(16 / 3 * Gc * a**3, rel=0.01)
+    assert max(abs(Tx[1]), abs(Ty[1])) < 1e-6 * abs(Mz[1]) / a
+
+
+def test_twist_full_slip_moment():
+    """Far beyond beta_1 every element slips circumferentially: M = mu h^2 sum p_i |r_i| on the grid (to the
+    solve tolerance), which is (3 pi/16) mu N a to the grid's accuracy, the error falling with the grid."""
+    b1 = _beta_1(E, 0.3, E, 0.3)
+    _, _, a, N = effective(0.3)
+    errors = []
+    for n in (12, 24):
+        _, _, _, Mz, s = B.bem_path(E, 0.3, E, 0.3, R, 0.3, np.full(5, DELTA), np.zeros(5), np.zeros(5),
+                                    np.linspace(0, 12 * b1, 5), n_across=n, return_solver=True)
+        _, _, p = s.normal(DELTA)
+        r = np.hypot(s.xc[:, None], s.xc[None, :])
+        assert -Mz[-1] == pytest.approx(0.3 * s.h**2 * np.sum(p * r), rel=1e-5)
+        errors.append(abs(-Mz[-1] / (3 * math.pi / 16 * 0.3 * N * a) - 1))
+    assert errors[1] < 5e-3 and errors[1] < errors[0] / 2
+
+
+def test_twist_cycle_is_lubkin_then_deresiewicz_masing():
+    """A twist to 2 beta_1, back to -2 beta_1 and again to 2 beta_1 (the named twist-cycle): the Lubkin
+    loading curve, then the Masing branches M* -/+ 2 M_L(|beta* - beta|/2) (Deresiewicz 1954), within
+    3e-3 mu N a at 32 elements across (2.6e-4 at 64, 1.2e-4 at 128)."""
+    from dem_contact.reference.paths import named_path
+    b1 = _beta_1(E, 0.3, E, 0.3)
+    _, _, a, N = effective(0.3)
+    d, ux, uy, tw = named_path("twist-cycle", 2.0, 30, delta=DELTA, mu=0.3, kappa=0.8235, twist_unit=b1)
+    assert np.all(ux == 0) and np.all(uy == 0) and tw.max() == pytest.approx(2 * b1)
+    Nb, Tx, Ty, Mz = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, ux, uy, tw, n_across=32)
+    x = tw / b1
+    i1, i2 = int(np.argmax(x)), int(np.argmin(x))          # the reversals
+    assert x[i1] == pytest.approx(2) and x[i2] == pytest.approx(-2) and 0 < i1 < i2 < x.size - 1
+    load = np.array([_lubkin(E, 0.3, E, 0.3, 0.3, v * b1) for v in x[:i1 + 1]])
+    ms = load[-1]
+    down = np.array([ms - 2 * _lubkin(E, 0.3, E, 0.3, 0.3, (2 - v) / 2 * b1) for v in x[i1 + 1:i2 + 1]])
+    up = np.array([-ms + 2 * _lubkin(E, 0.3, E, 0.3, 0.3, (v + 2) / 2 * b1) for v in x[i2 + 1:]])
+    exact = -np.r_[load, down, up]           # the moment on body 1 opposes the twist
+    assert np.max(np.abs(Mz / (0.3 * N * a) - exact)) < 3e-3
+    assert np.max(np.abs(np.r_[Tx, Ty])) < 1e-6 * 0.3 * N       # a twist alone carries no force
+    work = -np.sum(0.5 * (Mz[1:] + Mz[:-1]) * np.diff(tw))
+    assert work > 0
+
+
+def test_twist_and_shear_share_the_coulomb_limit():
+    """Shear and twist couple through |q| <= mu p: after a shear to 0.6 of slip a twist carries a smaller
+    moment than from rest, and turns the force; the mirror y -> -y (twist reversed) mirrors force and
+    moment; every element stays in its Coulomb disk; a closed twist-and-shear loop dissipates."""
+    from dem_contact.reference.paths import named_path
+    b1 = _beta_1(E, 0.3, E, 0.3)
+    _, _, a, N = effective(0.3)
+    d, ux, uy, tw = named_path("shear-twist", 0.6, 20, delta=DELTA, mu=0.3, kappa=0.8235, twist_unit=b1)
+    top = int(np.argmax(tw))
+    _, Tx, Ty, Mz, s = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, ux, uy, tw, n_across=16, return_solver=True)
+    _, Rx, Ry, Rz = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, ux, -uy, -tw, n_across=16)
+    tol = 1e-5 * 0.3 * N
+    assert np.allclose(Rx, Tx, atol=tol) and np.allclose(Ry, -Ty, atol=tol) and np.allclose(Rz, -Mz, atol=tol * a)
+    alone = _lubkin(E, 0.3, E, 0.3, 0.3, b1)
+    assert -Mz[top] / (0.3 * N * a) < alone - 0.05
+    assert -Tx[top] < -Tx[top - 5] - 0.02 * 0.3 * N      # the twist eats into the shear force
+    _, _, p = s.normal(DELTA)
+    assert np.all(np.hypot(s.qx, s.qy) <= 0.3 * p * (1 + 1e-12))
+    d, ux, uy, tw = named_path("circle-twist", 0.4, 24, delta=DELTA, mu=0.3, kappa=0.8235, twist_unit=b1)
+    _, Tx, Ty, Mz = B.bem_path(E, 0.3, E, 0.3, R, 0.3, d, ux, uy, tw, n_across=12)
+    mid = lambda v: 0.5 * (v[1:] + v[:-1])  # noqa: E731
+    work = -np.sum(mid(Tx) * np.diff(ux) + mid(Ty) * np.diff(uy) + mid(Mz) * np.diff(tw))
+    assert work > 0
+
+
+def test_a_pure_shear_path_has_no_moment():
+    """Without twist the problem is symmetric under r -> -r on the (centred) grid: Mz = 0 to rounding."""
+    _, _, a, N = effective(0.3)
+    x, y = unit_path("figure-eight", 0.6, 16)
+    s = slip_displacement(DELTA, 0.3, 0.8235)
+    _, _, _, Mz = B.bem_path(E, 0.3, E, 0.3, R, 0.3, np.full(x.size, DELTA), s * x, s * y, np.zeros(x.size),
+                             n_across=12)
+    assert np.max(np.abs(Mz)) < 1e-6 * 0.3 * N * a      # (single-precision convolutions)

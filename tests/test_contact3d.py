@@ -78,7 +78,8 @@ def wall_impact_3d(nid, tid, P, H, m_wall, e1, e2, vn0, vt0, w10, inv_m, R, inv_
 
 def scene_history(sc, n=1):
     """Zeroed 3D histories of ``n`` contacts for the laws of Scene ``sc``."""
-    return new_histories(n, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING])))
+    return new_histories(n, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING]), sc.twist_id,
+                                         sc.rolling_id))
 
 
 def _scene(normal, tangential, vn):
@@ -179,7 +180,7 @@ def test_history_helpers(tangential, normal):
     swap_bodies(nid, tid, H, 0)
     assert not np.array_equal(H, H0)
     Hs = H.copy()
-    b = tangential_base(nid)
+    b = tangential_base(nid, 0, 0)
     assert np.array_equal(Hs[:, :b], H0[:, :b])       # the normal state (thornton's F*, R_p, delta_p) is kept
     swap_bodies(nid, tid, H, 0)
     assert np.array_equal(H, H0)
@@ -208,7 +209,7 @@ def test_history_size_has_no_default_cell_count_for_the_mdr_laws():
     for tid in (TANGENTIAL_LAWS["mdr"], TANGENTIAL_LAWS["mdr_adaptive"]):
         with pytest.raises(InputError, match=r"^n_cells = 0: the mdr(_adaptive)? law needs its cell count"):
             history_size(tab.normal_id, tid)
-    assert history_size(tab.normal_id, tab.tangential_id, 12) == tab.history_size == 2 + 7 + 2 * 12
+    assert history_size(tab.normal_id, tab.tangential_id, 12) == tab.history_size == 2 + 14 + 2 * 12
     with pytest.raises(InputError, match=r"^tid \(tangential law id\) = 9 is not a law id"):
         history_size(0, 9)
 

@@ -114,4 +114,4 @@ def test_a_path_scene_keeps_every_setting_of_the_scene():
     r = path_scene(s, d)
     a = (s.pair.R_star * d) ** 0.5
     assert r.arguments == {**s.arguments, "mdr_springs": s.mdr_springs, "mdr_max_radius": 1.05 * a}
-    assert (r.mdr_profile, r.traction_yield) == ("scaled", True)
+    assert (r.mdr_profile, r.traction_yield) == ("scaled", "proportional")

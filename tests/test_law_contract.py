@@ -335,7 +335,7 @@ def test_swapping_twice_is_the_identity_and_a_saved_history_carries_on(tangentia
 
 
 def test_the_3d_kernel_takes_the_relative_spin_and_returns_the_torque_of_the_twist_and_rolling_laws():
-    """Every table records its twist and rolling laws (Scene(twist=..., rolling=...), "none" today); the 3D
+    """Every table records its twist and rolling laws (Scene(twist=..., rolling=...), "none" by default); the 3D
     kernel takes the relative spin of the bodies and returns their torque on body 1 (zero for "none"), its
     force equal to contact_force's; the batch entries carry spins and torques; an unknown law name is refused."""
     from dem_contact.dem.contact3d import contact_force_torque, contact_forces
@@ -375,16 +375,21 @@ def test_the_3d_kernel_takes_the_relative_spin_and_returns_the_torque_of_the_twi
 @pytest.mark.parametrize("tangential", TANGENTIAL)
 def test_the_batch_loop_is_the_single_contact_step(tangential):
     """The batch loops write the step of laws.compose out in their body: for every law, with hertz and with
-    the traction-coupled thornton law (its fifth state slot), a serial batch equals contact_force_torque
+    the traction-coupled thornton law (its fifth state slot), and with the twist and rolling engine models
+    (their slots between the normal and the tangential state), a serial batch equals contact_force_torque
     contact by contact, bit for bit, forces, torques and histories."""
     from dem_contact.dem.contact3d import contact_force_torque, contact_forces_serial
     from dem_contact.laws.model import Scene
     from dem_contact.materials import STEEL, Material, Sphere, Wall
 
     al = Material(E=70e9, nu=0.33, rho=2700.0, yield_pressure=1e9)
+    sds = dict(twist="sds", k_twist=1e-3, gamma_twist=1e-9, mu_twist=1e-4, rolling="sds", k_roll=1e4,
+               gamma_roll=1e-3, mu_roll=0.1)
     for sc in (Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0),
                Scene(Sphere(2e-3, al), Wall(al), mu=0.3, normal="thornton", tangential=tangential, v_ref=1.0,
-                     traction_yield=True)):
+                     traction_yield=True, **sds),
+               Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0, twist="marshall",
+                     rolling="sds", k_roll=1e4, gamma_roll=1e-3, mu_roll=0.1)):
         P = sc.params[None, :]
         n = 6
         rng = np.random.default_rng(4)
@@ -405,4 +410,4 @@ def test_the_batch_loop_is_the_single_contact_step(tangential):
                                            *spins[c], wn[c], 1e-7)
                 assert out == (*f[c], *t[c], *m[c])
             assert np.array_equal(Hb, Hs)
-        assert np.abs(t).max() > 0.0
+        assert np.abs(t).max() > 0.0 and (sc.twist == "none" or np.abs(m).max() > 0.0)

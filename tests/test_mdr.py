@@ -147,3 +147,38 @@ def test_adaptive_grid_follows_the_contact():
         vt = vt_for_Theta(1.0, MU, vn)
         assert dc.impact(sc, vn, vt, steps_per_contact=100).f_over_mu == pytest.approx(
             dc.impact(ref, vn, vt, steps_per_contact=400).f_over_mu, abs=3e-3)
+
+
+def test_sticking_zone_of_the_3d_law_repeats_the_cell_by_cell_update():
+    """The 3D default law advances the inner cells that provably stick through one common displacement
+    (``mdr._vector``, sticking zone). On a 3D path that loads, unloads, reverses and turns (the zone set up,
+    used and dissolved many times) its forces are those of the same law updating every cell (the zone
+    disabled), to rounding."""
+    from dem_contact.dem.contact3d import contact_force, history_size
+    from dem_contact.laws.tangential import mdr as M
+    from dem_contact.laws.vector import V_A, V_N, renamed
+    sc = mdr_scene(tangential="mdr_adaptive", v_ref=None)
+    P = sc.params[None, :]
+    cell_by_cell = renamed(M._vector, "cell_by_cell", ADAPTIVE=True, R_CELLS=M.R_CELLS_ADAPTIVE, LAZY_MIN=10**9)
+    H = np.zeros((1, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING]))))
+    Hc = H.copy()
+    b = 2
+    E, R = sc.params[P_ESTAR], sc.params[2]
+    n = np.array([0.0, 0.0, 1.0])
+    dt, steps, used, err, scale = 1e-7, 400, 0, 0.0, 0.0
+    for k in range(steps):
+        delta = 2e-6 * (1.0 + 0.15 * math.sin(0.11 * k))
+        v = 0.02 * np.array([math.cos(0.05 * k), 0.6 * math.sin(0.13 * k), 0.3])
+        wn = 200.0 * math.sin(0.07 * k)
+        f = contact_force(sc.normal_id, sc.tangential_id, P, 0, H, 0, *n, delta, *v, wn, dt)
+        used += H[0, b + M.R_LAZY] > 0
+        a = math.sqrt(R * delta)
+        N = 4.0 / 3.0 * E * a * delta
+        q = 0.5 * wn * dt
+        t = cell_by_cell(P, 0, Hc, 0, b, N, a, 0.0, *n, v[0] * dt, v[1] * dt, 0.0, (1 - q * q) / (1 + q * q),
+                         2 * q / (1 + q * q))
+        Hc[0, V_N], Hc[0, V_A] = N, a
+        err = max(err, np.abs(np.array(f[3:]) + np.array(t)).max())
+        scale = max(scale, sc.mu * N)
+    assert used > steps // 4, used
+    assert err <= 1e-12 * scale, (err, scale)

@@ -11,7 +11,7 @@ from dem_contact.cli import main
 from dem_contact.errors import InputError
 from dem_contact.laws.contact import contact_step
 from dem_contact.reference.paths import SHAPES, named_path, scene_path, slip_displacement
-from dem_contact.studies.paths import path_scene, read_path_csv, run_path, write_path_csv
+from dem_contact.studies.paths import path_scene, read_path_csv, reference_path, run_path, write_path_csv
 
 DELTA = 1e-5
 LAWS = ["mdr", "mdr_adaptive", "md", "mindlin_incremental", "mindlin_total"]
@@ -125,7 +125,7 @@ def test_command(tmp_path, capsys):
     assert main(["path", "--shape", "l-turn", "--tangential", "md", "--rigid-wall", "--plot",
                  str(tmp_path / "l.png")]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert out[1] == "N,Tx,Ty" and len(out) == 2 + 401
+    assert out[1] == "N,Tx,Ty,Mz" and len(out) == 2 + 401
     assert (tmp_path / "l.png").stat().st_size > 0
     assert main(["path", "--shape", "load-unload", "--size", "0.5", "--steps", "12", "--reference", "--n-across",
                  "8", "--json"]) == 0
@@ -151,3 +151,46 @@ def test_a_path_deeper_than_the_laws_is_refused(capsys):
     assert main(["path", "--shape", "circle", "--overlap", "1e300"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "not below the pair's effective radius" in err
+
+
+def test_twist_paths_through_the_law_and_the_reference(tmp_path, capsys):
+    """A path with a twist column: every twist law of the table gets the relative spin d twist/dt about
+    the normal through contact_force_torque (Mz opposes the twist in the first step; 0 for 'none', which
+    leaves the force as without twist); the CLI refuses a twisting path with the default law 'none' unless
+    --twist is named, and with --reference returns the BEM's Mz; the CSV output has twist and Mz."""
+    from dem_contact.laws import table
+    from dem_contact.reference.paths import TWIST_SHAPES
+
+    base = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
+    d, ux, uy, tw = scene_path("circle-twist", 0.4, 40, base, DELTA)
+    N0, Tx0, Ty0 = run_path(base, d, ux, uy)
+    needs = dict(sds=dict(k_twist=1e-2, gamma_twist=0.0, mu_twist=1e-4))   # (an engine model's coefficients)
+    for law in table.ids("twist"):
+        sc = base.replace(twist=law, **needs.get(law, {}))
+        N, Tx, Ty, Mz = run_path(sc, d, ux, uy, tw)
+        assert np.all(np.isfinite(Mz)) and Mz[1] * tw[1] <= 0.0
+        if law == "none":
+            assert np.all(Mz == 0.0) and np.array_equal(Tx, Tx0) and np.array_equal(Ty, Ty0)
+    for shape in TWIST_SHAPES:                        # the named twist paths close where they say
+        d2, x2, y2, t2 = scene_path(shape, 0.5, 30, base, DELTA)
+        assert t2[0] == 0.0 and np.max(np.abs(t2)) > 0 and np.all(d2 == DELTA)
+    p = tmp_path / "t.csv"
+    p.write_text("delta,ux,uy,twist\n1e-5,0,0,0\n1e-5,1e-7,0,2e-3\n1e-5,1e-7,0,0\n")
+    assert len(read_path_csv(p)) == 4
+    assert main(["path", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "--twist" in err and err.count("\n") == 1
+    assert main(["path", str(p), "--twist", "none", "--reference"]) == 2
+    capsys.readouterr()
+    assert main(["path", str(p), "--twist", "none", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["Mz"] == [0.0, 0.0, 0.0]
+    out = tmp_path / "o.csv"
+    assert main(["path", str(p), "--reference", "--n-across", "12", "--json", "--csv", str(out)]) == 0
+    j = json.loads(capsys.readouterr().out)
+    Nr, Txr, Tyr, Mzr = reference_path(base, *read_path_csv(p), n_across=12)
+    assert j["Mz"] == list(Mzr) and j["Tx"] == list(Txr) and Mzr[1] < 0 < Mzr[2]
+    rows = out.read_text().splitlines()
+    assert rows[0] == "delta,ux,uy,twist,N,Tx,Ty,Mz" and float(rows[2].split(",")[-1]) == Mzr[1]
+    assert main(["path", "--shape", "twist-cycle", "--steps", "8", "--reference", "--n-across", "8",
+                 "--plot", str(tmp_path / "t.png")]) == 0
+    assert (tmp_path / "t.png").stat().st_size > 0

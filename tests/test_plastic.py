@@ -19,7 +19,7 @@ from dem_contact.laws import traction_yield as ty
 from dem_contact.laws.contact import contact_step
 from dem_contact.laws.normal.thornton import thornton
 from dem_contact.laws.slots import (H_DP, H_N, H_RP, H_T, H_TANG_EXTRA, P_DELTA_Y, P_DX, P_ESTAR,
-                                    P_GSTAR, P_MU, P_PY, P_RSTAR, P_TY_NODES, P_TY_TABLE)
+                                    P_GSTAR, P_MU, P_PY, P_RSTAR, P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 
 NU = 0.3
 
@@ -224,6 +224,103 @@ def test_traction_yield_follows_thornton_without_traction():
     assert h[H_RP] == pytest.approx(h0[H_RP], rel=1e-12) and h[H_DP] == pytest.approx(h0[H_DP], rel=1e-10)
 
 
+# --- the partly slipping traction (traction_yield="partial_slip") -------------------------------------
+
+def test_partial_slip_field_carries_the_cattaneo_traction():
+    """At z = 0 the field of ``partial_slip_stress`` has sigma_xz = -(sqrt(1 - r^2) - c sqrt(1 - r^2/c^2))
+    (the second term inside the stick radius c only), and with c = stick_ratio(s) that traction carries
+    s times what the pressure carries (T = s mu N, Cattaneo-Mindlin)."""
+    z = 1e-11
+    for s in (0.2, 0.7):
+        c = float(ty.stick_ratio(s))
+        for r in (0.1, 0.5 * c, 0.98 * c, 0.5 * (1 + c), 1.2):
+            q = math.sqrt(max(1 - r * r, 0.0)) - (c * math.sqrt(1 - (r / c) ** 2) if r < c else 0.0)
+            sxz = ty.partial_slip_stress(np.array(r * 0.6), np.array(r * 0.8), np.array(z), NU, c)[4]
+            assert -sxz == pytest.approx(q, abs=1e-7)
+
+        def shear(r):
+            return -float(ty.partial_slip_stress(np.array(r), np.array(1e-9), np.array(z), NU, c)[4]) * r
+
+        carried = quad(shear, 0.0, c, limit=200)[0] + quad(shear, c, 1.0, limit=200)[0]
+        assert carried / (1.0 / 3.0) == pytest.approx(s, rel=1e-5)     # int_0^1 sqrt(1 - r^2) r dr = 1/3
+    assert ty.stick_ratio(0.0) == 1.0 and ty.stick_ratio(1.0) == 0.0
+
+
+@pytest.fixture(scope="module")
+def partial_slip_scenes():
+    """PE at 2 and 5 m/s with traction_yield="partial_slip" (one table: it depends on nu and mu only)."""
+    return {vn: pe_scene("mdr_adaptive", vn, traction_yield="partial_slip") for vn in (2.0, 5.0)}
+
+
+def test_partial_slip_table_and_head_on_impacts(partial_slip_scenes):
+    """The table runs from 1 (no traction: the stick zone is the whole contact) down to the first-yield
+    ratio of a sliding contact (c = 0: the same traction as "proportional" at mu_eff = mu); a head-on
+    impact carries no traction and keeps Thornton's e_n (to rounding: the coupled loading branch builds
+    Thornton's force from its increments); the CLI takes the option."""
+    for vn, coupled in partial_slip_scenes.items():
+        table = coupled.params[P_TY_TABLE:P_TY_TABLE + ty.TABLE_NODES]
+        assert table[0] == 1.0 and np.all(np.diff(table) < 0)
+        assert table[-1] == ty.max_von_mises(NU, 0.0)[0] / ty.max_von_mises(NU, coupled.mu)[0]
+        plain = scene_with(coupled, traction_yield=False)
+        assert dc.impact(coupled, vn, 0.0).e_n == pytest.approx(dc.impact(plain, vn, 0.0).e_n, rel=1e-14)
+    assert main(["impact", "--case", "PE", "--vn", "2", "--angle", "30", "--traction-yield", "partial_slip",
+                 "--json"]) == 0
+
+
+def test_partial_slip_leaves_elastic_impacts_unchanged(partial_slip_scenes):
+    """Below the yield velocity at the lowest limiting pressure the law never leaves Hertz: every output
+    of an oblique impact is the uncoupled law's, bit for bit."""
+    coupled = partial_slip_scenes[5.0]
+    plain = scene_with(coupled, traction_yield=False)
+    pr = coupled.pair
+    g_min = coupled.params[P_TY_TABLE + ty.TABLE_NODES - 1]
+    vn = 0.9 * cf.thornton_yield_velocity(pr.E_star, pr.R_star, pr.m_star, coupled.p_y * g_min)
+    for deg in (0, 20, 50, 80):
+        a, b = dc.impact(coupled, vn, angle_vt(vn, deg)), dc.impact(plain, vn, angle_vt(vn, deg))
+        assert (a.e_n, a.e_t, a.f_over_mu, a.max_force, a.Omega_r) == (b.e_n, b.e_t, b.f_over_mu, b.max_force,
+                                                                       b.Omega_r)
+
+
+def test_partial_slip_acts_in_3d_as_in_the_plane(partial_slip_scenes):
+    """The 3D kernels read the same table (|T|/N of the last step in the fifth state slot): impact3d gives
+    the e_n of the planar impact, below the uncoupled law's."""
+    from dem_contact.impacts.impact3d import impact3d
+
+    coupled = partial_slip_scenes[5.0]
+    vt = angle_vt(5.0, 30)
+    q = impact3d(coupled, 5.0, (vt, 0.0))
+    assert q.e_n == pytest.approx(dc.impact(coupled, 5.0, vt).e_n, rel=1e-6, abs=0.0)
+    assert q.e_n < impact3d(scene_with(coupled, traction_yield=False), 5.0, (vt, 0.0)).e_n - 0.005
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.lists(st.floats(0.5, 1.0), min_size=ty.TABLE_NODES, max_size=ty.TABLE_NODES),
+       st.lists(st.floats(0.0, 0.3), min_size=3, max_size=30), st.floats(1.5, 30.0))
+def test_any_yield_table_cycle_creates_no_energy(table, mu_effs, peak):
+    """The coupled loading never creates energy, whatever the table (so whatever the traction
+    distribution it was computed for) and the history of mu_eff: loading to peak delta_y, unloading to
+    separation, the work returned is at most the work done."""
+    s = pe_scene("md")
+    p, h = s.params, s.new_history()
+    p[P_TY_NODES] = ty.TABLE_NODES
+    p[P_TY_DMU] = s.mu / (ty.TABLE_NODES - 1)
+    p[P_TY_TABLE:P_TY_TABLE + ty.TABLE_NODES] = [1.0] + sorted(table, reverse=True)[1:]
+    dy = p[P_DELTA_Y]
+    W_in, F_old, d_old = 0.0, 0.0, 0.0
+    up = np.linspace(0.0, peak * dy, 300)[1:]
+    for k, d in enumerate(up):
+        h[H_N], h[H_T] = 1.0, mu_effs[k * len(mu_effs) // len(up)]
+        F, _ = thornton(p, h, d)
+        W_in += 0.5 * (F + F_old) * (d - d_old)
+        F_old, d_old = F, d
+    W_out = 0.0
+    for d in np.linspace(d_old, h[H_DP], 1500)[1:]:
+        F, _ = thornton(p, h, d)
+        W_out += 0.5 * (F + F_old) * (d_old - d)
+        F_old, d_old = F, d
+    assert W_out <= W_in * (1 + 1e-6)
+
+
 # --- options and the thornton2001 model ---------------------------------------------------------------
 
 def test_options_are_checked():
@@ -231,6 +328,8 @@ def test_options_are_checked():
     sph, wall = dc.Sphere(0.01, mat), dc.Wall(mat)
     with pytest.raises(InputError, match="traction_yield"):
         dc.Scene(sph, wall, traction_yield=True)
+    with pytest.raises(InputError, match="traction_yield = 'cattaneo' is unknown"):
+        dc.Scene(sph, wall, normal="thornton", e_n=0.8, v_ref=1.0, traction_yield="cattaneo")
     with pytest.raises(InputError, match="mdr_profile"):
         dc.Scene(sph, wall, mdr_profile="flat")
     with pytest.raises(InputError, match="mdr_profile"):

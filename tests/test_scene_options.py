@@ -59,7 +59,7 @@ def test_cli_scene_keeps_the_options():
     args = build_parser().parse_args(["impact", "--case", "PE", "--e-n", "0.8", "--mdr-profile", "scaled",
                                       "--traction-yield", "--mu", "0.25"])
     sc = common.scene_from_args(args)
-    assert (sc.normal, sc.e_n, sc.mdr_profile, sc.traction_yield, sc.mu) == ("thornton", 0.8, "scaled", True, 0.25)
+    assert (sc.normal, sc.e_n, sc.mdr_profile, sc.traction_yield, sc.mu) == ("thornton", 0.8, "scaled", "proportional", 0.25)
 
 
 @pytest.fixture(scope="module")

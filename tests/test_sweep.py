@@ -127,6 +127,24 @@ def test_md_critical_theta_is_maw_criterion():
     assert c.Theta == pytest.approx(rm.theta_c_theory(scene.pair.kappa), rel=1e-3)
 
 
+def test_sweep_rows_survive_a_fit_of_eq_4_5_that_fails(ee):
+    """From Python the sweep and the fit are separate calls: zoomed on the critical angle the tanh of
+    eq. 4.5 does not converge (NumericalError), all in persistent sliding there is nothing to fit
+    (InputError); either way the rows are there and the simulated Theta_c is Maw's (eq. 4.1, e_n = 1)."""
+    from dem_contact.errors import NumericalError
+    from dem_contact.rebound.fit import fit_wu
+
+    zoom = sweep_angles(ee, np.arange(55.0, 70.25, 0.5), 5.0)
+    assert len(zoom.points) == 31 and np.all(np.isfinite(zoom.f_over_mu))
+    with pytest.raises(NumericalError, match="eq. 4.5"):
+        fit_wu(zoom.Theta, zoom.f_over_mu, zoom.persistent_sliding)
+    sliding = sweep_angles(ee, [70.0, 75.0, 80.0, 85.0], 5.0)
+    assert np.all(sliding.persistent_sliding) and np.all(sliding.f_over_mu == pytest.approx(1.0, abs=1e-12))
+    with pytest.raises(InputError, match="at least 5 points"):
+        fit_wu(sliding.Theta, sliding.f_over_mu, sliding.persistent_sliding)
+    assert critical_angle(ee, 5.0).Theta == pytest.approx(rm.theta_c_theory(ee.pair.kappa), rel=2e-3)
+
+
 def test_sweep_input_errors(ee):
     with pytest.raises(InputError, match="angle"):
         sweep_angles(ee, [10.0, 95.0])

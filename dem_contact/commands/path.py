@@ -4,36 +4,49 @@ from __future__ import annotations
 import math
 import sys
 
+import numpy as np
+
 from ..errors import InputError
+from ..laws import table
 from ..laws.model import TANGENTIAL_LAWS
 from ..materials import STEEL
 from .common import check_output_file, dump_json
 
 ORDER = 6
-HELP = "forces of a contact law along a prescribed path of overlap and tangential displacement"
+HELP = "forces of a contact law along a prescribed path of overlap, tangential displacement and twist"
 DESCRIPTION = ("Drive one contact (the 3D per-contact kernel, normal along z) along a path and print, per "
                "row, the normal force N and the tangential force (Tx, Ty) on body 1 [N] (it opposes the "
-               "displacement). The path is a CSV with the header delta,ux,uy and one row per step: "
-               "overlap [m] (<= 0: no contact, the history is released) and the tangential displacement "
-               "of body 1 relative to body 2 at the contact point, components in the tangent plane [m]; "
-               "the contact starts unloaded before the first row. Or a named path at constant overlap "
-               "(--shape), sizes in units of the slip displacement mu delta / kappa. SI units.")
+               "displacement) and the moment Mz on body 1 about the normal [N m] (it opposes the twist). "
+               "The path is a CSV with the header delta,ux,uy[,twist] and one row per step: overlap [m] "
+               "(<= 0: no contact, the history is released), the tangential displacement of body 1 relative "
+               "to body 2 at the contact point, components in the tangent plane [m], and optionally the "
+               "twist: the rotation of body 1 relative to body 2 about the normal (from body 1 to body 2, "
+               "right-handed) [rad]; the contact starts unloaded before the first row. Or a named path at "
+               "constant overlap (--shape), sizes in units of the slip displacement mu delta / kappa and "
+               "twists in units of beta_1 = 3 mu N / (16 G_c a^2) (1/G_c = 1/G1 + 1/G2), the twist at "
+               "which the no-slip moment would be mu N a. A path that twists needs a twist law (--twist) or "
+               "--reference: the law 'none' ignores the twist (Mz = 0) and is refused for it unless named. "
+               "SI units.")
 
 
 def add_options(p):
-    from ..reference.paths import SHAPES
+    from ..reference.paths import DEFAULT_SIZES, SHAPES, TWIST_SHAPES
 
     shapes = ("circle: the circle through the origin of radius SIZE, centre (SIZE, 0); load-circle: along x "
               "to SIZE, then once round the circle of radius SIZE about the origin; l-turn: along x to SIZE, "
               "then along y by SIZE; figure-eight: u = SIZE (sin t, sin t cos t), t from 0 to 2 pi; "
-              "load-unload: along x to SIZE, back to -SIZE and again to SIZE")
+              "load-unload: along x to SIZE, back to -SIZE and again to SIZE; with a twist (twists in "
+              "beta_1): twist-cycle: twist to SIZE, back to -SIZE and again to SIZE, no displacement; "
+              "shear-twist: along x to SIZE, then a twist to 1 and back to 0; circle-twist: the circle of "
+              "radius SIZE with the twist SIZE sin 2t (twice per turn)")
+    defaults = "; ".join(f"{k} {v:g}" for k, v in DEFAULT_SIZES.items())
     p.add_argument("path_csv", nargs="?", default=None, metavar="PATH.csv",
-                   help="the path (header delta,ux,uy); or use --shape")
+                   help="the path (header delta,ux,uy and optionally twist); or use --shape")
     g = p.add_argument_group("named path (instead of PATH.csv)")
-    g.add_argument("--shape", choices=SHAPES, default=None, help=shapes)
+    g.add_argument("--shape", choices=SHAPES + TWIST_SHAPES, default=None, help=shapes)
     g.add_argument("--size", type=float, default=None,
-                   help="size of the named path in units of the slip displacement mu delta / kappa (default: "
-                        "0.6; 1.5 for l-turn; 1 for load-unload)")
+                   help=f"size of the named path in units of the slip displacement mu delta / kappa, or of "
+                        f"beta_1 for twist-cycle (defaults: {defaults})")
     g.add_argument("--overlap", type=float, default=1e-5, help="constant overlap of the named path [m] (default 1e-5)")
     g.add_argument("--steps", type=int, default=400,
                    help="steps of the named path after its first row (the loaded contact at u = 0; default 400)")
@@ -52,15 +65,24 @@ def add_options(p):
     s.add_argument("--tangential", choices=[t for t in TANGENTIAL_LAWS if t != "linear"], default=None,
                    help="tangential law (default: the library default; mdr places its springs for the path's "
                         "largest overlap)")
+    twist_laws = list(table.ids("twist"))
+    s.add_argument("--twist", choices=twist_laws, default=None,
+                   help=f"twist law: the moment about the normal from the twist (default: the library's, "
+                        f"{table.DEFAULTS['twist']!r}; 'none' ignores the twist, Mz = 0: a path that twists is "
+                        f"refused unless a law is named)")
     s.add_argument("--reference", action="store_true",
-                   help="use the boundary-element reference (exact 3D Cattaneo-Mindlin, slow) instead of a law")
+                   help="use the boundary-element reference (exact 3D Cattaneo-Mindlin with the twist, slow) "
+                        "instead of a law")
     s.add_argument("--n-across", type=int, default=64,
                    help="with --reference: boundary elements across the largest contact (default 64)")
     o = p.add_argument_group("output")
-    o.add_argument("--json", action="store_true", help="print one JSON object with the lists N, Tx, Ty [N]")
-    o.add_argument("--csv", default=None, metavar="FILE", help="write delta, ux, uy, N, Tx, Ty per row to FILE")
+    o.add_argument("--json", action="store_true",
+                   help="print one JSON object with the lists N, Tx, Ty [N] and Mz [N m]")
+    o.add_argument("--csv", default=None, metavar="FILE",
+                   help="write delta, ux, uy [m], twist [rad], N, Tx, Ty [N], Mz [N m] per row to FILE")
     o.add_argument("--plot", default=None, metavar="FILE.png",
-                   help="draw the path and the force (T/(mu N), both components and magnitude) to a PNG")
+                   help="draw the path and the force (T/(mu N), both components and magnitude; Mz/(mu N a) "
+                        "when the path twists) to a PNG")
 
 
 def _scene(args, delta_max: float):
@@ -87,6 +109,8 @@ def _scene(args, delta_max: float):
                                                               nu=pick(args.wall_nu, STEEL.nu), rho=STEEL.rho))
     sphere = Sphere(args.radius, sphere_mat)
     laws = {} if args.tangential is None else {"tangential": args.tangential}
+    if args.twist is not None:
+        laws["twist"] = args.twist
     if args.tangential == "mdr":
         # a path has no impact speed to place the springs by: they cover the contact radius of its largest
         # overlap (as studies.paths.path_scene does)
@@ -96,7 +120,7 @@ def _scene(args, delta_max: float):
 
 
 def run(args) -> int:
-    from ..reference.paths import scene_path
+    from ..reference.paths import DEFAULT_SIZES, scene_path
     from ..studies.paths import read_path_csv, reference_path, run_path, write_path_csv
 
     # output paths first: nothing is computed for a file that cannot be written
@@ -106,6 +130,8 @@ def run(args) -> int:
         check_output_file("--plot", args.plot, (".png",))
     if args.reference and args.tangential is not None:
         raise InputError("give either --reference or --tangential, not both")
+    if args.reference and args.twist is not None:
+        raise InputError("give either --reference or --twist, not both (the reference solves the twist exactly)")
     if args.reference and args.normal != "hertz":
         raise InputError("--reference solves the Hertz contact: it takes --normal hertz only")
     if args.n_across != 64 and not args.reference:
@@ -116,35 +142,49 @@ def run(args) -> int:
     if not named and (args.size is not None or args.overlap != 1e-5 or args.steps != 400):
         raise InputError("--size, --overlap and --steps apply to --shape only")
     if named:
-        size = args.size if args.size is not None else {"l-turn": 1.5, "load-unload": 1.0}.get(args.shape, 0.6)
+        size = args.size if args.size is not None else DEFAULT_SIZES[args.shape]
         if not args.overlap > 0:
             raise InputError(f"--overlap = {args.overlap:g} must be > 0 [m]")
         scene = _scene(args, args.overlap)
-        delta, ux, uy = scene_path(args.shape, size, args.steps, scene, args.overlap)
+        path = scene_path(args.shape, size, args.steps, scene, args.overlap)
     else:
-        delta, ux, uy = read_path_csv(args.path_csv)
-        scene = _scene(args, float(delta.max()))
+        path = read_path_csv(args.path_csv)
+        scene = _scene(args, float(path[0].max()))
+    delta, ux, uy = path[:3]
+    twist = path[3] if len(path) == 4 else np.zeros(delta.size)
+    twists = bool(np.any(twist != 0.0))
+    if twists and not args.reference and scene.twist == "none" and args.twist is None:
+        source = f"the {args.shape} path" if named else f"the twist column of {args.path_csv}"
+        raise InputError(f"{source} twists the contact, but the twist law is 'none' (no moment: Mz = 0); "
+                         f"choose --twist LAW (one of: {', '.join(table.ids('twist'))}; --twist none to accept "
+                         f"Mz = 0) or --reference")
     if args.reference:
-        N, Tx, Ty = reference_path(scene, delta, ux, uy, n_across=args.n_across)
+        N, Tx, Ty, Mz = reference_path(scene, delta, ux, uy, twist, n_across=args.n_across)
         law = f"boundary-element reference ({args.n_across} elements across)"
     else:
         from ..impacts.sweep import compile_notice
 
         with compile_notice(sys.stderr.isatty()):      # (the notice: in a terminal only)
-            N, Tx, Ty = run_path(scene, delta, ux, uy)
-        law = f"{scene.normal} / {scene.tangential}"
+            N, Tx, Ty, Mz = run_path(scene, delta, ux, uy, twist)
+        law = f"{scene.normal} / {scene.tangential} / twist {scene.twist}"
     if args.csv:
-        write_path_csv(args.csv, delta, ux, uy, N, Tx, Ty)
+        write_path_csv(args.csv, delta, ux, uy, N, Tx, Ty, twist=twist, Mz=Mz)
     if args.plot:
         from ..plots import path_figure
         title = (f"{args.shape} path" if named else args.path_csv) + f": {law}, mu = {scene.mu:g}"
-        path_figure(delta, ux, uy, N, Tx, Ty, scene.mu, args.plot, title=title)
+        moment = None
+        if twists:
+            a = np.sqrt(scene.pair.R_star * np.clip(delta, 0.0, None))
+            moment = np.where(N > 0, Mz / np.where(N > 0, scene.mu * N * a, 1.0), np.nan)
+        path_figure(delta, ux, uy, N, Tx, Ty, scene.mu, args.plot, title=title, moment=moment)
     if args.json:
         print(dump_json({"N": [float(x) + 0.0 for x in N], "Tx": [float(x) + 0.0 for x in Tx],
-                         "Ty": [float(x) + 0.0 for x in Ty], "law": law, "model": scene.describe()}))
+                         "Ty": [float(x) + 0.0 for x in Ty], "Mz": [float(x) + 0.0 for x in Mz], "law": law,
+                         "model": scene.describe()}))
         return 0
-    print(f"# {law}; mu = {scene.mu:g}, kappa = {scene.pair.kappa:.4f}; {len(N)} rows; forces on body 1 [N]")
-    print("N,Tx,Ty")
-    for n, tx, ty in zip(N, Tx, Ty):
-        print(f"{n + 0.0:.10g},{tx + 0.0:.10g},{ty + 0.0:.10g}")      # + 0.0: no negative zeros
+    print(f"# {law}; mu = {scene.mu:g}, kappa = {scene.pair.kappa:.4f}; {len(N)} rows; forces [N] and moment "
+          f"about the normal [N m] on body 1")
+    print("N,Tx,Ty,Mz")
+    for n, tx, ty, mz in zip(N, Tx, Ty, Mz):
+        print(f"{n + 0.0:.10g},{tx + 0.0:.10g},{ty + 0.0:.10g},{mz + 0.0:.10g}")      # + 0.0: no negative zeros
     return 0

@@ -54,8 +54,9 @@ from numba.extending import intrinsic, overload
 from ..errors import InputError, NumericalError
 from ..laws import table
 from ..laws.compose import kinematics
-from ..laws.dispatch import (NORMAL_IDS, NORMAL_NAMES, TANGENTIAL_IDS, TANGENTIAL_NAMES, normal_vector, rolling_torque,
-                             store_normal, tangential_base, twist_torque)
+from ..laws.dispatch import (NORMAL_IDS, NORMAL_NAMES, ROLLING_IDS, TANGENTIAL_IDS, TANGENTIAL_NAMES, TWIST_IDS,
+                             normal_vector, rolling_base, rolling_torque, store_normal, tangential_base, twist_base,
+                             twist_torque)
 from ..laws.dispatch3d import contact_leaf
 from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_NSPRING, P_ROLLING_LAW, P_RSTAR, P_TANGENTIAL_LAW, P_TWIST_LAW
 from ..laws.vector import JIT, V_A, V_N, W_WORK, W_X, renamed
@@ -71,15 +72,17 @@ __all__ = ["contact_force", "contact_force_torque", "peek_force", "reset_contact
 # arrays out of the loop), and only the law that is used is compiled. ``contact_force`` calls one
 # non-inlined leaf per law (``laws.dispatch3d``), to keep the cold compile of a user's loop short.
 
-def history_size(nid: int, tid: int, n_cells: int = 0) -> int:
+def history_size(nid: int, tid: int, n_cells: int = 0, qid: int = 0, rid: int = 0) -> int:
     """Length of a 3D history row for the normal law ``nid`` and the tangential law ``tid``; ``n_cells``:
     the MDR cell count (the largest params[:, P_NSPRING] of the table, >= 2) for the laws with cells,
-    which have no default (``PairTable.history_size`` has it all)."""
+    which have no default (``PairTable.history_size`` has it all); ``qid``, ``rid``: the twist and rolling
+    laws (default 0, none), whose states come before the tangential one (layout: ``laws.table``)."""
     nid, tid = _valid_ids(nid, tid)
+    qid, rid = _torque_ids(qid, rid)
     if table.FAMILIES["tangential"][tid].CELLS and not (isinstance(n_cells, (int, np.integer)) and n_cells >= 2):
         raise InputError(f"n_cells = {n_cells!r}: the {TANGENTIAL_NAMES[tid]} law needs its cell count (an integer "
                          f">= 2, the largest params[:, P_NSPRING] of the table; PairTable.history_size has it)")
-    return table.vector_history_size(nid, tid, n_cells)
+    return table.vector_history_size(nid, tid, n_cells, qid, rid)
 
 
 @njit(inline="always", **JIT)
@@ -139,34 +142,62 @@ def _swap_rules():
     return negate, cells
 
 
+def _slot_rule(family, attr):
+    """int64[laws, k]: the slots ``attr`` (``SWAP_NEGATE`` or ``VECTORS``, relative to the law's base) of each
+    law of the twist or rolling family, -1 pads."""
+    laws = table.FAMILIES[family]
+    out = np.full((len(laws), max(1, max(len(getattr(m, attr)) for m in laws))), -1, dtype=np.int64)
+    for i, m in enumerate(laws):
+        out[i, :len(getattr(m, attr))] = getattr(m, attr)
+    return out
+
+
 _NEGATE, _CELL_NEGATE = _swap_rules()
+_Q_NEGATE, _R_NEGATE = _slot_rule("twist", "SWAP_NEGATE"), _slot_rule("rolling", "SWAP_NEGATE")
+_Q_VECTORS, _R_VECTORS = _slot_rule("twist", "VECTORS"), _slot_rule("rolling", "VECTORS")
+
+
+@njit(inline="always", **JIT)
+def _negate_slots(H, c, base, rule):
+    for k in rule:
+        if k >= 0:
+            H[c, base + k] = -H[c, base + k]
+
+
+@njit(inline="always", **JIT)
+def _turn_vector(H, c, j, Q):
+    x = H[c, j]
+    y = H[c, j + 1]
+    z = H[c, j + 2]
+    for i in range(3):
+        H[c, j + i] = Q[i, 0] * x + Q[i, 1] * y + Q[i, 2] * z
 
 
 @njit(**JIT)
-def _swap_bodies(nid, tid, H, c):
-    b = tangential_base(nid)
-    for j in range(_NEGATE.shape[1]):
-        k = _NEGATE[tid, j]
-        if k >= 0:
-            H[c, b + k] = -H[c, b + k]
+def _swap_bodies(nid, tid, H, c, qid, rid):
+    b = tangential_base(nid, qid, rid)
+    _negate_slots(H, c, b, _NEGATE[tid])
     if _CELL_NEGATE[tid] >= 0:
         for k in range(b + _CELL_NEGATE[tid], H.shape[1], 2):
             H[c, k] = -H[c, k]
+    _negate_slots(H, c, twist_base(nid), _Q_NEGATE[qid])
+    _negate_slots(H, c, rolling_base(nid, qid), _R_NEGATE[rid])
 
 
 @njit(**JIT)
-def _rotate_history(nid, tid, H, c, Q):
-    b = tangential_base(nid)
-    x = H[c, b + W_X]
-    y = H[c, b + W_X + 1]
-    z = H[c, b + W_X + 2]
-    for i in range(3):
-        H[c, b + W_X + i] = Q[i, 0] * x + Q[i, 1] * y + Q[i, 2] * z
+def _rotate_history(nid, tid, H, c, Q, qid, rid):
+    _turn_vector(H, c, tangential_base(nid, qid, rid) + W_X, Q)
+    for k in _Q_VECTORS[qid]:
+        if k >= 0:
+            _turn_vector(H, c, twist_base(nid) + k, Q)
+    for k in _R_VECTORS[rid]:
+        if k >= 0:
+            _turn_vector(H, c, rolling_base(nid, qid) + k, Q)
 
 
 @njit(**JIT)
-def _tangential_work(nid, tid, H, c):
-    return H[c, tangential_base(nid) + W_WORK]
+def _tangential_work(nid, tid, H, c, qid, rid):
+    return H[c, tangential_base(nid, qid, rid) + W_WORK]
 
 
 def _check_row(H, c, writes, need=0):
@@ -181,10 +212,11 @@ def _check_row(H, c, writes, need=0):
                          f"(PairTable.history_size, contact3d.history_size)")
 
 
-def _check_ids_and_row(nid, tid, H, c, writes):
+def _check_ids_and_row(nid, tid, H, c, writes, qid, rid):
     nid, tid = _valid_ids(nid, tid)
-    _check_row(H, c, writes, history_size(nid, tid, 2 if table.FAMILIES["tangential"][tid].CELLS else 0))
-    return nid, tid
+    qid, rid = _torque_ids(qid, rid)
+    _check_row(H, c, writes, history_size(nid, tid, 2 if table.FAMILIES["tangential"][tid].CELLS else 0, qid, rid))
+    return nid, tid, qid, rid
 
 
 def peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
@@ -204,32 +236,37 @@ def reset_contact(H, c):
     _reset_contact(H, c)
 
 
-def swap_bodies(nid, tid, H, c):
+def swap_bodies(nid, tid, H, c, qid=0, rid=0):
     """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
     tangential force change sign. Swapping twice is the identity. The law ids come first, (nid, tid), as in
     every kernel: where the tangential slots start depends on the normal law (``thornton`` has a longer
-    normal state), and the MDR laws hold a frame and cells."""
-    nid, tid = _check_ids_and_row(nid, tid, H, c, True)
-    _swap_bodies(nid, tid, H, c)
+    normal state), and the MDR laws hold a frame and cells. ``qid``, ``rid``: the twist and rolling laws of
+    the contact's parameter row (default 0, none): their states come before the tangential one, and
+    change sign only where the law says so (``SWAP_NEGATE``: a twist angle and a rolling displacement look
+    the same from either body)."""
+    nid, tid, qid, rid = _check_ids_and_row(nid, tid, H, c, True, qid, rid)
+    _swap_bodies(nid, tid, H, c, qid, rid)
 
 
-def rotate_history(nid, tid, H, c, Q):
-    """Turn the tangential history of contact c rigidly by the rotation matrix Q (float64[3, 3], proper
+def rotate_history(nid, tid, H, c, Q, qid=0, rid=0):
+    """Turn the history vectors of contact c (the tangential law's, and those of its twist and rolling
+    laws ``qid``, ``rid``, default none) rigidly by the rotation matrix Q (float64[3, 3], proper
     orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n.
     The law ids (nid, tid) come first, as in every kernel (the turned slots do not depend on tid)."""
-    nid, tid = _check_ids_and_row(nid, tid, H, c, True)
+    nid, tid, qid, rid = _check_ids_and_row(nid, tid, H, c, True, qid, rid)
     _array("Q", Q, 2, np.float64, (3, 3))
     if not (np.allclose(Q @ Q.T, np.eye(3), rtol=0.0, atol=1e-9) and np.linalg.det(Q) > 0.0):
         raise InputError("Q must be a rotation matrix (Q Q^T = I within 1e-9, det Q = +1)")
-    _rotate_history(nid, tid, H, c, Q)
+    _rotate_history(nid, tid, H, c, Q, qid, rid)
 
 
-def tangential_work(nid, tid, H, c):
+def tangential_work(nid, tid, H, c, qid=0, rid=0):
     """Work absorbed by the tangential force of contact c since its history was zeroed [J]: the sum over
     steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created.
-    The law ids (nid, tid) come first, as in every kernel (the slot does not depend on tid)."""
-    nid, tid = _check_ids_and_row(nid, tid, H, c, False)
-    return _tangential_work(nid, tid, H, c)
+    The law ids (nid, tid) come first, as in every kernel (the slot does not depend on tid); ``qid``,
+    ``rid``: the twist and rolling laws of the contact's row (default none), whose states come first."""
+    nid, tid, qid, rid = _check_ids_and_row(nid, tid, H, c, False, qid, rid)
+    return _tangential_work(nid, tid, H, c, qid, rid)
 
 
 @overload(peek_force)
@@ -244,18 +281,20 @@ def _reset_contact_jit(H, c):
 
 
 @overload(swap_bodies)
-def _swap_bodies_jit(nid, tid, H, c):
-    return lambda nid, tid, H, c: _swap_bodies(nid, tid, H, np.int64(c))
+def _swap_bodies_jit(nid, tid, H, c, qid=0, rid=0):
+    return lambda nid, tid, H, c, qid=0, rid=0: _swap_bodies(nid, tid, H, np.int64(c), np.int64(qid), np.int64(rid))
 
 
 @overload(rotate_history)
-def _rotate_history_jit(nid, tid, H, c, Q):
-    return lambda nid, tid, H, c, Q: _rotate_history(nid, tid, H, np.int64(c), Q)
+def _rotate_history_jit(nid, tid, H, c, Q, qid=0, rid=0):
+    return lambda nid, tid, H, c, Q, qid=0, rid=0: _rotate_history(nid, tid, H, np.int64(c), Q, np.int64(qid),
+                                                                   np.int64(rid))
 
 
 @overload(tangential_work)
-def _tangential_work_jit(nid, tid, H, c):
-    return lambda nid, tid, H, c: _tangential_work(nid, tid, H, np.int64(c))
+def _tangential_work_jit(nid, tid, H, c, qid=0, rid=0):
+    return lambda nid, tid, H, c, qid=0, rid=0: _tangential_work(nid, tid, H, np.int64(c), np.int64(qid),
+                                                                 np.int64(rid))
 
 
 @intrinsic
@@ -297,6 +336,16 @@ def _prefetch_row(H, r):
 # prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
 # contact). One source, compiled serial and parallel (prange is range in a serial build).
 
+@njit(**JIT)
+def _torque_laws(nid, qid, rid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """The torques on body 1 of the twist law ``qid`` and the rolling law ``rid`` (their states after the
+    normal law's), not inlined: the batch loops call it only for rows that name such laws, and keep their
+    body as small as without them."""
+    qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), N, a, nx, ny, nz, wx, wy, wz, dt)
+    mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), N, a, nx, ny, nz, wx, wy, wz, dt)
+    return qx, qy, qz, mx, my, mz
+
+
 def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, spins, wn, dt, forces, tforces,
           torques):
     """Template of the batch loop of one tangential law (the global ``tangential``: the law's 3D kernel; the
@@ -304,10 +353,13 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
     in a serial build costs the loop its optimisations). spins, torques: float64[n, 3], or [0, 3] for none
     (no relative spin; the torques of the twist and rolling laws not kept). The body is the step of
     ``laws.compose`` written out: one level of inlined functions that take the arrays less, which the
-    default law's loop repays (about 10%)."""
+    default law's loop repays (about 10%); the twist and rolling laws are one call out of line
+    (``_torque_laws``), made only for rows that name such laws, so that the body of a loop over rows
+    without them stays as small (and as fast) as the step without torques."""
     n = overlaps.shape[0]
     spun = spins.shape[0] > 0
     kept = torques.shape[0] > 0
+    b0 = twist_base(nid)
     for k in loop_range(n):  # noqa: F821
         if k + AHEAD < n:
             _prefetch_row(H, rows[k + AHEAD])
@@ -321,13 +373,16 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
         vel, ddx, ddy, ddz, cs, sn = kinematics(nx, ny, nz, velocities[k, 0], velocities[k, 1], velocities[k, 2],
                                                 wn[k], dt)
         N, a, s0, s1, s2, s3, s4 = normal_vector(nid, params, row, H, c, overlaps[k], vel)
-        b = tangential_base(nid)
         Np = N if N > 0.0 else 0.0
-        wx = spins[k, 0] if spun else 0.0
-        wy = spins[k, 1] if spun else 0.0
-        wz = spins[k, 2] if spun else 0.0
-        qx, qy, qz = twist_torque(qid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
-        mx, my, mz = rolling_torque(rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
+        b = b0
+        qx = qy = qz = mx = my = mz = 0.0
+        if qid > 0 or rid > 0:
+            # the twist and rolling laws (none: no state, no torque, the tangential state at b0)
+            b = tangential_base(nid, qid, rid)
+            wx = spins[k, 0] if spun else 0.0
+            wy = spins[k, 1] if spun else 0.0
+            wz = spins[k, 2] if spun else 0.0
+            qx, qy, qz, mx, my, mz = _torque_laws(nid, qid, rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
         tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
         store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
         H[c, V_N] = Np
@@ -390,6 +445,11 @@ def _distinct(rows, n_rows):
 def _valid_ids(nid, tid):
     nid = _law_id("nid (normal law id)", nid, NORMAL_IDS, _NORMAL_NAMES)
     return nid, _law_id("tid (tangential law id)", tid, TANGENTIAL_IDS, _TANGENTIAL_NAMES)
+
+
+def _torque_ids(qid, rid):
+    return (_law_id("qid (twist law id)", qid, TWIST_IDS, _TWIST_NAMES),
+            _law_id("rid (rolling law id)", rid, ROLLING_IDS, _ROLLING_NAMES))
 
 
 def batch_loop(nid, tid, parallel=False):
@@ -457,6 +517,8 @@ def new_histories(n_contacts: int, history_size: int) -> np.ndarray:
 
 _NORMAL_NAMES = ", ".join(f"{i} {name}" for i, name in enumerate(NORMAL_NAMES))
 _TANGENTIAL_NAMES = ", ".join(f"{i} {name}" for i, name in enumerate(TANGENTIAL_NAMES))
+_TWIST_NAMES = ", ".join(f"{i} {m.NAME}" for i, m in enumerate(table.FAMILIES["twist"]))
+_ROLLING_NAMES = ", ".join(f"{i} {m.NAME}" for i, m in enumerate(table.FAMILIES["rolling"]))
 UNIT_TOL = 1e-6
 
 
@@ -514,12 +576,29 @@ def _check_table(nid, tid, params):
         raise InputError(f"params[{r}] was built for the laws nid = {bn}, tid = {bt} ({_law_names(bn, bt)}), "
                          f"not for nid = {nid}, tid = {tid} ({_law_names(nid, tid)}): pass the table's own "
                          f"PairTable.normal_id and tangential_id, or build a table for these laws")
+    extra = _torque_slots(params)
     law = table.FAMILIES["tangential"][tid]
     if not law.CELLS:
-        return history_size(nid, tid)
+        return history_size(nid, tid) + extra
     for bad, why in law.check_rows(params):
         _first_bad("params", bad, lambda r: why)
-    return history_size(nid, tid, int(params[:, P_NSPRING].max()))
+    return history_size(nid, tid, int(params[:, P_NSPRING].max())) + extra
+
+
+def _torque_slots(params):
+    """The most history slots the twist and rolling laws of a row of ``params`` take (P_TWIST_LAW,
+    P_ROLLING_LAW: id + 1, 0 = none), checking that they are law ids."""
+    for family, slot in (("twist", P_TWIST_LAW), ("rolling", P_ROLLING_LAW)):
+        laws = table.FAMILIES[family]
+        ids = params[:, slot]
+        bad = ~((ids >= 0.0) & (ids <= len(laws)) & (ids == np.floor(ids)))
+        _first_bad("params", bad, lambda r: f"records the {family} law {ids[r]!r}, not a law id + 1 (valid: 0 to "
+                                            f"{len(laws)}; slot P_{family.upper()}_LAW)")
+    q = np.maximum(params[:, P_TWIST_LAW].astype(np.int64) - 1, 0)
+    r = np.maximum(params[:, P_ROLLING_LAW].astype(np.int64) - 1, 0)
+    slots_q = np.array([m.VECTOR_SLOTS for m in table.FAMILIES["twist"]])
+    slots_r = np.array([m.VECTOR_SLOTS for m in table.FAMILIES["rolling"]])
+    return int((slots_q[q] + slots_r[r]).max())
 
 
 def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
@@ -657,9 +736,9 @@ def contact_forces(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     if debug:
         need = H.shape[1]
         if not table.FAMILIES["tangential"][tid].CELLS:
-            need = history_size(nid, tid)
+            need = history_size(nid, tid) + _torque_slots(params)
         elif len(pair_rows):
-            need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max()))
+            need = history_size(nid, tid, int(params[pair_rows, P_NSPRING].max())) + _torque_slots(params)
         c, reason = _serial_debug(nid, tid, params, pair_rows, H, hrows, normals, overlaps, velocities, spins3,
                                   wn, float(dt), forces, tforces, torques3, need)
         if reason == 5:

@@ -27,8 +27,9 @@ class PairTable:
     row records them, in its P_NORMAL_LAW and P_TANGENTIAL_LAW slots, and the checked entries of
     ``contact3d`` refuse the table with other ids); sphere_row: int64[n_types, n_types] row of each
     sphere-sphere pair (symmetric); wall_row: int64[n_types, n_walls] row of each sphere-wall pair;
-    history_size: length of a 3D history row (``contact3d``, layout in ``laws.vector``) for the laws and
-    the largest MDR cell count of the table; scenes: the Scene of each row (a tuple).
+    history_size: length of a 3D history row (``contact3d``, layout in ``laws.table``) for the laws (the
+    twist and rolling laws of the rows included) and the largest MDR cell count of the table; scenes: the
+    Scene of each row (a tuple).
 
     The table is immutable (its attributes cannot be assigned; the Scenes are immutable too): for other
     settings build another with ``pair_table``. Its arrays are the kernels' inputs, passed without copies."""
@@ -114,5 +115,7 @@ def pair_table(spheres, walls=(), *, mu=0.3, normal: str = "hertz", tangential: 
             scenes.append(sc)
     params = np.ascontiguousarray(np.array(rows))
     nid, tid = scenes[0].normal_id, scenes[0].tangential_id
+    cells = int(params[:, P_NSPRING].max())
+    size = max(history_size(nid, tid, cells, sc.twist_id, sc.rolling_id) for sc in scenes)
     return PairTable(params=params, normal_id=nid, tangential_id=tid, sphere_row=sphere_row, wall_row=wall_row,
-                     history_size=history_size(nid, tid, int(params[:, P_NSPRING].max())), scenes=tuple(scenes))
+                     history_size=size, scenes=tuple(scenes))

@@ -45,7 +45,7 @@ import warnings
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import contact_force, history_size, new_histories
+from ..dem.contact3d import contact_force_torque, history_size, new_histories
 from ..errors import InputError, NumericalError, kernel_failed
 from ..laws.model import Scene
 from ..laws.normal_impact import drift, eval_overlap, normal_close, normal_start, step_status
@@ -86,7 +86,8 @@ def new_contact_state(scene: Scene):
     """(params, H): the scene's parameter row as a one-row table and the zeroed 3D history of the one
     contact of an impact, as the 3D kernel takes them."""
     params = np.ascontiguousarray(scene.params[None, :])
-    H = new_histories(1, history_size(scene.normal_id, scene.tangential_id, scene.mdr_springs))
+    H = new_histories(1, history_size(scene.normal_id, scene.tangential_id, scene.mdr_springs, scene.twist_id,
+                                      scene.rolling_id))
     return params, H
 
 
@@ -98,16 +99,27 @@ def _normal_history(H):
 
 
 @njit(cache=True)
-def _contact(nid, tid, params, H, delta, sx, sy, vn, wn, dt):
-    """Force of the 3D kernel on body 1 for the normal n = +z: (N, Ftx, Fty), advancing the history.
+def _contact(nid, tid, params, H, delta, sx, sy, vn, wx, wy, wz, wn, dt):
+    """Force of the 3D kernel on body 1 for the normal n = +z: (N, Ftx, Fty, Qx, Qy, Qz), advancing the
+    history; Q the torque on body 1 of the twist and rolling laws (body 2 takes -Q).
 
-    (sx, sy): slip velocity over the step [m/s]; vn: overlap rate [m/s]; wn: rotation rate of the contact
-    frame about the normal [rad/s]."""
-    fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, 0, H, 0, 0.0, 0.0, 1.0, delta, sx, sy, vn, wn, dt)
-    return -fz, tx, ty
+    (sx, sy): slip velocity over the step [m/s]; vn: overlap rate [m/s]; (wx, wy, wz): relative spin
+    w1 - w2 [rad/s]; wn: rotation rate of the contact frame about the normal [rad/s]."""
+    fx, fy, fz, tx, ty, tz, qx, qy, qz = contact_force_torque(nid, tid, params, 0, H, 0, 0.0, 0.0, 1.0, delta, sx,
+                                                              sy, vn, wx, wy, wz, wn, dt)
+    return -fz, tx, ty, qx, qy, qz
 
 
 # -------------------------------------------------------------------------------------------------------
+
+@njit(inline="always", cache=True)
+def _half_kick_torque(w1x, w1y, w1z, w2x, w2y, w2z, Qx, Qy, Qz, hdt, inv_I1, inv_I2):
+    """Half a step of the torque Q of the twist and rolling laws on the two spins: I1 dw1 = Q dt,
+    I2 dw2 = -Q dt."""
+    h = 0.5 * hdt
+    return (w1x + h * Qx * inv_I1, w1y + h * Qy * inv_I1, w1z + h * Qz * inv_I1,
+            w2x - h * Qx * inv_I2, w2y - h * Qy * inv_I2, w2z - h * Qz * inv_I2)
+
 
 @njit(inline="always", cache=True)
 def _half_kick(vx, vy, w1x, w1y, w2x, w2y, Fx, Fy, hdt, inv_m, R1, R2, inv_I1, inv_I2):
@@ -138,6 +150,9 @@ def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, 
     w2x, w2y, w2z = w20[0], w20[1], w20[2]
     Fx = 0.0
     Fy = 0.0
+    Qx = 0.0
+    Qy = 0.0
+    Qz = 0.0
     PX = 0.0
     PY = 0.0
     WT = 0.0
@@ -151,27 +166,43 @@ def integrate_impact3d(nid, tid, params, H, vn0, vx0, vy0, w10, w20, inv_m, R1, 
         # half kick of the tangential force
         vx_h, vy_h, w1x_h, w1y_h, w2x_h, w2y_h = _half_kick(vx, vy, w1x, w1y, w2x, w2y, Fx, Fy, hdt, inv_m, R1, R2,
                                                             inv_I1, inv_I2)
+        # and of the torque of the twist and rolling laws
+        w1x_h, w1y_h, w1z_h, w2x_h, w2y_h, w2z_h = _half_kick_torque(w1x_h, w1y_h, w1z, w2x_h, w2y_h, w2z, Qx, Qy,
+                                                                       Qz, hdt, inv_I1, inv_I2)
         # slip s = V + (R1 w1 + R2 w2) x n, with w x n = (wy, -wx, 0)
         sx = vx_h + R1 * w1y_h + R2 * w2y_h
         sy = vy_h - R1 * w1x_h - R2 * w2x_h
         ddx = sx * hdt
         ddy = sy * hdt
-        wn = 0.5 * (w1z + w2z) if frame_spin else 0.0
+        wn = 0.5 * (w1z_h + w2z_h) if frame_spin else 0.0
+        rx = w1x_h - w2x_h
+        ry = w1y_h - w2y_h
+        rz = w1z_h - w2z_h
         if ended and not locate:
             Nn = 0.0
             Fxn = 0.0
             Fyn = 0.0
+            Qxn = 0.0
+            Qyn = 0.0
+            Qzn = 0.0
         else:
-            Nn, Fxn, Fyn = _contact(nid, tid, params, H, eval_overlap(delta_new, ended), sx, sy, vn_h - kick, wn, hdt)
+            Nn, Fxn, Fyn, Qxn, Qyn, Qzn = _contact(nid, tid, params, H, eval_overlap(delta_new, ended), sx, sy,
+                                                   vn_h - kick, rx, ry, rz, wn, hdt)
         PX += 0.5 * hdt * (Fx + Fxn)
         PY += 0.5 * hdt * (Fy + Fyn)
-        WT -= 0.5 * ((Fx + Fxn) * ddx + (Fy + Fyn) * ddy)
+        # the work of the tangential force and of the torque (on the relative spin)
+        WT -= 0.5 * ((Fx + Fxn) * ddx + (Fy + Fyn) * ddy + ((Qx + Qxn) * rx + (Qy + Qyn) * ry + (Qz + Qzn) * rz) * hdt)
         if WT < minWT:
             minWT = WT
         vx, vy, w1x, w1y, w2x, w2y = _half_kick(vx_h, vy_h, w1x_h, w1y_h, w2x_h, w2y_h, Fxn, Fyn, hdt, inv_m, R1, R2,
                                                 inv_I1, inv_I2)
+        w1x, w1y, w1z, w2x, w2y, w2z = _half_kick_torque(w1x, w1y, w1z_h, w2x, w2y, w2z_h, Qxn, Qyn, Qzn, hdt, inv_I1,
+                                                         inv_I2)
         Fx = Fxn
         Fy = Fyn
+        Qx = Qxn
+        Qy = Qyn
+        Qz = Qzn
         delta, vn, N, t, PN, WN, dmax, fmax, steps = normal_close(N, Nn, hdt, delta, delta_new, vn_h, inv_m, t, PN,
                                                                   WN, dmax, fmax, steps)
         Np = N if N > 0.0 else 0.0

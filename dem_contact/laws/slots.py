@@ -29,6 +29,15 @@ P_NORMAL_LAW          normal law id + 1 the row was built for (0: not recorded);
 P_TANGENTIAL_LAW      tangential law id + 1 the row was built for (0: not recorded)
 P_TWIST_LAW           twist law id + 1 the row was built for (0: not recorded; the 3D kernels read it)
 P_ROLLING_LAW         rolling law id + 1 the row was built for (0: not recorded; the 3D kernels read it)
+P_K_TWIST             twist spring: k_twist [N m/rad] (twist sds); the tangential coefficient k_t the
+                      marshall twist is scaled from (8 G* [Pa], or the linear law's k_t [N/m])
+P_GAMMA_TWIST         twist dashpot: gamma_twist [N m s/rad] (twist sds); the tangential damping the
+                      marshall twist is scaled from (0: the tangential laws have none)
+P_MU_TWIST            twist slider: mu_twist [m] (twist sds; the limit is mu_twist N)
+P_K_ROLL              rolling spring k_roll [N/m] (rolling sds)
+P_GAMMA_ROLL          rolling dashpot gamma_roll [N s/m] (rolling sds)
+P_MU_ROLL             rolling slider mu_roll [-] (rolling sds; the limit of the pseudo-force is mu_roll N)
+P_G_TWIST             shear modulus of the twist G_c [Pa], 1/G_c = 1/G1 + 1/G2 (twist deresiewicz)
 ====================  =====================================================================
 
 History row (one per contact), updated in place: a header, then the normal slots, then the
@@ -58,7 +67,14 @@ P_NORMAL_LAW = 32
 P_TANGENTIAL_LAW = 33
 P_TWIST_LAW = 34
 P_ROLLING_LAW = 35
-N_PARAMS = 36
+P_K_TWIST = 36
+P_GAMMA_TWIST = 37
+P_MU_TWIST = 38
+P_K_ROLL = 39
+P_GAMMA_ROLL = 40
+P_MU_ROLL = 41
+P_G_TWIST = 42
+N_PARAMS = 43
 
 # history row: header
 H_N = 0        # normal force after the last step [N] (clamped at >= 0)

@@ -15,9 +15,13 @@ plus one row here. The file declares:
 - its kernels, ``@njit`` functions with the signature of its family: a planar form ``planar`` (normal and
   tangential laws) and a 3D form ``vector``; where both are kept for speed they stand side by side in the
   file and ``tests/test_law_contract.py`` holds them equal;
-- twist and rolling laws: a 3D form ``vector(params, row, H, c, N, a, n, w, dt)`` that returns the torque
-  on body 1 from the relative spin w = w1 - w2 of the bodies (their ids are recorded in the parameter
-  row, from which the 3D step reads them), ``VECTOR_SLOTS`` (0 today);
+- twist and rolling laws: a 3D form ``vector(params, row, H, c, b, N, a, n, w, dt)`` that returns the
+  torque on body 1 from the relative spin w = w1 - w2 of the bodies, its state in the slots b ... b +
+  VECTOR_SLOTS - 1 of the history row (their ids are recorded in the parameter row, from which the 3D
+  step reads them); ``VECTOR_SLOTS`` (the number of its 3D slots), optional ``SWAP_NEGATE`` (the slots,
+  relative to its base, that change sign when the bodies are swapped; default none) and ``VECTORS`` (the
+  first slots, relative to its base, of the 3-vectors in global axes that ``rotate_history`` turns;
+  default none);
 - family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
   predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* the tangential laws may
   read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
@@ -27,6 +31,17 @@ plus one row here. The file declares:
   state part sized by the cell count, the parameter n) with ``CELL_HEADER`` (planar slots before the
   cells) and ``SWAP_NEGATE_CELL`` (the component of each cell that changes sign).
 
+Layout of a 3D history row (``laws.vector``)::
+
+    [V_N, V_A | normal law's STATE | twist law's slots | rolling law's slots | tangential law's slots (cells last)]
+     0    1     2 ...                twist_base(nid)      rolling_base(nid, q)  tangential_base(nid, q, r)
+
+The twist and rolling laws of a contact are those of its parameter row (``P_TWIST_LAW``,
+``P_ROLLING_LAW``), so the bases after the normal state depend on the row; with no twist or rolling law
+(``none``, 0 slots) the row is the one of the normal and tangential laws alone. A table whose rows name
+twist or rolling laws of different slot counts needs rows as long as its longest
+(``vector_history_size`` of each row's laws).
+
 After a change here or in a law's declarations, ``python -m dem_contact.laws.generate`` writes
 ``laws/dispatch.py`` again (a test fails while it is out of date).
 """
@@ -35,17 +50,21 @@ from types import MappingProxyType
 from .normal import hertz, hertz_damped, thornton
 from .normal import linear as linear_normal
 from .rolling import none as rolling_none
+from .rolling import sds as rolling_sds
 from .tangential import ddm, md, md_rescale, mdr, mdr_adaptive, mindlin_incremental, mindlin_rescale, mindlin_total
 from .tangential import linear as linear_tangential
+from .twist import deresiewicz
+from .twist import marshall as twist_marshall
 from .twist import none as twist_none
+from .twist import sds as twist_sds
 
 #: the laws of each family, in id order (the id of a law is its place here)
 FAMILIES = MappingProxyType({
     "normal": (hertz, thornton, hertz_damped, linear_normal),
     "tangential": (md, md_rescale, mindlin_total, mindlin_incremental, mindlin_rescale, linear_tangential, ddm, mdr,
                    mdr_adaptive),
-    "twist": (twist_none,),
-    "rolling": (rolling_none,),
+    "twist": (twist_none, twist_marshall, twist_sds, deresiewicz),
+    "rolling": (rolling_none, rolling_sds),
 })
 
 #: the law of each family that a Scene uses when none is named
@@ -81,16 +100,27 @@ def options() -> tuple:
     return tuple(seen)
 
 
-def tangential_base(nid: int) -> int:
-    """First tangential slot of a 3D history row (``laws.vector``)."""
+def twist_base(nid: int) -> int:
+    """First slot of the twist law's state in a 3D history row (``laws.vector``): after the normal state."""
     return 2 + len(FAMILIES["normal"][nid].STATE)
 
 
-def vector_history_size(nid: int, tid: int, n_cells: int = 0) -> int:
-    """Length of a 3D history row for the normal law ``nid`` and the tangential law ``tid`` with ``n_cells``
-    cells (laws with ``CELLS``)."""
+def rolling_base(nid: int, qid: int = 0) -> int:
+    """First slot of the rolling law's state: after the state of the twist law ``qid``."""
+    return twist_base(nid) + FAMILIES["twist"][qid].VECTOR_SLOTS
+
+
+def tangential_base(nid: int, qid: int = 0, rid: int = 0) -> int:
+    """First tangential slot of a 3D history row (``laws.vector``): after the states of the normal law
+    ``nid``, the twist law ``qid`` and the rolling law ``rid``."""
+    return rolling_base(nid, qid) + FAMILIES["rolling"][rid].VECTOR_SLOTS
+
+
+def vector_history_size(nid: int, tid: int, n_cells: int = 0, qid: int = 0, rid: int = 0) -> int:
+    """Length of a 3D history row for the normal law ``nid``, the tangential law ``tid`` with ``n_cells``
+    cells (laws with ``CELLS``), the twist law ``qid`` and the rolling law ``rid``."""
     t = FAMILIES["tangential"][tid]
-    return tangential_base(nid) + t.VECTOR_SLOTS + (2 * int(n_cells) if t.CELLS else 0)
+    return tangential_base(nid, qid, rid) + t.VECTOR_SLOTS + (2 * int(n_cells) if t.CELLS else 0)
 
 
 def planar_extra(tid: int, n_cells: int) -> int:
@@ -112,7 +142,8 @@ def _nothing(scene, p):
 
 
 #: the optional declarations and their defaults (set here on the law files that leave them out)
-OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing})
+OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing,
+                             "SWAP_NEGATE": (), "VECTORS": ()})
 
 
 def _check():
@@ -128,11 +159,12 @@ def _check():
                 assert hasattr(m, attr), f"{m.__name__} lacks {attr}"
         assert DEFAULTS[family] in names
     assert max(len(m.STATE) for m in FAMILIES["normal"]) <= MAX_NORMAL_STATE
-    # a twist or rolling law with a 3D state needs its slots in the row: the tangential base and the
-    # history size would count them (tangential_base, vector_history_size) and the helpers of dem.contact3d
-    # would read the laws from the parameter row
-    assert all(m.VECTOR_SLOTS == 0 for f in ("twist", "rolling") for m in FAMILIES[f]), \
-        "twist and rolling laws with a 3D state are not laid out yet"
+    for f in ("twist", "rolling"):
+        for m in FAMILIES[f]:
+            assert all(0 <= k < m.VECTOR_SLOTS for k in m.SWAP_NEGATE), f"{m.__name__}: SWAP_NEGATE outside its slots"
+            assert all(0 <= k <= m.VECTOR_SLOTS - 3 for k in m.VECTORS), f"{m.__name__}: VECTORS outside its slots"
+        assert FAMILIES[f][0].NAME == "none" and FAMILIES[f][0].VECTOR_SLOTS == 0, \
+            f"the {f} law of id 0 is 'none', without slots (the default of the contact helpers)"
 
 
 _check()

@@ -12,13 +12,17 @@ slot                       meaning
 =========================  =============================================================================
 V_N, V_A                   normal force [N] and contact radius [m] after the last step
 2 ...                      the normal law's state (its ``STATE``; none for most laws)
+q ...                      the twist law's state (its ``VECTOR_SLOTS``; none for ``none``)
+r ...                      the rolling law's state (its ``VECTOR_SLOTS``; none for ``none``)
 b + W_WORK                 running work absorbed by the tangential force, sum of 0.5 (T_old + T) . dd [J]
 b + W_X, W_Y, W_Z          the tangential law's vector (global axes): a spring displacement, a force, a
                            force axis or the first axis of a frame
 b + 4 ...                  the rest of the tangential law's state (its file), cells last
 =========================  =============================================================================
 
-with b = ``tangential_base(nid)`` = 2 + the number of state slots of the normal law (``laws.dispatch``).
+with q = ``twist_base(nid)`` = 2 + the number of state slots of the normal law, r = ``rolling_base(nid, qid)``
+= q + the twist law's slots and b = ``tangential_base(nid, qid, rid)`` = r + the rolling law's slots
+(``laws.dispatch``; the twist and rolling laws are those of the contact's parameter row, ``laws.table``).
 T is the tangential force in the direction of the displacement (the force on body 1 is -T). Each step
 every stored vector is first carried into the current tangent plane and turned about the normal with the
 contact (``carry``), then the slip increment dd (a vector in the tangent plane) acts on it.

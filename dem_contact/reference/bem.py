@@ -22,8 +22,13 @@ Pohrt & Li 2014, *Phys. Mesomech.* 17:334):
 - each element has its own Coulomb circle |q| <= mu p, p the Hertz pressure at its centre, scaled so
   that the elements carry N exactly (``hertz_element_pressure``).
 
-Each step (overlap delta and a rigid tangential displacement increment d of body 1 relative to body 2)
-solves Kalker's incremental problem: the local slip increment is s = d - A (q - q_old); stick elements
+Each step (overlap delta, a rigid tangential displacement increment (dux, duy) and a rigid twist increment
+d beta of body 1 relative to body 2) solves Kalker's incremental problem. The twist is a rotation about
+the normal n (from body 1 to body 2; (x, y, n) right-handed): it adds d beta n x r = (-d beta y, d beta x)
+to the rigid displacement of the element at r = (x, y), so the element's rigid increment is
+d = (dux - d beta y, duy + d beta x) (Lubkin 1951, *J. Appl. Mech.* 18:183: torsion of spheres in contact;
+the twist traction is circumferential and, for half-spaces, carries no normal displacement). The local
+slip increment is s = d - A (q - q_old); stick elements
 (|q| < mu p) have s = 0, slipping elements have |q| = mu p with q along s (maximal dissipation). Its
 solution minimises the complementary energy 1/2 q.A q - q.(d + A q_old) over the product of Coulomb disks
 (Kalker's variational principle, 1990); we minimise it by an accelerated projected gradient (FISTA: Beck & Teboulle
@@ -32,7 +37,9 @@ Math. 15:715), warm-started from the previous step. Elements outside the current
 radius 0 and so drop their traction; elements entering start unloaded.
 
 Sign convention: q is the traction that displaces the surfaces along d; the tangential force on body 1 is
-T = -h^2 sum q (it opposes the displacement: T = -k d in the elastic limit).
+T = -h^2 sum q (it opposes the displacement: T = -k d in the elastic limit) and the moment on body 1 about
+the normal is M_z = -h^2 sum (x q_y - y q_x) (it opposes the twist: M_z = -(16/3) G_c a^3 beta in the
+elastic limit, 1/G_c = 1/G1 + 1/G2, Johnson 1985 section 7.4).
 """
 from __future__ import annotations
 
@@ -198,7 +205,8 @@ class TangentialBEM:
     across 2 a_max; tol: step-solve tolerance (fraction of the slip displacement); workers: FFT threads;
     single: convolutions in single precision (default; double with False).
 
-    ``step(delta, dux, duy)`` advances by one step and returns (N, Tx, Ty).
+    ``step(delta, dux, duy, dtwist)`` advances by one step and returns (N, Tx, Ty); ``moment()`` is the
+    moment M_z about the normal of the current tractions.
     """
 
     def __init__(self, E1, nu1, E2, nu2, R_star, mu, a_max, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL,
@@ -297,10 +305,11 @@ class TangentialBEM:
         N = 4.0 / 3.0 * self.E_star * math.sqrt(self.R_star) * delta ** 1.5
         return N, a, hertz_element_pressure(self.xc, self.h, a, N)
 
-    def step(self, delta, dux, duy):
+    def step(self, delta, dux, duy, dtwist=0.0):
         """Advance by one step: overlap ``delta`` [m] now, rigid tangential displacement increment
-        (dux, duy) [m] of body 1 relative to body 2 since the last step. Returns (N, Tx, Ty) [N], T the
-        tangential force on body 1."""
+        (dux, duy) [m] and rigid twist increment ``dtwist`` [rad] (about the normal) of body 1 relative to
+        body 2 since the last step. Returns (N, Tx, Ty) [N], T the tangential force on body 1 (``moment()``
+        gives the moment about the normal)."""
         N, a, p = self.normal(delta)
         self.N = N
         if N == 0.0:
@@ -313,11 +322,21 @@ class TangentialBEM:
             return N, 0.0, 0.0
         cx = self.wx + dux                     # the complementary energy's linear term: d + A q_old
         cy = self.wy + duy
+        if dtwist != 0.0:                      # the rigid twist: d beta n x r at every element
+            cx = cx - dtwist * self.xc[None, :]
+            cy = cy + dtwist * self.xc[:, None]
         # displacement scale of the step: the slip displacement 3 mu N / (16 G* a), mu capped at 1
         scale = 3.0 * min(self.mu, 1.0) * N / (16.0 * self.G_star * a)
         self._solve(rad, cx, cy, self._lipschitz(a), self.tol * scale)
         h2 = self.h * self.h
         return N, -h2 * float(self.qx.sum()), -h2 * float(self.qy.sum())
+
+    def moment(self):
+        """Moment on body 1 about the normal of the current tractions [N m]: M_z = -h^2 sum (x q_y - y q_x)
+        (the elements' tractions acting at their centres)."""
+        x = self.xc[:, None]
+        y = self.xc[None, :]
+        return -self.h * self.h * float(np.sum(x * self.qy - y * self.qx))
 
     def _solve(self, rad, cx, cy, L, tol):
         """Minimise 1/2 q.A q - q.c over |q_i| <= rad_i by FISTA with adaptive restart, from the current q
@@ -349,60 +368,65 @@ class TangentialBEM:
         self.qx, self.qy, self.wx, self.wy = qx, qy, wx, wy
 
 
-def _as_path(delta, ux, uy):
-    d = np.asarray(delta, dtype=float)
-    x = np.asarray(ux, dtype=float)
-    y = np.asarray(uy, dtype=float)
-    for name, v in (("delta", d), ("ux", x), ("uy", y)):
+def _as_path(delta, ux, uy, twist=None):
+    names = ("delta", "ux", "uy") + (() if twist is None else ("twist",))
+    cols = [np.asarray(v, dtype=float) for v in (delta, ux, uy) + (() if twist is None else (twist,))]
+    for name, v in zip(names, cols):
         if v.ndim != 1:
             raise InputError(f"{name} must be a 1D array (one row per step), got shape {v.shape}")
         if not np.all(np.isfinite(v)):
             raise InputError(f"{name} must be finite at every step")
-    if not (d.size == x.size == y.size):
-        raise InputError(f"delta, ux, uy must have the same length, got {d.size}, {x.size}, {y.size}")
-    if d.size == 0:
-        raise InputError("delta, ux, uy must have at least one row")
-    return d, x, y
+    if len({v.size for v in cols}) != 1:
+        raise InputError(f"{', '.join(names)} must have the same length, got {', '.join(str(v.size) for v in cols)}")
+    if cols[0].size == 0:
+        raise InputError(f"{', '.join(names)} must have at least one row")
+    return cols
 
 
-def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL,
-             substeps=1, workers=1, return_solver=False):
+def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, twist=None, *, n_across=DEFAULT_N_ACROSS,
+             tol=DEFAULT_TOL, substeps=1, workers=1, return_solver=False):
     """Forces along a prescribed contact history, by the boundary-element method (see the module text).
 
     E1, nu1, E2, nu2: materials of the two bodies (E = math.inf: rigid) [Pa, -]; R_star: effective radius
     [m]; mu: friction coefficient; delta: overlap [m] per step (<= 0: contact open, traction dropped);
     ux, uy: tangential displacement of body 1 relative to body 2 at the contact, components in the tangent
-    plane [m], per step, measured from the state before the first row (no traction, u = 0): each step is
-    driven by the increment of u since the previous row. n_across: elements across the largest contact
-    diameter 2 sqrt(R* max(delta)). substeps: solve each row in this many equal steps (delta and u
-    interpolated linearly from the previous row; the first row at its own delta): on turning paths the
-    step error is first order in the step (the slip direction of a step is that of its increment).
+    plane [m], per step; twist (optional): rotation of body 1 relative to body 2 about the normal (from
+    body 1 to body 2) [rad], per step. All are measured from the state before the first row (no traction,
+    u = 0, twist 0): each step is driven by the increments since the previous row. n_across: elements
+    across the largest contact diameter 2 sqrt(R* max(delta)). substeps: solve each row in this many
+    equal steps (delta, u and the twist interpolated linearly from the previous row; the first row at its
+    own delta): on turning paths the step error is first order in the step (the slip direction of a step
+    is that of its increment).
 
     Returns (N, Tx, Ty): arrays of the normal force [N] and the tangential force on body 1 [N] (opposing
-    the displacement; T = -k u in the elastic limit). With ``return_solver``, also the TangentialBEM.
+    the displacement; T = -k u in the elastic limit); with ``twist``, (N, Tx, Ty, Mz), Mz the moment on
+    body 1 about the normal [N m] (opposing the twist). With ``return_solver``, also the TangentialBEM.
     """
-    d, x, y = _as_path(delta, ux, uy)
+    cols = _as_path(delta, ux, uy, twist)
+    d, x, y = cols[:3]
+    b = cols[3] if twist is not None else np.zeros(d.size)
     R_star = check_finite("R_star (effective radius, m)", R_star, lo=0.0)
     if isinstance(substeps, bool) or int(substeps) != substeps or not 1 <= substeps <= 10**4:
         raise InputError(f"substeps = {substeps!r} must be an integer in [1, 10000]")
     k = int(substeps)
     dmax = float(d.max())
     n = d.size
-    N = np.zeros(n)
-    Tx = np.zeros(n)
-    Ty = np.zeros(n)
-    if dmax <= 0.0:
-        return (N, Tx, Ty, None) if return_solver else (N, Tx, Ty)
-    solver = TangentialBEM(E1, nu1, E2, nu2, R_star, mu, math.sqrt(R_star * dmax), n_across=n_across,
-                           tol=tol, workers=workers)
-    px = py = 0.0
-    pd = d[0]
-    for i in range(n):
-        dx, dy = (x[i] - px) / k, (y[i] - py) / k
-        for j in range(1, k + 1):
-            N[i], Tx[i], Ty[i] = solver.step(pd + (d[i] - pd) * j / k, dx, dy)
-        px, py, pd = x[i], y[i], d[i]
-    return (N, Tx, Ty, solver) if return_solver else (N, Tx, Ty)
+    out = [np.zeros(n) for _ in range(3 if twist is None else 4)]
+    solver = None
+    if dmax > 0.0:
+        solver = TangentialBEM(E1, nu1, E2, nu2, R_star, mu, math.sqrt(R_star * dmax), n_across=n_across,
+                               tol=tol, workers=workers)
+        px = py = pb = 0.0
+        pd = d[0]
+        for i in range(n):
+            dx, dy, db = (x[i] - px) / k, (y[i] - py) / k, (b[i] - pb) / k
+            for j in range(1, k + 1):
+                f = solver.step(pd + (d[i] - pd) * j / k, dx, dy, db)
+            out[0][i], out[1][i], out[2][i] = f
+            if twist is not None:
+                out[3][i] = solver.moment()
+            px, py, pb, pd = x[i], y[i], b[i], d[i]
+    return (*out, solver) if return_solver else tuple(out)
 
 
 def _scene_materials(scene):
@@ -412,10 +436,11 @@ def _scene_materials(scene):
     return m1.E, m1.nu, m2.E, m2.nu, scene.pair.R_star
 
 
-def bem_path_scene(scene, delta, ux, uy, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL, substeps=1, workers=1):
+def bem_path_scene(scene, delta, ux, uy, twist=None, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL, substeps=1,
+                   workers=1):
     """``bem_path`` with the materials, R* and mu of a ``Scene`` (dem_contact.laws.model)."""
     E1, nu1, E2, nu2, R = _scene_materials(scene)
-    return bem_path(E1, nu1, E2, nu2, R, scene.mu, delta, ux, uy, n_across=n_across, tol=tol,
+    return bem_path(E1, nu1, E2, nu2, R, scene.mu, delta, ux, uy, twist, n_across=n_across, tol=tol,
                     substeps=substeps, workers=workers)
 
 

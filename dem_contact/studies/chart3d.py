@@ -111,13 +111,13 @@ def time_per_update(scene: Scene, delta, ux, uy, repeats: int = 5) -> float:
     sc = path_scene(scene, float(delta.max()))
     params = np.ascontiguousarray(sc.params[None, :])
     n = delta.size
-    N, Tx, Ty = np.zeros(n), np.zeros(n), np.zeros(n)
-    hs = history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs)
+    N, Tx, Ty, Mz, twist = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    hs = history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs, sc.twist_id, sc.rolling_id)
     best = math.inf
     for _ in range(repeats + 1):            # the first run compiles or warms up
         H = new_histories(1, hs)
         t0 = time.perf_counter()
-        _drive(sc.normal_id, sc.tangential_id, params, H, delta, ux, uy, 1.0, N, Tx, Ty)
+        _drive(sc.normal_id, sc.tangential_id, params, H, delta, ux, uy, twist, 1.0, N, Tx, Ty, Mz)
         best = min(best, time.perf_counter() - t0)
     return best / n
 

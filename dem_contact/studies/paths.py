@@ -1,16 +1,23 @@
-"""Prescribed loading paths: what a contact law does along a given history of the overlap and of the
-tangential displacement vector.
+"""Prescribed loading paths: what a contact law does along a given history of the overlap, of the
+tangential displacement vector and of the twist about the normal.
 
-A path is three arrays of equal length, one row per step: ``delta`` (normal overlap [m]; <= 0 means no
-contact: the history is released) and ``ux, uy`` (tangential displacement of body 1 relative to body 2 at
-the contact point, components in the tangent plane [m]). The contact starts unloaded and undisplaced
-before the first row. ``run_path`` drives the 3D per-contact kernel (``dem.contact3d``) with the normal
-n = +z, the relative velocity increment/dt and no rotation of the contact frame, and returns the normal
-force N and the tangential force (Tx, Ty) on body 1 (it opposes the displacement: T = -k u in the elastic
-limit). ``reference_path`` gives the same from the boundary-element reference (``reference.bem``).
+A path is three or four arrays of equal length, one row per step: ``delta`` (normal overlap [m]; <= 0 means
+no contact: the history is released), ``ux, uy`` (tangential displacement of body 1 relative to body 2 at
+the contact point, components in the tangent plane [m]) and, optionally, ``twist`` (rotation of body 1
+relative to body 2 about the normal n from body 1 to body 2, right-handed [rad]). The contact starts
+unloaded and undisplaced before the first row. ``run_path`` drives the 3D per-contact kernel
+(``dem.contact3d.contact_force_torque``) with the normal n = +z, the relative velocity increment/dt, the
+relative spin (0, 0, d twist/dt) (a twist increment is a relative rotation about the normal) and no
+rotation of the contact frame (the mean spin of the bodies about the normal is zero: the displacements
+are measured in the mean frame, as the reference measures them). It returns the normal force N, the
+tangential force (Tx, Ty) on body 1 (it opposes the displacement: T = -k u in the elastic limit) and, for a
+path with a twist, the moment Mz on body 1 about the normal from the scene's twist law (it opposes the
+twist; 0 with the twist law ``none``). ``reference_path`` gives the same from the boundary-element
+reference (``reference.bem``), whose moment is that of the exact traction field.
 
-Named paths at constant overlap (circle, load-circle, l-turn, figure-eight, load-unload; sizes in units of
-the slip displacement mu delta / kappa) are built by ``reference.paths``.
+Named paths at constant overlap (circle, load-circle, l-turn, figure-eight, load-unload; twist-cycle,
+shear-twist, circle-twist; sizes in units of the slip displacement mu delta / kappa and of the no-slip
+twist at unit moment) are built by ``reference.paths``.
 """
 from __future__ import annotations
 
@@ -20,46 +27,55 @@ import math
 import numpy as np
 from numba import njit
 
-from ..dem.contact3d import contact_force, history_size, new_histories, reset_contact
+from ..dem.contact3d import contact_force_torque, history_size, new_histories, reset_contact
 from ..errors import InputError, NumericalError, kernel_failed
 from ..laws.model import Scene
 from ..materials import check_finite
 
-#: Columns of a path CSV.
+#: Columns of a path CSV (``twist`` is optional).
 COLUMNS = ("delta", "ux", "uy")
+#: The optional twist column of a path CSV [rad].
+TWIST_COLUMN = "twist"
 
 
 @njit(cache=True)
-def _drive(nid, tid, params, H, delta, ux, uy, dt, N, Tx, Ty):
+def _drive(nid, tid, params, H, delta, ux, uy, twist, dt, N, Tx, Ty, Mz):
     """Advance one contact along the path (kernel calls of this module are here only)."""
     d0 = 0.0
     x0 = 0.0
     y0 = 0.0
+    b0 = 0.0
     for k in range(delta.shape[0]):
         if delta[k] > 0.0:
             vx = (ux[k] - x0) / dt
             vy = (uy[k] - y0) / dt
             vz = (delta[k] - d0) / dt
-            fx, fy, fz, tx, ty, tz = contact_force(nid, tid, params, 0, H, 0, 0.0, 0.0, 1.0, delta[k],
-                                                   vx, vy, vz, 0.0, dt)
+            wz = (twist[k] - b0) / dt
+            fx, fy, fz, tx, ty, tz, mx, my, mz = contact_force_torque(nid, tid, params, 0, H, 0, 0.0, 0.0, 1.0,
+                                                                      delta[k], vx, vy, vz, 0.0, 0.0, wz, 0.0, dt)
             N[k] = -fz
             Tx[k] = tx
             Ty[k] = ty
+            Mz[k] = mz
         else:
             reset_contact(H, 0)
             N[k] = 0.0
             Tx[k] = 0.0
             Ty[k] = 0.0
+            Mz[k] = 0.0
         d0 = delta[k]
         x0 = ux[k]
         y0 = uy[k]
+        b0 = twist[k]
 
 
-def check_path(delta, ux, uy, scene: Scene | None = None):
-    """The path as three float64 arrays of equal length (InputError naming the bad value); with ``scene``,
-    every overlap below its effective radius R* (the contact laws hold for overlaps far below it)."""
+def check_path(delta, ux, uy, scene: Scene | None = None, *, twist=None):
+    """The path as float64 arrays of equal length, (delta, ux, uy) or with ``twist`` (delta, ux, uy,
+    twist) (InputError naming the bad value); with ``scene``, every overlap below its effective radius R*
+    (the contact laws hold for overlaps far below it)."""
+    names = COLUMNS + (() if twist is None else (TWIST_COLUMN,))
     arrs = []
-    for name, x in zip(COLUMNS, (delta, ux, uy)):
+    for name, x in zip(names, (delta, ux, uy, twist)):
         a = np.ascontiguousarray(np.atleast_1d(np.asarray(x, dtype=float)))
         if a.ndim != 1 or a.size == 0:
             raise InputError(f"{name} must be a non-empty one-dimensional array")
@@ -67,9 +83,9 @@ def check_path(delta, ux, uy, scene: Scene | None = None):
         if bad.size:
             raise InputError(f"{name}[{bad[0]}] = {a[bad[0]]} is not finite")
         arrs.append(a)
-    if not arrs[0].size == arrs[1].size == arrs[2].size:
-        raise InputError(f"delta, ux and uy must have the same length (got {arrs[0].size}, {arrs[1].size}, "
-                         f"{arrs[2].size})")
+    if len({a.size for a in arrs}) != 1:
+        raise InputError(f"{', '.join(names[:-1])} and {names[-1]} must have the same length (got "
+                         f"{', '.join(str(a.size) for a in arrs)})")
     if scene is not None:
         deep = np.flatnonzero(arrs[0] >= scene.pair.R_star)
         if deep.size:
@@ -89,41 +105,48 @@ def path_scene(scene: Scene, delta_max: float) -> Scene:
     return scene.replace(mdr_springs=scene.mdr_springs, mdr_max_radius=1.05 * a)
 
 
-def run_path(scene: Scene, delta, ux, uy, *, dt: float = 1.0):
-    """Forces of the scene's laws along the path: (N, Tx, Ty), float arrays [N], one per row.
+def run_path(scene: Scene, delta, ux, uy, twist=None, *, dt: float = 1.0):
+    """Forces of the scene's laws along the path: (N, Tx, Ty), float arrays [N], one per row; with
+    ``twist`` [rad] per row, (N, Tx, Ty, Mz), Mz the moment on body 1 about the normal [N m] of the scene's
+    twist law (``Scene(twist=...)``; 0 with ``none``: that law ignores the twist).
 
-    dt: time per row [s] (the relative velocity is increment / dt; only dashpots see it, default 1 s:
-    quasi-static). For the ``mdr`` law the springs are placed for the path's largest overlap."""
+    dt: time per row [s] (the relative velocity is increment / dt and the relative spin twist increment /
+    dt; only dashpots see it, default 1 s: quasi-static). For the ``mdr`` law the springs are placed for the
+    path's largest overlap."""
     if not isinstance(scene, Scene):
         raise InputError("scene must be a Scene")
-    delta, ux, uy = check_path(delta, ux, uy, scene)
+    cols = check_path(delta, ux, uy, scene, twist=twist)
+    delta, ux, uy = cols[:3]
+    tw = cols[3] if twist is not None else np.zeros(delta.size)
     dt = check_finite("dt (time per row, s)", dt, lo=0.0)
     sc = path_scene(scene, float(delta.max()))
-    H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs))
-    N, Tx, Ty = np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size)
+    H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs, sc.twist_id, sc.rolling_id))
+    out = N, Tx, Ty, Mz = (np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size), np.zeros(delta.size))
     try:
-        _drive(sc.normal_id, sc.tangential_id, np.ascontiguousarray(sc.params[None, :]), H, delta, ux, uy, dt, N,
-               Tx, Ty)
+        _drive(sc.normal_id, sc.tangential_id, np.ascontiguousarray(sc.params[None, :]), H, delta, ux, uy, tw, dt,
+               N, Tx, Ty, Mz)
     except Exception as e:      # a failure inside the compiled code: no result
-        raise kernel_failed(e, f"the {sc.normal}/{sc.tangential} kernels along the path") from None
-    if not (np.all(np.isfinite(N)) and np.all(np.isfinite(Tx)) and np.all(np.isfinite(Ty))):
-        raise NumericalError(f"non-finite force along the path ({sc.normal}/{sc.tangential})")
-    return N, Tx, Ty
+        raise kernel_failed(e, f"the {sc.normal}/{sc.tangential}/{sc.twist} kernels along the path") from None
+    if not all(np.all(np.isfinite(v)) for v in out):
+        raise NumericalError(f"non-finite force or moment along the path ({sc.normal}/{sc.tangential}/{sc.twist})")
+    return out if twist is not None else out[:3]
 
 
-def reference_path(scene: Scene, delta, ux, uy, *, n_across: int = 64):
+def reference_path(scene: Scene, delta, ux, uy, twist=None, *, n_across: int = 64):
     """(N, Tx, Ty) of the boundary-element reference along the path (``reference.bem``: Hertz pressure, the
-    Cattaneo-Mindlin tangential problem solved on ``n_across`` elements across the largest contact)."""
+    Cattaneo-Mindlin tangential problem with the twist, solved on ``n_across`` elements across the largest
+    contact); with ``twist``, (N, Tx, Ty, Mz)."""
     from ..reference.bem import bem_path_scene
 
-    delta, ux, uy = check_path(delta, ux, uy, scene)
-    return bem_path_scene(scene, delta, ux, uy, n_across=n_across)
+    cols = check_path(delta, ux, uy, scene, twist=twist)
+    return bem_path_scene(scene, *cols, n_across=n_across)
 
 
 def read_path_csv(path) -> tuple:
-    """Read a path CSV: a header naming the columns delta, ux, uy (any order, other columns ignored,
-    lines starting with # skipped), then one row per step [m]; UTF-8, with or without a byte-order mark (as
-    spreadsheets write it). Returns (delta, ux, uy)."""
+    """Read a path CSV: a header naming the columns delta, ux, uy and optionally twist (any order, other
+    columns ignored, lines starting with # skipped), then one row per step [m, rad]; UTF-8, with or without
+    a byte-order mark (as spreadsheets write it). Returns (delta, ux, uy), or (delta, ux, uy, twist) when
+    the header has a twist column."""
     try:
         with open(path, newline="", encoding="utf-8-sig") as fh:
             rows = [r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")]
@@ -132,30 +155,39 @@ def read_path_csv(path) -> tuple:
     except UnicodeDecodeError as e:
         raise InputError(f"the path CSV {path} is not UTF-8 text (byte {e.start}): save it as UTF-8 CSV") from None
     if not rows:
-        raise InputError(f"the path CSV {path} is empty: it needs a header delta,ux,uy and one row per step")
+        raise InputError(f"the path CSV {path} is empty: it needs a header delta,ux,uy[,twist] and one row per step")
     header = [h.strip() for h in rows[0]]
     missing = [c for c in COLUMNS if c not in header]
     if missing:
         raise InputError(f"the path CSV {path} lacks the column(s) {', '.join(missing)} in its header "
-                         f"(got: {','.join(header)}); expected delta,ux,uy")
-    idx = [header.index(c) for c in COLUMNS]
+                         f"(got: {','.join(header)}); expected delta,ux,uy and optionally twist")
+    names = COLUMNS + ((TWIST_COLUMN,) if TWIST_COLUMN in header else ())
+    idx = [header.index(c) for c in names]
     if len(rows) < 2:
         raise InputError(f"the path CSV {path} has a header but no rows")
-    out = np.empty((len(rows) - 1, 3))
+    out = np.empty((len(rows) - 1, len(names)))
     for i, r in enumerate(rows[1:]):
         for j, c in enumerate(idx):
             try:
                 out[i, j] = float(r[c])
             except (IndexError, ValueError):
-                raise InputError(f"{path}, data row {i + 1}: column {COLUMNS[j]} = "
+                raise InputError(f"{path}, data row {i + 1}: column {names[j]} = "
                                  f"{r[c] if c < len(r) else '(missing)'!r} is not a number") from None
-    return check_path(out[:, 0], out[:, 1], out[:, 2])
+    return tuple(check_path(*out.T[:3], twist=out[:, 3] if len(names) == 4 else None))
 
 
-def write_path_csv(path, delta, ux, uy, N, Tx, Ty):
-    """One row per step: delta, ux, uy [m], N, Tx, Ty [N]."""
+def write_path_csv(path, delta, ux, uy, N, Tx, Ty, *, twist=None, Mz=None):
+    """One row per step: delta, ux, uy [m], N, Tx, Ty [N]; with ``twist`` and ``Mz``, delta, ux, uy [m],
+    twist [rad], N, Tx, Ty [N], Mz [N m]."""
+    if (twist is None) != (Mz is None):
+        raise InputError("give both twist and Mz, or neither")
+    header = ["delta", "ux", "uy", "N", "Tx", "Ty"]
+    cols = [delta, ux, uy, N, Tx, Ty]
+    if twist is not None:
+        header = ["delta", "ux", "uy", "twist", "N", "Tx", "Ty", "Mz"]
+        cols = [delta, ux, uy, twist, N, Tx, Ty, Mz]
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
-        w.writerow(["delta", "ux", "uy", "N", "Tx", "Ty"])
-        for row in zip(delta, ux, uy, N, Tx, Ty):
-            w.writerow([repr(float(v)) for v in row])
+        w.writerow(header)
+        for row in zip(*cols):
+            w.writerow([repr(float(v) + 0.0) for v in row])

@@ -16,7 +16,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from dem_contact.dem.contact3d import contact_forces_serial, new_histories
+from dem_contact.dem.contact3d import batch_loop, contact_forces_serial, new_histories
 from dem_contact.materials import STEEL, Material, Sphere, Wall
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
 from dem_contact.dem.pairs import pair_table
@@ -62,6 +62,48 @@ def test_bench_batch_normal(benchmark, normal):
     _run_numba(benchmark, "md", normal)
 
 
+def _pressed_like(tangential, n=12_500, slots=12, rounds=40):
+    """Contacts of a dense packing as the LAMMPS bridge steps them (``lammps_throughput.py --scene pressed``):
+    history rows scattered over ``slots`` rows per contact, the overlap oscillating by 2% and a small
+    reversing slip (|dd| / a about 1e-3 per step), the contact frame turning slowly. Returns a function
+    stepping every contact once (the next round of the path at each call)."""
+    steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho)
+    tab = pair_table([Sphere(2e-3, steel)], [Wall(steel)], mu=0.4, tangential=tangential)
+    rng = np.random.default_rng(0)
+    nrm = rng.normal(size=(n, 3))
+    nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+    d0 = rng.uniform(1e-6, 3e-6, size=n)
+    ph = rng.uniform(0.0, 2.0 * np.pi, n)
+    H = new_histories(n * slots, tab.history_size)
+    rows = rng.permutation(n * slots)[:n].astype(np.int64)
+    pair = np.zeros(n, np.int64)
+    wn = rng.normal(scale=1.0, size=n)
+    deltas = [d0 * (1.0 + 0.02 * np.sin(ph + 0.3 * r)) for r in range(rounds)]
+    vels = [rng.normal(scale=0.01, size=(n, 3)) + 0.01 * np.sin(0.3 * r + ph)[:, None] for r in range(rounds)]
+    f, t = np.zeros((n, 3)), np.zeros((n, 3))
+    loop = batch_loop(tab.normal_id, tab.tangential_id)
+    none3 = np.zeros((0, 3))
+    state = [0]
+
+    def step():
+        r = state[0] % rounds
+        state[0] += 1
+        loop(tab.normal_id, tab.tangential_id, tab.params, pair, H, rows, nrm, deltas[r], vels[r], none3, wn, 1e-7,
+             f, t, none3)
+    return step
+
+
+@pytest.mark.benchmark(group="contact3d-pressed")
+@pytest.mark.parametrize("tangential", ["mdr_adaptive", "mindlin_total"])
+def test_bench_pressed_like(benchmark, tangential):
+    """The default law and mindlin_total on the contacts of a dense packing (``_pressed_like``)."""
+    step = _pressed_like(tangential)
+    for _ in range(10):                 # compile, and let the histories settle into the path
+        step()
+    benchmark.pedantic(step, rounds=ROUNDS, iterations=1, warmup_rounds=2)
+    benchmark.extra_info["updates_per_s"] = 12_500 / benchmark.stats.stats.min
+
+
 # The C references: Hertz + md and Hertz + mdr_adaptive (the default law), the arithmetic of
 # laws.vector and contact3d.contact_force transcribed line by line (hertz base b = 2).
 C_SOURCE = r"""
@@ -69,8 +111,10 @@ C_SOURCE = r"""
 enum {P_ESTAR = 0, P_GSTAR = 1, P_RSTAR = 2, P_MU = 4, P_NSPRING = 11};
 enum {V_N = 0, V_A = 1, B = 2};
 enum {W_WORK = 0, W_X = 1, W_Y = 2, W_Z = 3, M_T = 4, M_TS = 5, M_TSS = 6, M_REGIME = 7, M_SIGN = 8, N_MD = 9,
-      R_T1 = 4, R_T2 = 5, R_DX = 6, R_CELLS = 7};
+      R_T1 = 4, R_T2 = 5, R_DX = 6, R_LAZY = 7, R_D1 = 8, R_D2 = 9, R_SV1 = 10, R_SV2 = 11, R_KS = 12, R_G0 = 13,
+      R_CELLS = 14, LAZY_MIN = 2};
 #define NEAR (1.0 - 1e-9)
+#define QNEAR (1.0 - 1e-9)
 
 static inline void carry_unit(double *x, double *y, double *z, double nx, double ny, double nz,
                               double cs, double sn) {
@@ -184,9 +228,25 @@ static void mdr_cells(const double *p, double *h, int k0, int n, double dx, doub
     int m = m1 > m2 ? m1 : m2;
     int full = (int)fmin(qa, qo);
     if (full > m) full = m;
-    double dx2 = dx * dx / 3.0, S1 = 0.0, S2 = 0.0;
-    int near = 0;
-    for (int i = 0; i < full; i++) {     /* u += d; flag a cell near or beyond its circle */
+    double dx2 = dx * dx / 3.0, S1 = 0.0, S2 = 0.0, L1 = 0.0, L2 = 0.0;
+    int lazy = (int)h[B + R_LAZY];
+    if (lazy > 0) {                       /* the sticking zone: one common increment, if provably sticking */
+        double D1 = h[B + R_D1] + d1, D2 = h[B + R_D2] + d2, Ks = h[B + R_KS], G0 = h[B + R_G0];
+        double wl = 3.0 * (lazy - 1) * lazy + 1.0;
+        double e = fmin(QNEAR * umax_per_w * (a2 - dx2) - G0 + Ks * dx2,
+                        QNEAR * umax_per_w * (a2 - dx2 * wl) - G0 + Ks * dx2 * wl);
+        if (e >= 0.0 && e * e >= D1 * D1 + D2 * D2) {
+            h[B + R_D1] = D1; h[B + R_D2] = D2;
+            L1 = h[B + R_SV1] + lazy * D1; L2 = h[B + R_SV2] + lazy * D2;
+        } else {
+            D1 -= d1; D2 -= d2;
+            for (int i = 0; i < lazy; i++) { h[k0 + 2 * i] += D1; h[k0 + 2 * i + 1] += D2; }
+            lazy = 0;
+            for (int j = R_LAZY; j < R_CELLS; j++) h[B + j] = 0.0;
+        }
+    }
+    int near = 0, i0 = full;
+    for (int i = lazy; i < full; i++) {     /* u += d; flag a cell near or beyond its circle */
         int k = k0 + 2 * i;
         double umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1));
         double u1 = h[k] + d1, u2 = h[k + 1] + d2;
@@ -196,8 +256,7 @@ static void mdr_cells(const double *p, double *h, int k0, int n, double dx, doub
     }
     if (near) {                           /* cells before the first flagged one keep their values */
         S1 = 0.0; S2 = 0.0;
-        int i0 = 0;
-        for (; i0 < full; i0++) {
+        for (i0 = lazy; i0 < full; i0++) {
             int k = k0 + 2 * i0;
             double umax = umax_per_w * (a2 - dx2 * (3 * i0 * (i0 + 1) + 1));
             if (h[k] * h[k] + h[k + 1] * h[k + 1] > NEAR * (umax * umax)) break;
@@ -212,6 +271,18 @@ static void mdr_cells(const double *p, double *h, int k0, int n, double dx, doub
             S1 += u1; S2 += u2;
         }
     }
+    if (lazy == 0 && i0 >= LAZY_MIN) {    /* a new sticking zone: the cells before the first one near */
+        double smin = INFINITY, V1 = 0.0, V2 = 0.0;
+        for (int i = 0; i < i0; i++) {
+            int k = k0 + 2 * i;
+            double umax = umax_per_w * (a2 - dx2 * (3 * i * (i + 1) + 1));
+            V1 += h[k]; V2 += h[k + 1];
+            smin = fmin(smin, umax - sqrt(h[k] * h[k] + h[k + 1] * h[k + 1]));
+        }
+        h[B + R_LAZY] = i0; h[B + R_D1] = 0.0; h[B + R_D2] = 0.0; h[B + R_SV1] = V1; h[B + R_SV2] = V2;
+        h[B + R_KS] = umax_per_w; h[B + R_G0] = umax_per_w * a2 - smin;
+    }
+    S1 += L1; S2 += L2;
     double T1 = S1 * dx, T2 = S2 * dx;
     for (int i = full; i < m; i++) {
         int k = k0 + 2 * i;
@@ -313,6 +384,12 @@ static void mdr_adaptive(const double *p, double *h, double N, double a, double 
     }
     double fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
     double d1 = ddx * ex + ddy * ey + ddz * ez, d2 = ddx * fx + ddy * fy + ddz * fz;
+    int lazy = (int)h[B + R_LAZY];
+    if (lazy > 0 && (a > n * dx || 4.0 * a < n * dx || fmin(a, a_old) / dx < lazy)) {
+        double D1 = h[B + R_D1], D2 = h[B + R_D2];   /* the zone's cells take u = v + D first */
+        for (int i = 0; i < lazy; i++) { h[k0 + 2 * i] += D1; h[k0 + 2 * i + 1] += D2; }
+        for (int j = R_LAZY; j < R_CELLS; j++) h[B + j] = 0.0;
+    }
     if (dx <= 0.0 || a_old <= 0.0) {
         for (int j = 0; j < 2 * n; j++) h[k0 + j] = 0.0;
         a_old = 0.0;
@@ -415,3 +492,42 @@ def test_c(benchmark, c_batch, tangential):
 def test_numba(benchmark, tangential):
     """Hertz + the law, numba serial batch (ratio: min time of test_c / min time of this, same law)."""
     _run_numba(benchmark, tangential)
+
+
+# The twist and rolling engine models: the default law and mindlin_total, without them (no spins), with the
+# relative spins passed but no model, and with twist sds + rolling sds and twist marshall + rolling sds
+# (bytes per contact: 8 * PairTable.history_size, in extra_info).
+TORQUE_MODELS = {
+    "none": {},
+    "spins_only": {},
+    "twist_sds_rolling_sds": dict(twist="sds", k_twist=1e-3, gamma_twist=1e-9, mu_twist=1e-4, rolling="sds",
+                                  k_roll=1e4, gamma_roll=1e-3, mu_roll=0.1),
+    "twist_marshall_rolling_sds": dict(twist="marshall", rolling="sds", k_roll=1e4, gamma_roll=1e-3, mu_roll=0.1),
+}
+
+
+@pytest.mark.benchmark(group="contact3d-twist-rolling")
+@pytest.mark.parametrize("models", list(TORQUE_MODELS))
+@pytest.mark.parametrize("tangential", ["mdr_adaptive", "mindlin_total"])
+def test_bench_batch_twist_rolling(benchmark, tangential, models):
+    steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho)
+    tab = pair_table([Sphere(2e-3, steel), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))], [Wall(steel)],
+                     mu=0.4, tangential=tangential, v_ref=1.0, **TORQUE_MODELS[models])
+    rng = np.random.default_rng(0)
+    n = N_CONTACTS
+    nrm = rng.normal(size=(n, 3))
+    nrm /= np.linalg.norm(nrm, axis=1)[:, None]
+    vel = rng.normal(scale=0.05, size=(n, 3))
+    delta = rng.uniform(1e-7, 3e-6, size=n)
+    wn = rng.normal(scale=100.0, size=n)
+    pair = rng.integers(0, tab.params.shape[0], size=n)
+    H = new_histories(n, tab.history_size)
+    spins = rng.normal(scale=100.0, size=(n, 3)) if models != "none" else None
+    torques = np.zeros((n, 3)) if models != "none" else None
+    args = (tab.normal_id, tab.tangential_id, tab.params, pair, H, nrm, delta, vel, wn, DT, np.zeros((n, 3)),
+            np.zeros((n, 3)))
+    kw = dict(spins=spins, torques=torques)
+    contact_forces_serial(*args, **kw)              # compile / load and warm up
+    benchmark.pedantic(contact_forces_serial, args=args, kwargs=kw, rounds=ROUNDS, iterations=1, warmup_rounds=2)
+    benchmark.extra_info["updates_per_s"] = N_CONTACTS / benchmark.stats.stats.min
+    benchmark.extra_info["bytes_per_contact"] = 8 * tab.history_size

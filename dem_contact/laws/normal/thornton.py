@@ -68,8 +68,9 @@ def configure(scene, p):
 
 
 def _set_traction_yield(scene, p):
-    """Table of p0_first(mu_eff) / p0_first(0) on [0, mu] in the parameter row (none for mu = 0: the
-    contact then carries no traction and the law is Thornton's)."""
+    """Table of p0_first(mu_eff) / p0_first(0) on [0, mu] in the parameter row, for the traction
+    distribution ``scene.traction_yield`` (none for mu = 0: the contact then carries no traction and the
+    law is Thornton's)."""
     from ..traction_yield import TABLE_NODES, first_yield_ratio_table
 
     pr = scene.pair
@@ -79,7 +80,7 @@ def _set_traction_yield(scene, p):
     if scene.mu == 0.0:
         return
     nu = min(max(scene.traction_yield_nu, 0.0), 0.5)
-    table = first_yield_ratio_table(nu, scene.mu)
+    table = first_yield_ratio_table(nu, scene.mu, scene.traction_yield)
     p[P_TY_NODES] = TABLE_NODES
     p[P_TY_DMU] = scene.mu / (TABLE_NODES - 1)
     p[P_TY_TABLE:P_TY_TABLE + TABLE_NODES] = table
@@ -88,7 +89,7 @@ def _set_traction_yield(scene, p):
 def describe(scene, p):
     d = dict(p_y=scene.p_y, p_y_source=scene.p_y_source, delta_y=p[P_DELTA_Y], F_y=p[P_F_Y])
     if scene.traction_yield:
-        d.update(traction_yield=True, traction_yield_nu=scene.traction_yield_nu)
+        d.update(traction_yield=scene.traction_yield, traction_yield_nu=scene.traction_yield_nu)
     return d
 
 

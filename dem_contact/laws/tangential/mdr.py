@@ -72,10 +72,27 @@ MDR_PROFILES = MappingProxyType({"truncated": 0.0, "scaled": 1.0})
 R_T1 = 4        # T in the frame (e1, e2 = n x e1) [N]
 R_T2 = 5
 R_DX = 6        # cell width [m] (adaptive grid)
-R_CELLS = 7     # cell i: its displacement in the frame at b + R_CELLS + 2 i (+1)
+R_CELLS = 7     # cell i: its displacement in the frame at b + R_CELLS + 2 i (+1) (fixed grid)
+# the adaptive grid's sticking zone: cells 0 ... lazy - 1, known to stick, hold v = u - D and take a step's
+# increment through D alone (``_vector``)
+R_LAZY = 7      # lazy: the number of cells of the zone (0: none)
+R_D1 = 8        # D, the increment common to the zone since it was set up, in the frame
+R_D2 = 9
+R_SV1 = 10      # the sum of v over the zone
+R_SV2 = 11
+R_KS = 12       # umax per w (``coulomb_per_w``) when the zone was set up
+R_G0 = 13       # K_s a_s^2 - min over the zone of (umax - |u|) when it was set up
+R_CELLS_ADAPTIVE = 14
 #: fixed 3D slots; swapping the bodies negates e1 and (n -> -n keeps e2 = n x e1) the second components
 VECTOR_SLOTS = R_CELLS
 SWAP_NEGATE = (W_X, W_Y, W_Z, R_T2)
+#: the adaptive grid's (``mdr_adaptive``)
+VECTOR_SLOTS_ADAPTIVE = R_CELLS_ADAPTIVE
+SWAP_NEGATE_ADAPTIVE = (W_X, W_Y, W_Z, R_T2, R_D2, R_SV2)
+#: a sticking zone is set up when it spans at least this many cells
+LAZY_MIN = 2
+#: the zone's cells stay within this fraction of their Coulomb radius (below NEAR: none is ever near)
+QNEAR = 1.0 - 1e-9
 SWAP_NEGATE_CELL = 1
 #: said when a force is not finite: the contact outgrew the fixed grid
 NAN_HINT = "beyond the fixed MDR grid?"
@@ -455,7 +472,19 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     and exit of ``mdr._advance``, and each cell is returned radially to its Coulomb circle |G_M u| <= mu q
     with the cell mean of the line load q of ``mdr._advance`` (the Hertz pressure truncated at p_y during
     Thornton's plastic loading, ``truncation``). The adaptive grid: that of the planar adaptive law (cell
-    width in the history; ``merged``, ``halves``, ``shrink_factor`` and ``initial_width_ldexp``)."""
+    width in the history; ``merged``, ``halves``, ``shrink_factor`` and ``initial_width_ldexp``).
+
+    Adaptive grid, sticking zone: the same arithmetic, with the inner cells that provably stick advanced
+    in O(1). After a step that updated every cell, the cells 0 ... j - 1 before the first one near its
+    circle (j >= LAZY_MIN) form a zone: each then holds v = u - D with D = 0, the history keeps the sum of
+    v over the zone, K_s = umax per w (``coulomb_per_w``) and G0 = K_s a^2 - min (umax - |u|) over the
+    zone. At a later step every cell of the zone is still inside the contact and |u_i| <= |u_i(set-up)| +
+    |D + d|; its circle is umax_i = K (a^2 - dx^2 w_i / 3) (w_i = 3 i (i + 1) + 1), so the zone sticks if
+    QNEAR K (a^2 - dx^2 w / 3) - G0 + K_s dx^2 w / 3 >= |D + d| at both ends w_0, w_(j-1) of the zone (the
+    left side is linear in w): then D += d advances it (u += d of each cell, as the cell-by-cell loop
+    does for a cell that sticks) and it adds sum v + j D to T. Otherwise, and before a regrid, a
+    truncated profile or a contact that no longer covers the zone, each cell takes u = v + D and the zone
+    is dissolved. In a dense packing most cells stick at most steps: they cost nothing then."""
     # Every parameter is read first and the history row last, on every path: numba's reference-count
     # pruning then removes the increments of the two arrays (which would cost two atomic operations per
     # contact); so the law has one exit and calls only inlined functions.
@@ -487,7 +516,20 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     else:
         ex, ey, ez, fx, fy, fz, d1, d2 = mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
                                                      ddx, ddy, ddz, cs, sn)
+        kt = truncation(profile, p_y, fstar, Np, a, E, R)
+        lazy = 0
         if ADAPTIVE:
+            lazy = int(H[c, b + R_LAZY])
+            if lazy > 0 and (kt < 1.0 or a > n * dx or 4.0 * a < n * dx or min(a, a_old) / dx < lazy):
+                # the cells of the sticking zone take their displacement u = v + D before anything else acts
+                D1 = H[c, b + R_D1]
+                D2 = H[c, b + R_D2]
+                for i in range(lazy):
+                    H[c, k0 + 2 * i] += D1
+                    H[c, k0 + 2 * i + 1] += D2
+                lazy = 0
+                for j in range(R_LAZY, R_CELLS):
+                    H[c, b + j] = 0.0
             # the adaptive grid of the planar law (its merge, split and shrink-edge rules on both components)
             if dx <= 0.0 or a_old <= 0.0:
                 for j in range(2 * n):
@@ -532,7 +574,6 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
                     H[c, k0 + 2 * i + 1] *= f
         # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
         GM = 4.0 * G
-        kt = truncation(profile, p_y, fstar, Np, a, E, R)
         umax_per_w = coulomb_per_w(mu, E, G, R, Np, a, kt)
         a2 = a * a
         da = a - a_old
@@ -556,10 +597,35 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
             # cell near or beyond its circle; if flagged, the cells before the first such cell keep their
             # values and the radial return acts from it on. The mean of a^2 - x^2 over cell i is
             # a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
-            w3 = 1.0
-            step = 6.0
+            L1 = 0.0
+            L2 = 0.0
+            if lazy > 0:
+                D1 = H[c, b + R_D1] + d1
+                D2 = H[c, b + R_D2] + d2
+                Ks = H[c, b + R_KS]
+                G0 = H[c, b + R_G0]
+                wl = 3.0 * (lazy - 1) * lazy + 1.0
+                e = min(QNEAR * umax_per_w * (a2 - dx2) - G0 + Ks * dx2,
+                        QNEAR * umax_per_w * (a2 - dx2 * wl) - G0 + Ks * dx2 * wl)
+                if e >= 0.0 and e * e >= D1 * D1 + D2 * D2:
+                    H[c, b + R_D1] = D1
+                    H[c, b + R_D2] = D2
+                    L1 = H[c, b + R_SV1] + lazy * D1
+                    L2 = H[c, b + R_SV2] + lazy * D2
+                else:
+                    D1 -= d1
+                    D2 -= d2
+                    for i in range(lazy):
+                        H[c, k0 + 2 * i] += D1
+                        H[c, k0 + 2 * i + 1] += D2
+                    lazy = 0
+                    for j in range(R_LAZY, R_CELLS):
+                        H[c, b + j] = 0.0
+            w3 = 3.0 * lazy * (lazy + 1) + 1.0
+            step = 6.0 * (lazy + 1)
             near = False
-            for i in range(full):
+            i0 = full
+            for i in range(lazy, full):
                 k = k0 + 2 * i
                 umax = umax_per_w * (a2 - dx2 * w3)
                 w3 += step
@@ -574,9 +640,9 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
             if near:
                 S1 = 0.0
                 S2 = 0.0
-                w3 = 1.0
-                step = 6.0
-                i0 = 0
+                w3 = 3.0 * lazy * (lazy + 1) + 1.0
+                step = 6.0 * (lazy + 1)
+                i0 = lazy
                 while i0 < full:
                     k = k0 + 2 * i0
                     u1 = H[c, k]
@@ -599,6 +665,32 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
                     H[c, k + 1] = u2
                     S1 += u1
                     S2 += u2
+            if ADAPTIVE and lazy == 0 and i0 >= LAZY_MIN:
+                # a new sticking zone: the cells before the first one near its circle
+                smin = math.inf
+                V1 = 0.0
+                V2 = 0.0
+                w3 = 1.0
+                step = 6.0
+                for i in range(i0):
+                    k = k0 + 2 * i
+                    umax = umax_per_w * (a2 - dx2 * w3)
+                    w3 += step
+                    step += 6.0
+                    u1 = H[c, k]
+                    u2 = H[c, k + 1]
+                    V1 += u1
+                    V2 += u2
+                    smin = min(smin, umax - math.sqrt(u1 * u1 + u2 * u2))
+                H[c, b + R_LAZY] = i0
+                H[c, b + R_D1] = 0.0
+                H[c, b + R_D2] = 0.0
+                H[c, b + R_SV1] = V1
+                H[c, b + R_SV2] = V2
+                H[c, b + R_KS] = umax_per_w
+                H[c, b + R_G0] = umax_per_w * a2 - smin
+            S1 += L1
+            S2 += L2
         T1 = S1 * dx
         T2 = S2 * dx
         for i in range(full, m):
@@ -646,7 +738,8 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
 
 def vector_form(name, adaptive):
     """The 3D kernel of the law on the fixed grid, or (``adaptive``) on the grid that follows the contact."""
-    return njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", ADAPTIVE=adaptive))
+    return njit(inline="always", **JIT)(renamed(_vector, f"vector_{name}", ADAPTIVE=adaptive,
+                                                R_CELLS=R_CELLS_ADAPTIVE if adaptive else R_CELLS))
 
 
 #: the fixed grid

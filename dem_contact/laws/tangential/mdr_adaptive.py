@@ -7,8 +7,8 @@ from numba import njit
 
 from ...errors import InputError
 from ..slots import H_T, H_TANG_EXTRA, P_NSPRING, P_RSTAR
-from .mdr import (PARAMETERS, R_CELLS, SWAP_NEGATE, SWAP_NEGATE_CELL, VECTOR_SLOTS, _advance, _cells, _merge, _release,  # noqa: F401
-                  _split, initial_width, set_profile, shrink_edge, vector_form)
+from .mdr import (PARAMETERS, SWAP_NEGATE_ADAPTIVE, SWAP_NEGATE_CELL, VECTOR_SLOTS_ADAPTIVE, _advance, _cells,  # noqa: F401
+                  _merge, _release, _split, initial_width, set_profile, shrink_edge, vector_form)
 
 NAME, FAMILY = "mdr_adaptive", "tangential"
 SOURCE = "method of dimensionality reduction with few cells on a grid that follows the contact"
@@ -19,6 +19,9 @@ CELLS = True
 CELL_HEADER = 1
 #: Default cell count (even).
 CELLS_DEFAULT = 16
+#: fixed 3D slots (the sticking zone of ``mdr._vector`` included) and those negated when the bodies are swapped
+VECTOR_SLOTS = VECTOR_SLOTS_ADAPTIVE
+SWAP_NEGATE = SWAP_NEGATE_ADAPTIVE
 
 
 def configure(scene, p):

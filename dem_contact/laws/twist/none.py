@@ -11,6 +11,6 @@ VECTOR_SLOTS = 0
 
 
 @njit(inline="always", **JIT)
-def vector(params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
+def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
     """Torque on body 1 (x, y, z) [N m] from the relative spin w = w1 - w2 [rad/s]: none."""
     return 0.0, 0.0, 0.0

@@ -1,0 +1,109 @@
+"""LAMMPS's ``rolling sds`` engine model: a spring-dashpot-slider on the rolling displacement (Luding 2008;
+the rolling velocity of Wang et al. 2015, Particuology 23, 49, eq. 31), with LAMMPS's arithmetic and
+history (22 Jul 2025 release, GRANULAR package, ``GranSubModRollingSDS``).
+
+Rolling resistance is not contact mechanics of smooth spheres: two smooth elastic spheres roll on each
+other without a resisting moment (apart from hysteresis, which no such spring models). This is the
+optional, named engine model that DEM users expect (for non-spherical or rough grains), offered for
+comparison with LAMMPS and for moving a simulation between the two.
+
+With the rolling velocity v = R* (w x n), w = w1 - w2, and the rolling displacement h (three history
+slots, a vector in global axes), each step
+
+    if |h . n| k_roll > 1e-10 mu_roll N:  h turned into the tangent plane keeping its length
+    h += v dt;  F = -k_roll h - gamma_roll v
+    if |F| > mu_roll N:  h = -(mu_roll N / (k_roll |F|)) F - (gamma_roll / k_roll) v,  F scaled to mu_roll N
+                         (if h = 0: F = 0 and h kept)
+
+and the torque on body 1 is R* (n x F) (body 2 takes the opposite); the largest is mu_roll R* N. N is the
+normal force of the step (LAMMPS's F_ncrit; see ``laws.twist.sds``). LAMMPS writes n from body 2 to body
+1; here n points from body 1 to body 2, so v, h and F are LAMMPS's negated (exactly) and the torque is the
+same. The rolling displacement looks the same from either body: it keeps its sign when the bodies are
+swapped, and ``rotate_history`` turns it.
+"""
+import math
+
+from numba import njit
+
+from ...errors import InputError
+from ...materials import check_finite
+from ..slots import P_GAMMA_ROLL, P_K_ROLL, P_MU_ROLL, P_RSTAR
+from ..vector import JIT
+
+NAME, FAMILY = "sds", "rolling"
+SOURCE = "LAMMPS rolling sds: spring-dashpot-slider on the rolling displacement (Wang et al. 2015, eq. 31)"
+PARAMETERS, STATE = ("k_roll", "gamma_roll", "mu_roll"), ("h_x", "h_y", "h_z")
+OPTIONS = ("k_roll", "gamma_roll", "mu_roll")
+VECTOR_SLOTS = 3
+VECTORS = (0,)
+#: LAMMPS's EPSILON of gran_sub_mod_rolling.cpp (the history is turned into the tangent plane only above it)
+EPSILON = 1e-10
+
+
+@njit(inline="always", **JIT)
+def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """Torque on body 1 (x, y, z) [N m] from the relative spin w = w1 - w2 [rad/s]: R* (n x F)."""
+    k = params[row, P_K_ROLL]
+    gamma = params[row, P_GAMMA_ROLL]
+    R = params[row, P_RSTAR]
+    crit = params[row, P_MU_ROLL] * N
+    vx = R * (wy * nz - wz * ny)
+    vy = R * (wz * nx - wx * nz)
+    vz = R * (wx * ny - wy * nx)
+    hx = H[c, b]
+    hy = H[c, b + 1]
+    hz = H[c, b + 2]
+    hn = hx * nx + hy * ny + hz * nz
+    if math.fabs(hn) * k > EPSILON * crit:
+        # LAMMPS's rotate_rescale_vec: into the tangent plane, length kept
+        mag = math.sqrt(hx * hx + hy * hy + hz * hz)
+        hx -= hn * nx
+        hy -= hn * ny
+        hz -= hn * nz
+        prj = math.sqrt(hx * hx + hy * hy + hz * hz)
+        s = mag / prj if prj > 0.0 else 0.0
+        hx *= s
+        hy *= s
+        hz *= s
+    hx += dt * vx
+    hy += dt * vy
+    hz += dt * vz
+    fx = -k * hx + -gamma * vx
+    fy = -k * hy + -gamma * vy
+    fz = -k * hz + -gamma * vz
+    mag_f = math.sqrt(fx * fx + fy * fy + fz * fz)
+    if mag_f > crit:
+        if math.sqrt(hx * hx + hy * hy + hz * hz) != 0.0:
+            k_inv = 1.0 / k
+            f_inv = 1.0 / mag_f
+            s = -crit * k_inv * f_inv
+            g = -gamma * k_inv
+            hx = s * fx + g * vx
+            hy = s * fy + g * vy
+            hz = s * fz + g * vz
+            s = crit * f_inv
+            fx *= s
+            fy *= s
+            fz *= s
+        else:
+            fx = fy = fz = 0.0
+    H[c, b] = hx
+    H[c, b + 1] = hy
+    H[c, b + 2] = hz
+    return R * (ny * fz - nz * fy), R * (nz * fx - nx * fz), R * (nx * fy - ny * fx)
+
+
+def configure(scene, p):
+    args = scene.arguments
+    missing = [k for k in OPTIONS if args[k] is None]
+    if missing:
+        raise InputError(f"rolling='sds' needs {', '.join(missing)} (k_roll > 0 [N/m], gamma_roll >= 0 "
+                         f"[N s/m], mu_roll >= 0: LAMMPS's rolling sds coefficients)")
+    p[P_K_ROLL] = check_finite("k_roll (rolling spring, N/m)", args["k_roll"], lo=0.0)
+    p[P_GAMMA_ROLL] = check_finite("gamma_roll (rolling dashpot, N s/m)", args["gamma_roll"], lo=0.0,
+                                   lo_open=False)
+    p[P_MU_ROLL] = check_finite("mu_roll (rolling slider)", args["mu_roll"], lo=0.0, lo_open=False)
+
+
+def describe(scene, p):
+    return dict(k_roll=p[P_K_ROLL], gamma_roll=p[P_GAMMA_ROLL], mu_roll=p[P_MU_ROLL])

@@ -1,0 +1,76 @@
+"""LAMMPS's ``twisting sds`` engine model: a spring-dashpot-slider on the relative spin about the normal
+(Marshall 2009, J. Comput. Phys. 228, 1541, eqs. 30, 34, 44), with LAMMPS's arithmetic and history (22 Jul
+2025 release, GRANULAR package, ``GranSubModTwistingSDS``).
+
+Twisting resistance of this kind is not contact mechanics of smooth spheres: Hertz, Mindlin and
+Deresiewicz give no such spring (the torsion of a Hertz contact is Lubkin's, with a slip annulus). This
+is the optional, named engine model that DEM users expect, offered for comparison with LAMMPS and for
+moving a simulation between the two.
+
+With W = (w1 - w2) . n the twist rate and xi the twist angle (one history slot), each step
+
+    xi += W dt;  M = -k_twist xi - gamma_twist W;  Mc = mu_twist N
+    if |M| > Mc:  xi = (Mc s - gamma_twist W) / k_twist,  M = -Mc s,   s = sign(W)
+
+and the torque on body 1 is M n (body 2 takes -M n). N is the normal force of the step (LAMMPS's F_ncrit,
+the magnitude of the elastic plus damping normal force; here the normal force clamped at 0, which is the
+same for undamped laws). LAMMPS's quirks are kept, as its results are to be reproduced: the slider takes
+the sign of the spin rate, not of the trial moment (a spin that reverses while the spring is past the
+limit flips the moment), and W = 0 past the limit erases the spring. LAMMPS writes n from body 2 to body
+1; here n points from body 1 to body 2, so W, xi and M are LAMMPS's negated (exactly) and the torque is
+the same. The twist angle looks the same from either body: it keeps its sign when the bodies are swapped.
+"""
+import math
+
+from numba import njit
+
+from ...errors import InputError
+from ...materials import check_finite
+from ..slots import P_GAMMA_TWIST, P_K_TWIST, P_MU_TWIST
+from ..vector import JIT
+
+NAME, FAMILY = "sds", "twist"
+SOURCE = "LAMMPS twisting sds: spring-dashpot-slider (Marshall 2009, eqs. 30, 34, 44)"
+PARAMETERS, STATE = ("k_twist", "gamma_twist", "mu_twist"), ("xi",)
+OPTIONS = ("k_twist", "gamma_twist", "mu_twist")
+VECTOR_SLOTS = 1
+
+
+@njit(inline="always", **JIT)
+def spring_dashpot_slider(H, c, b, k, damp, mu, W, dt, N):
+    """The twist moment M of LAMMPS's ``gran_twisting`` core (Marshall 2009, eqs. 30, 34, 44) on the twist
+    angle in H[c, b], updated in place."""
+    xi = H[c, b] + W * dt
+    M = -k * xi - damp * W
+    s = 1.0 if W > 0.0 else (-1.0 if W < 0.0 else 0.0)
+    Mc = mu * N
+    if math.fabs(M) > Mc:
+        xi = (Mc * s - damp * W) / k
+        M = -Mc * s
+    H[c, b] = xi
+    return M
+
+
+@njit(inline="always", **JIT)
+def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
+    """Torque on body 1 (x, y, z) [N m] from the relative spin w = w1 - w2 [rad/s]: M n."""
+    W = wx * nx + wy * ny + wz * nz
+    M = spring_dashpot_slider(H, c, b, params[row, P_K_TWIST], params[row, P_GAMMA_TWIST],
+                              params[row, P_MU_TWIST], W, dt, N)
+    return M * nx, M * ny, M * nz
+
+
+def configure(scene, p):
+    args = scene.arguments
+    missing = [k for k in OPTIONS if args[k] is None]
+    if missing:
+        raise InputError(f"twist='sds' needs {', '.join(missing)} (k_twist > 0 [N m/rad], gamma_twist >= 0 "
+                         f"[N m s/rad], mu_twist >= 0 [m]: LAMMPS's twisting sds coefficients)")
+    p[P_K_TWIST] = check_finite("k_twist (twist spring, N m/rad)", args["k_twist"], lo=0.0)
+    p[P_GAMMA_TWIST] = check_finite("gamma_twist (twist dashpot, N m s/rad)", args["gamma_twist"], lo=0.0,
+                                    lo_open=False)
+    p[P_MU_TWIST] = check_finite("mu_twist (twist slider, m)", args["mu_twist"], lo=0.0, lo_open=False)
+
+
+def describe(scene, p):
+    return dict(k_twist=p[P_K_TWIST], gamma_twist=p[P_GAMMA_TWIST], mu_twist=p[P_MU_TWIST])
