@@ -935,7 +935,8 @@ class LammpsContacts:
                 with tempfile.TemporaryDirectory() as d:
                     path = os.path.join(d, "fixes.txt")
                     lmp.command(f"info fixes out overwrite {path}")
-                    text = open(path).read()
+                    with open(path) as fh:
+                        text = fh.read()
                 styles = dict(re.findall(r"Fix\[\s*\d+\]:\s*(\S+),\s*style = (\S+),", text))
                 # accelerated variants (nve/sphere/omp, .../kk) do what their base style does
                 styles = {k: re.sub(r"/(omp|kk|kk/host|kk/device|gpu|intel|opt)$", "", v) for k, v in styles.items()}
