@@ -4,7 +4,8 @@ mindlin`` and ``fix wall/gran`` (no damping) on the same scene; --twist and --ro
 models (twisting marshall or sds, rolling sds) to either. Runs under MPI: ``mpirun -np 2 python
 examples/lammps_pour.py ...``.
 
-Scene: a lattice of spheres (type 1: glass-like, type 2: polymer-like, each with its radius) with
+Scene: a lattice of spheres (type 1: glass-like, type 2: polymer-like, each with its radius, or with
+--spread S a radius of each sphere drawn uniformly within S of its type's) with
 random velocities, falling under gravity into an open box (floor and four side walls of a steel-like
 material). The time step is the shortest elastic contact time of the table at --v-max over
 --steps-per-contact.
@@ -44,17 +45,17 @@ RADII = (1.0e-3, 1.25e-3)
 GRAVITY = 9.81
 
 
-def scene(n, seed=1, spacing=1.15, speed=0.3):
-    """Lattice positions (spacing: in largest diameters), random velocities (rms speed per axis [m/s]) and
-    types of n spheres, and the box (L, height)."""
+def scene(n, seed=1, spacing=1.15, speed=0.3, rmax=max(RADII)):
+    """Lattice positions (spacing: in largest diameters, 2 rmax), random velocities (rms speed per axis [m/s])
+    and types of n spheres, and the box (L, height)."""
     rng = np.random.default_rng(seed)
-    s = 2.0 * spacing * max(RADII)
+    s = 2.0 * spacing * rmax
     k = max(2, int(math.ceil((n / 2.0) ** (1.0 / 3.0))))          # columns per side; a column twice as tall
     layers = int(math.ceil(n / k**2))
     L = k * s
     i = np.arange(n)
     x = np.stack([(i % k + 0.5) * s, ((i // k) % k + 0.5) * s, (i // k**2 + 0.5) * s], axis=1)
-    x[:, :2] += rng.uniform(-0.1, 0.1, (n, 2)) * max(s - 2.0 * max(RADII), 0.0)
+    x[:, :2] += rng.uniform(-0.1, 0.1, (n, 2)) * max(s - 2.0 * rmax, 0.0)
     v = rng.normal(0.0, speed, (n, 3))
     types = rng.integers(1, 3, n)
     return x, v, types, L, (layers + 2) * s * 2.0, layers * s
@@ -107,6 +108,9 @@ def main(argv=None):
     p.add_argument("--same-size", action="store_true",
                    help="both materials with the larger radius (with --spacing below 1 and --lid: a pressed "
                         "packing with about 3 contacts per sphere from the first step)")
+    p.add_argument("--spread", type=float, default=0.0,
+                   help="radius of each sphere drawn uniformly in [1 - S, 1 + S] times its type's (0 <= S <= 0.15; "
+                        "default 0: one radius per type)")
     p.add_argument("--lid", action="store_true", help="a sixth wall on top of the initial lattice")
     p.add_argument("--small", action="store_true", help="a quick run: --n 150 --steps 300")
     p.add_argument("--dump", help="folder for LAMMPS dump custom files (every --every steps)")
@@ -127,8 +131,10 @@ def main(argv=None):
 def run(a):
     from dem_contact.lammps import Census, LammpsContacts, PlaneWall, lammps_module, native_commands, new_lammps
 
-    if a.n < 1 or a.steps < 0 or a.every < 1 or not a.spacing >= 0.9 or not a.speed >= 0.0:
-        raise InputError("--n must be >= 1, --steps >= 0, --every >= 1, --spacing >= 0.9, --speed >= 0")
+    if a.n < 1 or a.steps < 0 or a.every < 1 or not a.spacing >= 0.9 or not a.speed >= 0.0 \
+            or not 0.0 <= a.spread <= 0.15:
+        raise InputError("--n must be >= 1, --steps >= 0, --every >= 1, --spacing >= 0.9, --speed >= 0, "
+                         "--spread in [0, 0.15]")
     tangential = "mindlin_total" if a.native and a.tangential is None else a.tangential
     laws = {} if tangential is None else {"tangential": tangential}
     laws.update(twist=a.twist, rolling=a.rolling)
@@ -139,8 +145,10 @@ def run(a):
     radii = (RADII[1], RADII[1]) if a.same_size else RADII
     spheres = [Sphere(radii[0], GLASS), Sphere(radii[1], POLYMER)]
     table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
-    dt = min(sc.contact_time(a.v_max) for sc in table.scenes) / a.steps_per_contact
-    x, v, types, L, height, top = scene(a.n, a.seed, a.spacing, a.speed)
+    # (the contact time of equal spheres of one material is proportional to their radius: the smallest)
+    dt = min(sc.contact_time(a.v_max) for sc in table.scenes) * (1.0 - a.spread) / a.steps_per_contact
+    rmax = max(radii) * (1.0 + a.spread)
+    x, v, types, L, height, top = scene(a.n, a.seed, a.spacing, a.speed, rmax)
     log = None
     if a.native:
         # LAMMPS's timers of its pair style, from its log (written by rank 0)
@@ -159,11 +167,15 @@ def run(a):
                      v.ravel().tolist())
     for k, s in enumerate(spheres, start=1):
         lmp.command(f"set type {k} diameter {2 * s.radius!r}")
-        lmp.command(f"set type {k} density {s.material.rho!r}")
+    if a.spread > 0.0:
+        scale = np.random.default_rng(a.seed + 1).uniform(1.0 - a.spread, 1.0 + a.spread, a.n)
+        for i in range(a.n):
+            lmp.command(f"set atom {i + 1} diameter {float(2.0 * radii[types[i] - 1] * scale[i])!r}")
+    for k, s in enumerate(spheres, start=1):
+        lmp.command(f"set type {k} density {s.material.rho!r}")      # (the mass of each atom's radius)
     lmp.command(f"timestep {dt!r}")
     lmp.command("fix nve all nve/sphere")
     lmp.command(f"fix grav all gravity {GRAVITY!r} vector 0 0 -1")
-    rmax = max(RADII)
     skin = 0.3 * rmax
     walls = [PlaneWall.axis(ax, pos, side) for ax in ("x", "y") for pos, side in ((0.0, "lo"), (L, "hi"))]
     walls.append(PlaneWall.axis("z", 0.0, "lo"))
@@ -179,7 +191,7 @@ def run(a):
     else:
         lmp.command("pair_style none")
         bridge = LammpsContacts(lmp, table, walls, slots=a.slots, v_max=a.v_max, skin=skin,
-                                frame_spin=a.frame_spin == "on")
+                                frame_spin=a.frame_spin == "on", r_max=rmax)
     census = Census(lmp, rmax, walls)
     lmp.command("compute ke all ke")
     lmp.command("compute rke all erotate/sphere")

@@ -1,5 +1,5 @@
 """Run by test_lammps.py as ``mpirun -np 2 python tests/lammps_rank_error.py OUT_DIR``: two ranks (subdomains
-x < 0 and x > 0), every atom on rank 0, and an error injected into the contact search on rank 1 only,
+x < 0 and x > 0), every atom on rank 0, and an error injected into the contact step on rank 1 only,
 which owns no atom (so no per-atom flag can carry it). Each rank writes OUT_DIR/rank<k>.json: its
 number of local atoms and the exception its ``run`` raised (null for none)."""
 import json
@@ -9,7 +9,7 @@ import sys
 from lammps_injected import failing_after
 
 from dem_contact.dem.pairs import pair_table
-from dem_contact.lammps import LammpsContacts, kernels as K, new_lammps
+from dem_contact.lammps import LammpsContacts, new_lammps
 from dem_contact.materials import Material, Sphere
 
 mat = Material(E=5e7, nu=0.25, rho=2500.0)
@@ -24,7 +24,7 @@ for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map ar
 me = lmp.extract_setting("world_rank")
 bridge = LammpsContacts(lmp, table, slots=4, v_max=1.0, check_every=10)
 if me == 1:
-    K.gather_contacts = failing_after(5, K.gather_contacts)
+    bridge._step = failing_after(5, bridge._step)          # (a rank without atoms skips the kernels)
 raised = None
 try:
     bridge.run(50)

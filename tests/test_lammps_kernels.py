@@ -54,9 +54,10 @@ def _bridge_step(S, g, step, all_atoms, save):
         g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["tag"], g["typ"], g["walls"],
         g["wall_mat"], *g["cand"], S["cand_rows"], S["keys"], S["sep"], np.inf, S["H"], t.normal_id, t.sphere_row, t.wall_row,
         g["dt"], True, S["rebuilt"], True, S["stat"], S["used"], g["near"], all_atoms, S["prev"], S["n_prev"],
-        S["touched"], *buf[:10])
+        S["touched"], t.params, np.ones((len(t.params), K.N_ROWINFO)), False, np.ones((t.sphere_row.shape[0], 2)), 1.0,
+        np.zeros(K.N_ONSET), *buf[:12])
     assert stale == 0
-    _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces, spins, torques = buf
+    _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, _, _, forces, tforces, spins, torques = buf
     K.relative_spins(g["omega"], body, m, spins)
     contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], S["H"], normals[:m], overlaps[:m],
                           vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m], spins=spins[:m],
@@ -107,7 +108,7 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
             rows = np.full((len(g["cand"][0]) + len(g["cand"][1]), 2), -1, dtype=np.int64)
             for S in (every, few):
                 S["cand_rows"], S["rebuilt"] = rows.copy(), True
-                S["buf"] = K.contact_buffers(2 * len(rows) + 16)
+                S["buf"] = K.contact_buffers(2 * len(rows) + 16, g["table"].params)
         save = step % 100 == 99
         counts.append(_bridge_step(every, g, step, True, save))
         _bridge_step(few, g, step, rebuild or save, save)

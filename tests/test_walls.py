@@ -148,13 +148,14 @@ def _bridge_wall_contacts(x, radius, walls, v, omega, table):
     tag = np.arange(1, n + 1, dtype=np.int64)
     cand = K.candidates(n, n, x, radius, tag, rows, radius.max(), 1e-4)
     cand_rows = np.full((len(cand[0]) + len(cand[1]), 2), -1, dtype=np.int64)
-    buf = K.contact_buffers(2 * len(cand_rows) + 16)
+    buf = K.contact_buffers(2 * len(cand_rows) + 16, table.params)
     m, _, _ = K.gather_contacts(
         n, x, v, omega, radius, np.ones(n), tag, np.ones(n, dtype=np.int64), rows, mats, *cand, cand_rows,
         np.zeros((n, slots)), np.zeros((n, 4 * slots)), np.inf, np.zeros((n * slots, table.history_size)),
         table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, np.zeros((n, K.N_STAT)),
         np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
-        np.zeros(n, dtype=np.int64), *buf[:10])
+        np.zeros(n, dtype=np.int64), table.params, np.ones((len(table.params), K.N_ROWINFO)), False,
+        np.ones((table.sphere_row.shape[0], 2)), np.inf, np.zeros(K.N_ONSET), *buf[:12])
     _, body, _, _, _, prow, normals, overlaps, vel, wn = buf[:10]
     k = np.flatnonzero(body[:m, 1] < 0)
     return body[k, 0], -(body[k, 1] + 1), normals[k], overlaps[k], vel[k], wn[k], prow[k]

