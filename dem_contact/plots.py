@@ -480,18 +480,24 @@ def _shared_labels(ax, pts):
                     va="top" if below else "bottom")
 
 
-def chart3d_figure(rows, path, *, title=None, spin_rows=None):
+def chart3d_figure(rows, path, *, title=None, spin_rows=None, twist_rows=None, twist_targets=None):
     """Error of each 3D law against the BEM (max over the curved paths, and per path) versus the time per
     kernel update. ``rows``: ``studies.chart3d.Chart3DRow`` list; ``spin_rows``: optional
-    ``studies.chart3d.SpinImpactRow`` list (a third panel: spinning impacts, error vs time per impact).
-    Laws at the same point share a label."""
+    ``studies.chart3d.SpinImpactRow`` list (a third panel: spinning impacts, error vs time per impact);
+    ``twist_rows``: optional ``studies.chart3d.TwistChartRow`` list (a fourth panel: force and moment error
+    of each twist law per twist path, with ``twist_targets``, path -> (force, moment) target or None,
+    drawn as marks). Laws at the same point share a label."""
     from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
     laws = list(dict.fromkeys(r.law for r in rows))
     paths = [p for p in dict.fromkeys(r.path for r in rows) if p != "max"]
     cmap = plt.get_cmap("tab20")
-    n = 3 if spin_rows else 2
-    fig, axes = plt.subplots(1, n, figsize=(6.5 * n, 5.4))
+    n = 2 + bool(spin_rows) + bool(twist_rows)
+    if n == 4:
+        fig, axes = plt.subplots(2, 2, figsize=(13, 10.8))
+        axes = axes.ravel()
+    else:
+        fig, axes = plt.subplots(1, n, figsize=(6.5 * n, 5.4))
     a0, a1 = axes[0], axes[1]
     points = []
     for i, law in enumerate(laws):
@@ -514,6 +520,32 @@ def chart3d_figure(rows, path, *, title=None, spin_rows=None):
         a2.set_xlabel("time per impact [us] (bare kernel, warm JIT)")
         a2.set_ylabel("max |f - f_BEM| / mu, spinning impacts (EE)")
         a2.grid(True, which="both", alpha=0.3)
+    if twist_rows:
+        a3 = axes[-1]
+        tlaws = list(dict.fromkeys(r.twist for r in twist_rows))
+        tpaths = list(dict.fromkeys(r.path for r in twist_rows))
+        for i, law in enumerate(tlaws):
+            per = {r.path: r for r in twist_rows if r.twist == law}
+            ns = max(r.time_per_update_ns for r in per.values())
+            x = [j + 0.08 * (i - (len(tlaws) - 1) / 2) for j in range(len(tpaths))]
+            a3.plot(x, [max(per[p].force_error, 1e-3) for p in tpaths], "o", color=f"C{i}",
+                    label=f"twist {law} ({ns:.0f} ns): force / (mu N)")
+            a3.plot(x, [max(per[p].moment_error, 1e-3) for p in tpaths], "s", mfc="none", color=f"C{i}",
+                    label=f"twist {law}: moment / (mu N a)")
+        for j, p in enumerate(tpaths):
+            for k, v in enumerate((twist_targets or {}).get(p, (None, None))):
+                if v:
+                    a3.hlines(v, j - 0.3, j + 0.3, colors="k", linestyles="-" if k == 0 else "--", lw=0.8)
+        a3.set_xticks(range(len(tpaths)))
+        a3.set_xticklabels(tpaths, fontsize=8)
+        a3.set_xlim(-0.5, len(tpaths) - 0.5)
+        a3.set_yscale("log")
+        a3.set_ylabel("max error along the path (tangential law mdr_adaptive)")
+        a3.set_title("twist paths against the BEM at 128 across: force (filled) and moment (open) error\n"
+                     "(below 1e-3 drawn at 1e-3); targets: force -, moment --", fontsize=9)
+        a3.grid(True, which="both", alpha=0.3)
+        a3.set_ylim(1e-4, 3.0)
+        a3.legend(fontsize=7, ncol=2, loc="lower right")
     a0.set_xscale("log")
     a0.set_yscale("log")
     a0.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))

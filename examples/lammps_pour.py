@@ -1,7 +1,7 @@
 """Spheres of two materials poured into a box with walls, in LAMMPS, with dem_contact's contact laws
 (``dem_contact.lammps``) or, with --native, LAMMPS's own ``pair granular hertz/material ... tangential
 mindlin`` and ``fix wall/gran`` (no damping) on the same scene; --twist and --rolling add LAMMPS's engine
-models (twisting marshall or sds, rolling sds) to either. Runs under MPI: ``mpirun -np 2 python
+models (twisting marshall or sds, rolling sds) to either, or the exact twist law deresiewicz to ours. Runs under MPI: ``mpirun -np 2 python
 examples/lammps_pour.py ...``.
 
 Scene: a lattice of spheres (type 1: glass-like, type 2: polymer-like, each with its radius, or with
@@ -81,8 +81,9 @@ def main(argv=None):
     p.add_argument("--normal", default="hertz", help="normal law (default hertz)")
     p.add_argument("--tangential", default=None, help="tangential law (default: the library default)")
     p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (default 0.5)")
-    p.add_argument("--twist", choices=("none", "marshall", "sds"), default="none",
-                   help="twist model (LAMMPS's twisting marshall or sds; default none)")
+    p.add_argument("--twist", choices=("none", "deresiewicz", "marshall", "sds"), default="none",
+                   help="twist law: deresiewicz (exact torsion of Hertz contacts; not with --native) or "
+                        "LAMMPS's twisting marshall or sds (default none)")
     p.add_argument("--rolling", choices=("none", "sds"), default="none",
                    help="rolling model (LAMMPS's rolling sds; default none)")
     p.add_argument("--k-twist", type=float, default=1e-5, help="twist sds spring [N m/rad] (1e-5)")

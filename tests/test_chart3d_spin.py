@@ -76,3 +76,35 @@ def test_law_scenes_keep_every_setting_but_the_law():
                                                 "mdr_springs": None}
     assert scenes["md"].arguments == {**base.arguments, "tangential": "md", "v_ref": 3.0, "mdr_profile": "truncated",
                                       "mdr_springs": None}
+
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
+
+
+def test_twist_chart_meets_the_twist_cycle_target():
+    """The exact twist law on the twist cycle to 2 beta_1 and back, against the committed BEM history at 128
+    elements across (its own grid error below 3e-4 mu N a): moment within 0.01 mu N a, no tangential force;
+    the reference's rows are the chart's path."""
+    paths = c.twist_paths(paths=(("twist-cycle", 2.0),))
+    rpath, ref = c.read_twist_reference(ROOT / "validation/bem/paths/twist-cycle_2_n128_s400.csv")
+    for a, b in zip(rpath, paths["twist-cycle 2"]):
+        assert np.allclose(a, b, rtol=1e-9, atol=0.0)
+    rows = c.twist_chart(paths, {"twist-cycle 2": ref}, twist_laws=("deresiewicz",), repeats=1)
+    (r,) = rows
+    assert r.moment_error < 0.01 and r.force_error < 1e-6 and r.time_per_update_ns > 0
+
+
+def test_sds_given_the_hertz_values_has_the_hertz_stiffness_and_full_slip_moment():
+    """twist sds with ``sds_hertz_values``: the initial slope is the no-slip stiffness (16/3) G_c a^3 (Johnson
+    1985, 7.4; steel on steel: G_c = G/2) and the moment at a large twist Lubkin's full slip (3 pi/16) mu N a,
+    both from the closed forms of the scene's Hertz contact."""
+    sc = c.twist_scene("sds")
+    E, nu, R, d, mu = sc.sphere.material.E, sc.sphere.material.nu, sc.sphere.radius, c.DELTA, sc.mu
+    a = np.sqrt(R * d)
+    N = 4.0 / 3.0 * E / (2.0 * (1.0 - nu**2)) * np.sqrt(R) * d**1.5
+    k = 16.0 / 3.0 * (E / (4.0 * (1.0 + nu))) * a**3
+    full = 3.0 * np.pi / 16.0 * mu * N * a
+    b = 1e-3 * full / k
+    _, _, _, Mz = c.run_path(sc, [d, d, d], [0.0] * 3, [0.0] * 3, [0.0, b, 100.0 * full / k])
+    assert Mz[1] == pytest.approx(-k * b, rel=1e-9)
+    assert Mz[2] == pytest.approx(-full, rel=1e-9)

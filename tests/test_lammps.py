@@ -185,7 +185,31 @@ def test_pour_with_twist_and_rolling_is_lammps_step_for_step(twist, rolling):
     assert _rel(native["rotational_energy"], plain["rotational_energy"]) > 0.05
 
 
-def test_a_run_in_pieces_is_one_run():
+def test_pour_with_the_exact_twist_law_runs_and_the_law_acts():
+    """The pour with the exact twist law deresiewicz and the default tangential law (a history of 83 values per
+    contact; LAMMPS has no such model): the run ends with finite energies and shallow overlaps, and the law
+    acts: the rotational energy differs from the same pour without a twist law (the runs are deterministic)."""
+    args = ("--n", "150", "--steps", "2000", "--every", "2000", "--mu", "0.5", "--frame-spin", "off", "--speed", "0.6")
+    twisted = _pour(*args, "--twist", "deresiewicz")
+    plain = _pour(*args)
+    assert twisted["laws"]["twist"] == "deresiewicz" and twisted["contacts"] >= 8
+    for k in ("kinetic_energy", "rotational_energy", "mean_z", "max_overlap"):
+        assert math.isfinite(twisted[k]) and twisted[k] >= 0.0
+    assert twisted["max_overlap"] < min(0.05 * min(_example("lammps_pour").RADII), 2.0 * plain["max_overlap"])
+    assert _rel(twisted["rotational_energy"], plain["rotational_energy"]) > 0.01
+
+
+@pytest.mark.skipif(MPIRUN is None, reason="needs mpirun")
+def test_histories_too_large_to_move_between_ranks_are_refused():
+    """On several ranks an atom carries its contacts' histories when it moves to another rank, through
+    LAMMPS's fix property/atom, whose exchange margin is about 1000 values per atom: the exact twist law
+    with the default tangential law and 12 slots (1080 values) is refused, naming the slots that fit."""
+    r = subprocess.run([MPIRUN, "-np", "2", sys.executable, "examples/lammps_pour.py", "--json", "--small",
+                        "--twist", "deresiewicz"], capture_output=True, text=True, cwd=ROOT, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert r.returncode == 2, r.stderr[-2000:]
+    assert "values per atom" in r.stderr and "on several ranks use slots <=" in r.stderr
+
     """A pour run as 12 LAMMPS runs of 50 steps equals one run of 600 steps (default law, spin of the
     contact frame on): the contact forces of each run's last step are reapplied at the next run's set-up,
     and the histories and the Verlet lists carry over."""
@@ -385,6 +409,9 @@ def test_native_commands_name_what_lammps_cannot_do():
         native_commands(pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3), [])
     with pytest.raises(InputError, match=r"^walls\[0\]: LAMMPS's fix wall/gran takes planes perpendicular"):
         native_commands(tab, [PlaneWall((0.0, 0.0, 0.0), (0.6, 0.8, 0.0))])
+    with pytest.raises(InputError, match="deresiewicz"):
+        native_commands(pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3, tangential="mindlin_total",
+                                   twist="deresiewicz"), [])
 
 
 def test_refuses_ghosts_without_velocities():

@@ -76,6 +76,10 @@ MIN_STEPS_PER_CONTACT = 10.0
 SIZE_TOL = 1e-9
 #: A contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the laws cap |Ft| at mu N, to rounding).
 SLIDING_TOL = 1e-9
+#: Most values per atom in the bridge's per-atom arrays on several ranks: LAMMPS's fix property/atom does not
+#: declare its size to the exchange of atoms between ranks (its maxexchange is 0), whose send buffer keeps a
+#: margin of 1024 values beyond the atom style's for the atom being packed; a larger atom overruns it.
+EXCHANGE_LIMIT = 1000
 
 
 def library_path() -> str:
@@ -487,6 +491,10 @@ class LammpsContacts:
     counts and the largest overlap.
     """
 
+    def _doubles_per_atom(self, slots: int) -> int:
+        """Values per atom of the bridge's three per-atom arrays with ``slots`` history rows."""
+        return K.atom_columns(slots) + K.N_STAT + 4 * slots + K.N_SAVED + slots * self.hs
+
     def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
                  skin: float | None = None, ghost_cutoff: float | None = None, frame_spin: bool = True,
                  check_every: int = 100, huge_pages: bool = True, prefix: str = "dc", r_max: float | None = None):
@@ -565,6 +573,13 @@ class LammpsContacts:
         self.ncols = self.col_stat + K.N_STAT
         self.col_saved = 4 * self.slots
         self.ncols_side = self.col_saved + K.N_SAVED
+        if lmp.extract_setting("world_size") > 1 and self._doubles_per_atom(self.slots) > EXCHANGE_LIMIT:
+            fit = max((k for k in range(1, self.slots) if self._doubles_per_atom(k) <= EXCHANGE_LIMIT), default=0)
+            raise InputError(
+                f"slots = {self.slots} with a history of {self.hs} values per contact stores "
+                f"{self._doubles_per_atom(self.slots)} values per atom, more than the {EXCHANGE_LIMIT} that LAMMPS "
+                f"can move with an atom between ranks (fix property/atom); on several ranks use slots <= {fit} "
+                f"with these laws" + ("" if fit else " (none fits: run on one rank)"))
         p = prefix
         # the fixes defined so far will all come before the bridge's: refused here, before anything of the
         # bridge is defined (so that it can be attached again once the user moved them), if one may read or

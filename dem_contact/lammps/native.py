@@ -132,6 +132,11 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     if names is None:
         raise InputError(f"LAMMPS's own models reproduce {', '.join(' + '.join(k) for k in LAWS)} only, not "
                          f"{scene.normal} + {scene.tangential}")
+    for sc in table.scenes:
+        if sc.twist not in ("none", "marshall", "sds") or sc.rolling not in ("none", "sds"):
+            raise InputError(f"LAMMPS's own models have twist none, marshall or sds and rolling none or sds, not "
+                             f"twist {sc.twist!r} / rolling {sc.rolling!r} (the exact twist law deresiewicz "
+                             f"runs through the bridge only)")
     walls = list(walls)
     rows, _ = pack(walls, table.wall_row.shape[1])   # every wall checked (kind, vectors, material index)
     cmds = ["pair_style granular"]

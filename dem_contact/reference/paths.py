@@ -6,7 +6,7 @@ Hertz contact is s = mu delta E*/(4 G*) = mu delta / kappa, and twists in units 
 unit moment beta_1 = 3 mu N / (16 G_c a^2) = mu E* a / (4 G_c R*): the twist at which the no-slip moment
 (16/3) G_c a^3 beta (Johnson 1985 section 7.4; 1/G_c = 1/G1 + 1/G2, a rigid body adding nothing) would
 equal mu N a. (The moment of full slip is (3 pi/16) mu N a = 0.589 mu N a, Lubkin 1951; a monotonic twist
-to beta_1 reaches 0.43 mu N a, to 2 beta_1 0.578 mu N a.) Every path starts at the origin (the state at
+to beta_1 reaches 0.497 mu N a, to 2 beta_1 0.578 mu N a.) Every path starts at the origin (the state at
 first contact: no traction, u = 0, no twist) and is sampled with ``steps`` equal arc-length increments
 after it (arc length in these units, u/s and twist/beta_1 together), so it has steps + 1 rows.
 
@@ -29,7 +29,7 @@ the normal n from body 1 to body 2, right-handed):
   twist at unit moment and back";
 - ``shear-twist``: along x to (size, 0) with no twist, then, at that u, a twist out to +beta_1 and back to
   0. Default size 0.6: "shear to 0.6 of slip, then a twist out and back" (the amplitude of the twist, one
-  beta_1, is fixed; alone it would take the moment to 0.43 mu N a, 73% of full slip);
+  beta_1, is fixed; alone it would take the moment to 0.497 mu N a, 84% of full slip);
 - ``circle-twist``: the ``circle`` shape of radius size (through the origin, once round) with the twist
   size beta_1 sin(2 phi): two twist oscillations per turn, of the same amplitude in its unit as the circle's
   radius. Default size 0.4: "a circle of radius 0.4 with a twist oscillating twice per turn".

@@ -13,6 +13,17 @@ law of ``dem.contact3d`` the chart reports
 
 The reference forces are computed once (slow: ``reference_forces``) and can be stored and read back as
 CSV (``write_reference`` / ``read_reference``).
+
+Twist paths (``twist_chart``): the three paths of ``reference.paths.TWIST_SET`` (a twist cycle to 2 beta_1
+and back; shear to 0.6 of slip then a twist out to beta_1 and back; a circle of radius 0.4 with a twist
+0.4 beta_1 sin 2 phi) with the default tangential law and each twist law of ``TWIST_LAWS``, against the
+BEM histories with twist (``read_twist_reference``): the force error max |T - T_BEM| / (mu N), the moment
+error max |Mz - Mz_BEM| / (mu N a) and the time per update. The tangential and twist laws are separate
+(each has its own Coulomb limit), while in the BEM the twist and the shear share the local limit
+|q| <= mu p: on the shear-twist path the BEM's force falls as the contact is twisted and the separate laws'
+does not, which the chart shows. The engine model ``sds`` needs coefficients: ``sds_hertz_values`` gives
+the Hertz values at the path's overlap, the no-slip stiffness k = (16/3) G_c a^3 (Johnson 1985, section
+7.4) and the slider mu_twist = (3 pi/16) mu a of Lubkin's (1951) full-slip moment, no dashpot.
 """
 from __future__ import annotations
 
@@ -28,7 +39,7 @@ from ..errors import InputError
 from ..laws.model import TANGENTIAL_LAWS, Scene
 from ..materials import STEEL, Sphere, Wall
 from ..reference.bem import bem_path_scene
-from ..reference.paths import COMPARISON_SET, scene_path
+from ..reference.paths import COMPARISON_SET, TWIST_SET, scene_path, twist_modulus
 from .chart import write_csv  # noqa: F401  (re-exported: one CSV writer for both charts)
 from .paths import _drive, check_path, path_scene, run_path
 
@@ -105,13 +116,16 @@ def force_error(N, Tx, Ty, ref, mu: float) -> float:
     return float(np.max(np.hypot(Tx - Txr, Ty - Tyr)[on] / (mu * Nr[on])))
 
 
-def time_per_update(scene: Scene, delta, ux, uy, repeats: int = 5) -> float:
-    """Best time of one kernel update along the path [s] (warm JIT; the loop of ``run_path``)."""
-    delta, ux, uy = check_path(delta, ux, uy, scene)
+def time_per_update(scene: Scene, delta, ux, uy, repeats: int = 5, twist=None) -> float:
+    """Best time of one kernel update along the path [s] (warm JIT; the loop of ``run_path``), with the
+    twist [rad] per row if given."""
+    cols = check_path(delta, ux, uy, scene, twist=twist)
+    delta, ux, uy = cols[:3]
     sc = path_scene(scene, float(delta.max()))
     params = np.ascontiguousarray(sc.params[None, :])
     n = delta.size
-    N, Tx, Ty, Mz, twist = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    N, Tx, Ty, Mz = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    twist = cols[3] if twist is not None else np.zeros(n)
     hs = history_size(sc.normal_id, sc.tangential_id, sc.mdr_springs, sc.twist_id, sc.rolling_id)
     best = math.inf
     for _ in range(repeats + 1):            # the first run compiles or warms up
@@ -152,6 +166,81 @@ def chart3d(paths: dict, forces: dict, laws=LAWS, repeats: int = 5) -> list:
         rows.extend(per)
         rows.append(Chart3DRow(label, tangential, "max", max(r.error for r in per), max(r.end_error for r in per),
                                float(np.mean([r.time_per_update_ns for r in per]))))
+    return rows
+
+
+#: The twist laws of the twist chart (with the default tangential law).
+TWIST_LAWS = ("none", "deresiewicz", "marshall", "sds")
+
+
+def contact_radius(scene: Scene, delta: float) -> float:
+    """Hertz contact radius a = sqrt(R* delta) [m]."""
+    return math.sqrt(scene.pair.R_star * delta)
+
+
+def sds_hertz_values(scene: Scene, delta: float) -> dict:
+    """Coefficients of the engine model twist ``sds`` equal to a Hertz contact's at overlap ``delta``: the
+    no-slip twist stiffness k_twist = (16/3) G_c a^3 [N m/rad] (Johnson 1985, section 7.4; 1/G_c = 1/G1 +
+    1/G2) and the slider mu_twist = (3 pi/16) mu a [m] (the limit mu_twist N is Lubkin's 1951 full-slip
+    moment), no dashpot."""
+    m1, m2 = scene.sphere.material, scene.body2.material
+    a = contact_radius(scene, delta)
+    Gc = twist_modulus(m1.E, m1.nu, m2.E, m2.nu)
+    return {"k_twist": 16.0 / 3.0 * Gc * a**3, "gamma_twist": 0.0, "mu_twist": 3.0 * math.pi / 16.0 * scene.mu * a}
+
+
+def twist_scene(twist: str, delta: float = DELTA, tangential: str = "mdr_adaptive") -> Scene:
+    """The chart's scene with a twist law (``sds`` with ``sds_hertz_values`` at ``delta``)."""
+    sc = chart_scene(tangential)
+    opts = sds_hertz_values(sc, delta) if twist == "sds" else {}
+    return chart_scene(tangential, twist=twist, **opts)
+
+
+def twist_paths(delta: float = DELTA, steps: int = PATH_STEPS, paths=TWIST_SET) -> dict:
+    """label -> (delta, ux, uy, twist) of the chart's twist paths."""
+    sc = chart_scene()
+    return {path_label(s, z): scene_path(s, z, steps, sc, delta) for s, z in paths}
+
+
+def read_twist_reference(path):
+    """((delta, ux, uy, twist), (N, Tx, Ty, Mz)) of a BEM history with twist written as CSV with the header
+    delta,ux,uy,twist,N,Tx,Ty,Mz (``validation/bem/twist.py``)."""
+    with open(path, newline="", encoding="utf-8-sig") as fh:
+        r = csv.reader(fh)
+        head = next(r)
+        a = np.array([[float(v) for v in row] for row in r])
+    cols = ("delta", "ux", "uy", "twist", "N", "Tx", "Ty", "Mz")
+    if tuple(h.strip() for h in head) != cols or a.ndim != 2 or a.shape[1] != 8:
+        raise InputError(f"{path}: a BEM history with twist needs the columns {','.join(cols)}")
+    return tuple(a[:, j] for j in range(4)), tuple(a[:, j] for j in range(4, 8))
+
+
+@dataclass
+class TwistChartRow:
+    twist: str                # the twist law (tangential law: the default)
+    path: str
+    force_error: float        # max |T - T_BEM| / (mu N) along the path
+    moment_error: float       # max |Mz - Mz_BEM| / (mu N a) along the path
+    time_per_update_ns: float
+
+
+def twist_chart(paths: dict, references: dict, twist_laws=TWIST_LAWS, repeats: int = 5) -> list:
+    """Rows of the twist chart: every twist law (default tangential law) on every path. ``paths``: label ->
+    (delta, ux, uy, twist) (``twist_paths``); ``references``: label -> (N, Tx, Ty, Mz) of the BEM on the
+    same rows. The moment error is scaled by mu N a of the reference's row (a = sqrt(R* delta))."""
+    rows = []
+    for law in twist_laws:
+        for pl, (d, x, y, t) in paths.items():
+            sc = twist_scene(law, float(np.max(d)))
+            N, Tx, Ty, Mz = run_path(sc, d, x, y, t)
+            Nr, Txr, Tyr, Mzr = references[pl]
+            if Nr.size != d.size:
+                raise InputError(f"the reference of {pl!r} has {Nr.size} rows, the path {d.size}")
+            on = Nr > 0
+            a = np.sqrt(sc.pair.R_star * d[on])
+            m_err = float(np.max(np.abs(Mz - Mzr)[on] / (sc.mu * Nr[on] * a)))
+            rows.append(TwistChartRow(law, pl, force_error(N, Tx, Ty, (Nr, Txr, Tyr), sc.mu), m_err,
+                                      1e9 * time_per_update(sc, d, x, y, repeats, twist=t)))
     return rows
 
 
