@@ -539,6 +539,7 @@ class LammpsContacts:
         self._type_size = np.array([[s.radius, s.mass] for s in spheres])     # (the sizes of the table's rows)
         # atoms of any radius where the laws' rows depend on the sizes through R* and m* only (else each type's)
         self.size_free, self._size_why = _size_free(table)
+        self._sized = self.size_free      # per-contact rows needed (set at every rebuild of the lists)
         if r_max is not None and not (isinstance(r_max, (int, float)) and math.isfinite(r_max)
                                       and r_max >= self.radii.max()):
             raise InputError(f"r_max (largest atom radius, m) must be finite and >= the largest radius of the "
@@ -1323,6 +1324,9 @@ class LammpsContacts:
                                  f"ghost cutoff are sized by r_max; attach the bridge with r_max >= the largest radius")
             self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
             self._check_time_step(self._cand)
+            # per-contact parameter rows only where an atom here has not its type's size (radii and masses
+            # change only where LAMMPS rebuilds its lists: between runs, or atoms inserted)
+            self._sized = self.size_free and K.any_resized(nall, radius, rmass, typ, self._type_size)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._nlocal_ref = nlocal
             self._rebuilt = True
@@ -1383,7 +1387,7 @@ class LammpsContacts:
             nlocal, xa, v, omega, radius, rmass, ids, typ, self.walls, self.wall_mat, *self._cand, self._cand_rows,
             keys, sep, self._sep_tol2, H, t.normal_id, t.sphere_row, t.wall_row, self.dt, not setup, self._rebuilt,
             self.frame_spin, stat, self._used, near, all_atoms, prev, n_prev, touched, t.params, self._rowinfo,
-            self.size_free, self._type_size, self.v_max, self._onset, *self._buffers[:12])
+            self._sized, self._type_size, self.v_max, self._onset, *self._buffers[:12])
         if not setup and self._onset[K.ON_STEPS] < MIN_STEPS_PER_CONTACT:
             raise InputError(f"a contact began at a normal speed of {self._onset[K.ON_VMAX]:.4g} m/s, above v_max = "
                              f"{self.v_max:g} m/s, which the time step resolves with {self._onset[K.ON_STEPS]:.3g} "

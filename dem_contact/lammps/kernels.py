@@ -464,6 +464,17 @@ def _resized(radius, rmass, typ, type_size, i):
         abs(rmass[i] - type_size[t, 1]) > 1e-12 * type_size[t, 1]
 
 
+@njit(cache=True)
+def any_resized(nall, radius, rmass, typ, type_size):
+    """Whether any of the first nall atoms (local and ghost) has not its type's radius and mass (``_resized``):
+    where none has, ``gather_contacts`` needs no per-contact parameter rows (its loop without them is the
+    faster)."""
+    for i in range(nall):
+        if _resized(radius, rmass, typ, type_size, i):
+            return True
+    return False
+
+
 @njit(inline="always", cache=True)
 def _effective(radius, rmass, a, b, rowinfo, row):
     """(R*, m*) of atoms a and b of parameter row ``row``, as LAMMPS's granular models (b < 0: a wall, 1/R2 its
