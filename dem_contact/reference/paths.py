@@ -108,7 +108,7 @@ def _pieces(shape, size):
 
 def _sample(shape, size, steps):
     """Rows of the named path in its units: steps + 1 rows from the origin, 2 or 3 columns."""
-    size = check_finite("size (path size, in slip displacements)", size, lo=0.0)
+    size = check_finite("size (path size, in slip displacements)", size, lo=0.0, hi=1e6)
     pieces = _pieces(shape, size)
     if isinstance(steps, bool) or int(steps) != steps or not len(pieces) <= steps <= 10**7:
         raise InputError(f"steps = {steps!r} must be an integer in [{len(pieces)}, 1e7] for {shape!r}")
