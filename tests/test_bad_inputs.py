@@ -269,6 +269,12 @@ def test_options_that_cannot_act_are_refused(capsys, args, word):
     assert rc == 2 and err.count("\n") == 1 and word in err, err
 
 
+def test_a_path_too_large_to_sample_is_refused(capsys):
+    """A named path of 1e300 slip displacements: the parameter's range, not an overflow in the sampling."""
+    rc, out, err = run_cli(capsys, "path", "--shape", "circle", "--size", "1e300")
+    assert rc == 2 and err.count("\n") == 1 and "size" in err and "1e+06" in err, err
+
+
 def test_advise_law_step_and_scheme_options_act(capsys, monkeypatch):
     """--tangential, --steps-per-contact and --scheme reach advise as a candidate and the integrator end."""
     import dem_contact.studies.advise as adv
