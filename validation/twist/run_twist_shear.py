@@ -1,0 +1,170 @@
+"""Twist with shear from one local state (dem_contact.laws.twist_shear) against the boundary-element reference
+with twist, the full-slip limit surface of the Hertz disc, and closed loops.
+
+Writes validation/twist/twist_shear.json and twist_shear.png:
+
+- the errors on the stored BEM histories of the twist paths (``reference.paths.TWIST_SET``, 128 elements
+  across, 400 steps, ``validation/bem/paths``; steel sphere R = 10 mm on a steel wall, overlap 1e-5 m,
+  mu = 0.3): max |T - T_BEM| / (mu N) and max |M - M_BEM| / (mu N a), by cells and points per ring, and the
+  spread over the orientation of the points (the path turned by psi, the forces turned back);
+- full slip under a steady sliding and spin (v, w): the law's (T, M) after a long drive against the exact
+  limit surface of the Hertz disc, F = mu int p t dA, M = mu int p (r x t) dA with t the unit sliding
+  direction of the rigid motion (numerical quadrature on a polar grid);
+- the work of random closed loops in (ux, uy, beta) after random histories at constant N.
+
+    python validation/twist/run_twist_shear.py
+"""
+import json
+import math
+import pathlib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from dem_contact.laws.twist_shear import twist_shear_path  # noqa: E402
+from dem_contact.materials import STEEL  # noqa: E402
+from dem_contact.reference.paths import TWIST_SET  # noqa: E402
+from dem_contact.studies.chart3d import read_twist_reference  # noqa: E402
+
+HERE = pathlib.Path(__file__).parent
+PATHS = HERE.parent / "bem" / "paths"
+MU, R, DELTA = 0.3, 0.01, 1e-5
+E, NU = STEEL.E, STEEL.nu
+G = E / (2 * (1 + NU))
+G_STAR = G / (2 * (2 - NU))              # 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2
+G_C = G / 2
+E_STAR = E / (2 * (1 - NU**2))
+A = math.sqrt(R * DELTA)
+N = 4 / 3 * E_STAR * math.sqrt(R) * DELTA**1.5
+
+
+def law(ux, uy, tw, cells, sectors, psi=0.0):
+    """The law along the path turned by psi; forces turned back."""
+    c, s = math.cos(psi), math.sin(psi)
+    Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, N, A, c * ux - s * uy, s * ux + c * uy, tw,
+                                    cells=cells, sectors=sectors)
+    return c * Tx + s * Ty, -s * Tx + c * Ty, M, W
+
+
+def bem_errors():
+    out = {}
+    curves = {}
+    for shape, size in TWIST_SET:
+        (d, ux, uy, tw), (Nr, Txr, Tyr, Mzr) = read_twist_reference(PATHS / f"{shape}_{size:g}_n128_s400.csv")
+        assert np.allclose(d, DELTA) and np.allclose(Nr[1:], N, rtol=1e-9)
+        label = f"{shape} {size:g}"
+        rows = {}
+        for cells in (16, 32, 64):
+            for sectors in (4, 8):
+                errs = []
+                for psi in np.linspace(0.0, 2 * math.pi / sectors, 5)[:-1]:
+                    Tx, Ty, M, _ = law(ux, uy, tw, cells, sectors, psi)
+                    fe = float(np.max(np.hypot(-Tx - Txr, -Ty - Tyr)[1:]) / (MU * N))
+                    me = float(np.max(np.abs(-M - Mzr)[1:]) / (MU * N * A))
+                    errs.append((fe, me))
+                    if psi == 0.0 and cells == 32 and sectors == 4:
+                        curves[label] = (tw, ux, uy, Txr, Tyr, Mzr, Tx, Ty, M)
+                e = np.array(errs)
+                rows[f"{cells} cells, {sectors} points"] = {
+                    "force": errs[0][0], "moment": errs[0][1],
+                    "force, worst orientation": float(e[:, 0].max()), "moment, worst orientation": float(e[:, 1].max())}
+        out[label] = rows
+    return out, curves
+
+
+def disc_limit_surface(angles):
+    """Exact (F / (mu N), M / (mu N a)) of the Hertz disc sliding with (v, w a) = (cos t, sin t)."""
+    nr, nt = 400, 720
+    r = (np.arange(nr) + 0.5) / nr * A
+    th = (np.arange(nt) + 0.5) / nt * 2 * np.pi
+    rr, tt = np.meshgrid(r, th, indexing="ij")
+    x, y = rr * np.cos(tt), rr * np.sin(tt)
+    p = 3 * N / (2 * np.pi * A * A) * np.sqrt(1 - (rr / A) ** 2)
+    dA = rr * (A / nr) * (2 * np.pi / nt)
+    out = []
+    for t in angles:
+        v, w = math.cos(t), math.sin(t) / A
+        vx, vy = v - w * y, w * x
+        m = np.hypot(vx, vy)
+        out.append(((p * vx / m * dA).sum() / N, (p * (x * vy - y * vx) / m * dA).sum() / (N * A)))
+    return np.array(out)
+
+
+def law_limit_surface(angles, cells=32, sectors=4, steps=400):
+    """The law after a drive of 40 slip lengths at (v, w a) = (cos t, sin t)."""
+    s = 3 * MU * N / (16 * G_STAR * A)       # the slip displacement of Mindlin's full slip
+    b1 = 3 * MU * N / (16 * G_C * A * A)
+    out = []
+    for t in angles:
+        k = np.linspace(0.0, 1.0, steps + 1)
+        L = 40 * max(s, b1 * A)
+        Tx, Ty, M, _ = twist_shear_path(G_STAR, G_C, MU, R, N, A, L * math.cos(t) * k, 0 * k, L * math.sin(t) * k / A,
+                                        cells=cells, sectors=sectors)
+        out.append((Tx[-1] / (MU * N), M[-1] / (MU * N * A)))
+    return np.array(out)
+
+
+def loops(count=200, seed=1, cells=32, sectors=4):
+    """Random histories, then a closed loop (two harmonics in ux, uy, beta, amplitude 10^-2.5 ... 2 slip
+    lengths); the loop's work in mu N s times the amplitude."""
+    rng = np.random.default_rng(seed)
+    s = 3 * MU * N / (16 * G_STAR * A)
+    b1 = 3 * MU * N / (16 * G_C * A * A)
+    works = []
+    for _ in range(count):
+        pre = np.cumsum(rng.normal(0, 0.4, (40, 3)), axis=0)
+        pre[0] = 0.0
+        amp = 10 ** rng.uniform(-2.5, 0.3)
+        t = np.linspace(0, 2 * np.pi, 81)
+        loop = np.zeros((81, 3))
+        for h in (1, 2):
+            c = rng.normal(0, 0.8, (2, 3)) * amp / h
+            loop += np.outer(np.sin(h * t), c[0]) + np.outer(1 - np.cos(h * t), c[1])
+        path = np.vstack([pre, pre[-1] + loop[1:]])
+        Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, N, A, s * path[:, 0], s * path[:, 1], b1 * path[:, 2],
+                                        cells=cells, sectors=sectors)
+        works.append((W[-1] - W[39]) / (MU * N * s * amp))
+    w = np.array(works)
+    return {"loops": count, "negative work": int((w < 0).sum()), "least loop work / (mu N s amplitude)": float(w.min())}
+
+
+def main():
+    errs, curves = bem_errors()
+    angles = np.linspace(0, np.pi / 2, 13)
+    ex = disc_limit_surface(angles)
+    lw = law_limit_surface(angles)
+    out = {"scene": {"pair": "steel sphere R 10 mm on a steel wall", "delta": DELTA, "mu": MU, "N": N, "a": A},
+           "bem 128 across, max error (force / (mu N), moment / (mu N a))": errs,
+           "full slip: (T / (mu N), M / (mu N a)) at (v, w a) = (cos t, sin t), t = 0 ... pi/2":
+               {"exact disc": ex.round(4).tolist(), "law (32 cells, 4 points)": lw.round(4).tolist(),
+                "largest |law - exact|": np.abs(lw - ex).max(axis=0).round(4).tolist()},
+           "closed loops at constant N": loops()}
+    (HERE / "twist_shear.json").write_text(json.dumps(out, indent=1))
+    print(json.dumps(out, indent=1))
+    fig, axs = plt.subplots(1, 3, figsize=(14, 4.2))
+    for ax, label in zip(axs[:2], ("shear-twist 0.6", "circle-twist 0.4")):
+        tw, ux, uy, Txr, Tyr, Mzr, Tx, Ty, M = curves[label]
+        k = np.arange(tw.size)
+        ax.plot(k, np.hypot(Txr, Tyr) / (MU * N), "k-", lw=2.5, label="|T| BEM 128 across")
+        ax.plot(k, np.hypot(Tx, Ty) / (MU * N), "r--", label="|T| twist_shear")
+        ax.plot(k, -Mzr / (MU * N * A), "b-", lw=2.5, alpha=0.5, label="M BEM")
+        ax.plot(k, M / (MU * N * A), "c--", label="M twist_shear")
+        ax.set_xlabel("row")
+        ax.set_ylabel("|T| / (mu N), M / (mu N a)")
+        ax.set_title(label)
+        ax.legend(fontsize=7)
+    axs[2].plot(ex[:, 0], ex[:, 1], "k-o", ms=3, label="exact Hertz disc")
+    axs[2].plot(lw[:, 0], lw[:, 1], "r--s", ms=3, label="twist_shear (32 cells, 4 points)")
+    axs[2].set_xlabel("T / (mu N)")
+    axs[2].set_ylabel("M / (mu N a)")
+    axs[2].set_title("full slip under sliding and spin")
+    axs[2].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(HERE / "twist_shear.png", dpi=110)
+
+
+if __name__ == "__main__":
+    main()
