@@ -10,7 +10,12 @@ Writes validation/twist/twist_shear.json and twist_shear.png:
 - full slip under a steady sliding and spin (v, w): the law's (T, M) after a long drive against the exact
   limit surface of the Hertz disc, F = mu int p t dA, M = mu int p (r x t) dA with t the unit sliding
   direction of the rigid motion (numerical quadrature on a polar grid);
-- the work of random closed loops in (ux, uy, beta) after random histories at constant N.
+- the work of random closed loops in (ux, uy, beta) after random histories at constant N;
+- the simpler formulations tried first (``candidates``): one state per cell, (x, z) = (u / u_max, theta /
+  theta_max), with a combined limit |x|^q + |z|^q <= 1 (q = 1: the largest traction around the ring,
+  |q_t| + |q_theta| <= mu p; q = 2: its mean square) or the exact limit curve of a ring sliding under
+  translation and spin, each with the radial return in (x, z) or the closest point in the cell's energy
+  norm (associated flow), 128 cells.
 
     python validation/twist/run_twist_shear.py
 """
@@ -24,7 +29,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from dem_contact.laws.twist_shear import twist_shear_path  # noqa: E402
+from dem_contact.laws.twist_shear import cell_width, limits, twist_shear_path  # noqa: E402
 from dem_contact.materials import STEEL  # noqa: E402
 from dem_contact.reference.paths import TWIST_SET  # noqa: E402
 from dem_contact.studies.chart3d import read_twist_reference  # noqa: E402
@@ -143,6 +148,75 @@ def loops(count=200, seed=1, cells=32, sectors=4):
     return {"loops": count, "negative work": int((w < 0).sum()), "least loop work / (mu N s amplitude)": float(w.min())}
 
 
+def limit_curve(kind, points=4001):
+    """Points (|x|, |z|) of a combined limit, from (1, 0) to (0, 1): ``q<q>`` the curve |x|^q + |z|^q = 1;
+    ``ring``: force and moment of a ring of unit radius and unit capacity sliding under (v, w), in units of
+    their separate limits."""
+    t = np.linspace(0, np.pi / 2, points)
+    if kind == "ring":
+        ph = (np.arange(2000) + 0.5) * np.pi / 1000
+        c, s = np.cos(ph), np.sin(ph)
+        out = []
+        for v, w in zip(np.cos(t), np.sin(t)):
+            vx, vy = v - w * s, w * c
+            m = np.hypot(vx, vy)
+            out.append((np.mean(vx / m), np.mean((c * vy - s * vx) / m)))
+        return np.array(out)
+    q = float(kind[1:])
+    return np.stack([np.cos(t) ** (2 / q), np.sin(t) ** (2 / q)], axis=1)
+
+
+def candidate_path(kind, rule, ux, uy, tw, cells=128):
+    """One state (x, z) per cell with the combined limit ``kind`` and the return ``rule`` (``radial`` or
+    ``energy``); returns (Tx, Ty, M)."""
+    ds = cell_width(A, cells, R)
+    l, w, umax, tmax = limits(G_STAR, G_C, MU, N, A, ds, cells)
+    on = l > 0
+    umax, tmax, l, w = umax[on], tmax[on], l[on], w[on]
+    Ae, Be = 4 * G_STAR * l * umax**2, 8 * G_C * w * tmax**2     # the cell's energy at each separate limit
+    C = limit_curve(kind)
+    ang = np.arctan2(C[:, 1], C[:, 0])
+    rad = np.hypot(C[:, 0], C[:, 1])
+    x = np.zeros((umax.size, 2))
+    z = np.zeros(umax.size)
+    T, M = np.zeros((ux.size, 2)), np.zeros(ux.size)
+    for t in range(1, ux.size):
+        x += np.array([ux[t] - ux[t - 1], uy[t] - uy[t - 1]])[None, :] / umax[:, None]
+        z += (tw[t] - tw[t - 1]) / tmax
+        r = np.hypot(x[:, 0], x[:, 1])
+        az = np.abs(z)
+        out = np.hypot(r, az) > np.interp(np.arctan2(az, r), ang, rad)
+        if out.any():
+            rn, zn = r.copy(), az.copy()
+            if rule == "radial":
+                f = np.interp(np.arctan2(az[out], r[out]), ang, rad) / np.hypot(r[out], az[out])
+                rn[out], zn[out] = r[out] * f, az[out] * f
+            else:
+                k = (Ae[out, None] * (C[None, :, 0] - r[out, None]) ** 2
+                     + Be[out, None] * (C[None, :, 1] - az[out, None]) ** 2).argmin(axis=1)
+                rn[out], zn[out] = C[k, 0], C[k, 1]
+            x *= np.where(r > 0, rn / np.where(r > 0, r, 1.0), 0.0)[:, None]
+            z = np.sign(z) * zn
+        T[t] = 8 * G_STAR * (x * (umax * l)[:, None]).sum(axis=0)
+        M[t] = 16 * G_C * (z * tmax * w).sum()
+    return T[:, 0], T[:, 1], M
+
+
+def candidates():
+    """BEM errors (force / (mu N), moment / (mu N a)) of the one-state-per-cell formulations."""
+    refs = {f"{s} {z:g}": read_twist_reference(PATHS / f"{s}_{z:g}_n128_s400.csv") for s, z in TWIST_SET}
+    out = {}
+    for kind in ("q1", "q1.5", "q2", "ring"):
+        for rule in ("radial", "energy"):
+            row = {}
+            for label, ((_, ux, uy, tw), (_, Txr, Tyr, Mzr)) in refs.items():
+                Tx, Ty, M = candidate_path(kind, rule, ux, uy, tw)
+                row[label] = [round(float(np.max(np.hypot(Tx + Txr, Ty + Tyr)) / (MU * N)), 4),
+                              round(float(np.max(np.abs(M + Mzr)) / (MU * N * A)), 4)]
+            out[f"{kind}, {rule} return"] = row
+    return out
+
+
 def main():
     errs, curves = bem_errors()
     angles = np.linspace(0, np.pi / 2, 25)
@@ -155,7 +229,8 @@ def main():
                {"exact disc": ex.round(4).tolist(), "law (32 cells, 4 points)": lw.round(4).tolist(),
                 "law's distance from the origin over the exact one's, along the same ray, less 1 "
                 "(M scaled by 3 pi/16)": dev.round(4).tolist()},
-           "closed loops at constant N": loops()}
+           "closed loops at constant N": loops(),
+           "one state per cell, combined limit (128 cells): BEM errors [force, moment]": candidates()}
     (HERE / "twist_shear.json").write_text(json.dumps(out, indent=1))
     print(json.dumps(out, indent=1))
     fig, axs = plt.subplots(1, 3, figsize=(14, 4.2))
