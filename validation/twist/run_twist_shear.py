@@ -17,11 +17,17 @@ Writes validation/twist/twist_shear.json and twist_shear.png:
   translation and spin, each with the radial return in (x, z) or the closest point in the cell's energy
   norm (associated flow), 128 cells.
 
-    python validation/twist/run_twist_shear.py
+- with --bem-extra (runs the BEM, 64 elements across, about a minute per path): paths that the law was not
+  built on, to twist_shear_extra.json: a twist to beta_1 then a shear cycle at that twist, sliding with spin
+  into combined full slip at two ratios, and a random smooth path in (ux, uy, beta).
+
+    python validation/twist/run_twist_shear.py [--bem-extra]
 """
+import argparse
 import json
 import math
 import pathlib
+import time
 
 import matplotlib
 
@@ -202,22 +208,107 @@ def candidate_path(kind, rule, ux, uy, tw, cells=128):
     return T[:, 0], T[:, 1], M
 
 
-def candidates():
-    """BEM errors (force / (mu N), moment / (mu N a)) of the one-state-per-cell formulations."""
-    refs = {f"{s} {z:g}": read_twist_reference(PATHS / f"{s}_{z:g}_n128_s400.csv") for s, z in TWIST_SET}
+def extra_paths(steps=400):
+    """label -> (ux, uy, beta) [m, m, rad] of the paths of --bem-extra (first row: rest)."""
+    s = 3 * MU * N / (16 * G_STAR * A)
+    b1 = 3 * MU * N / (16 * G_C * A * A)
+    q = steps // 4
+    k = np.linspace(0.0, 1.0, q + 1)[1:]
+    ux = np.concatenate([[0.0], 0 * k, 0.8 * k, 0.8 - 1.6 * np.linspace(0, 1, 2 * q + 1)[1:]])
+    tw = np.concatenate([[0.0], k, np.ones(3 * q)])
+    out = {"twist 1 then shear cycle 0.8": (s * ux, 0 * ux, b1 * tw)}
+    k = np.linspace(0.0, 1.0, steps + 1)
+    out["slide 2 with spin 2"] = (2 * s * k, 0 * k, 2 * b1 * k)
+    out["slide 2 with spin 4"] = (2 * s * k, 0 * k, 4 * b1 * k)
+    rng = np.random.default_rng(11)
+    t = 2 * np.pi * k
+    cols = []
+    for _ in range(3):
+        c = rng.normal(0, 0.5, (3, 2))
+        cols.append(sum(c[h, 0] * np.sin((h + 1) * t) + c[h, 1] * (1 - np.cos((h + 1) * t)) for h in range(3)))
+    out["random smooth"] = (s * cols[0], s * cols[1], b1 * cols[2])
+    return out
+
+
+EXTRA = HERE / "bem_extra"
+
+
+def bem_extra(n_across=64):
+    """The BEM along ``extra_paths``, written to bem_extra/<label>_n64_s400.csv (the columns of the stored
+    twist references)."""
+    from dem_contact.reference.bem import bem_path
+    EXTRA.mkdir(exist_ok=True)
+    for label, (ux, uy, tw) in extra_paths().items():
+        t0 = time.time()
+        d = np.full(ux.size, DELTA)
+        Nr, Txr, Tyr, Mzr = bem_path(E, NU, E, NU, R, MU, d, ux, uy, tw, n_across=n_across)
+        print(f"{label}: BEM {time.time() - t0:.1f} s", flush=True)
+        np.savetxt(EXTRA / f"{label.replace(' ', '_')}_n{n_across}_s400.csv",
+                   np.column_stack([d, ux, uy, tw, Nr, Txr, Tyr, Mzr]), delimiter=",", fmt="%.12e",
+                   header="delta,ux,uy,twist,N,Tx,Ty,Mz", comments="")
+
+
+def all_references():
+    """label -> (ux, uy, beta, Tx, Ty, Mz) of the stored twist paths (128 across) and, where written, the
+    paths of --bem-extra (64 across)."""
     out = {}
+    for shape, size in TWIST_SET:
+        (d, ux, uy, tw), (Nr, Txr, Tyr, Mzr) = read_twist_reference(PATHS / f"{shape}_{size:g}_n128_s400.csv")
+        out[f"{shape} {size:g}"] = (ux, uy, tw, Txr, Tyr, Mzr)
+    for label in extra_paths():
+        f = EXTRA / f"{label.replace(' ', '_')}_n64_s400.csv"
+        if f.exists():
+            (d, ux, uy, tw), (Nr, Txr, Tyr, Mzr) = read_twist_reference(f)
+            out[label + " (64 across)"] = (ux, uy, tw, Txr, Tyr, Mzr)
+    return out
+
+
+def separate_path(ux, uy, tw, cells=32):
+    """The separate laws on the same cells: each cell's u returned to |u| <= u_max and theta to |theta| <=
+    theta_max on its own (the vector MDR law and deresiewicz); returns (Tx, Ty, M)."""
+    ds = cell_width(A, cells, R)
+    l, w, umax, tmax = limits(G_STAR, G_C, MU, N, A, ds, cells)
+    u, th = np.zeros((cells, 2)), np.zeros(cells)
+    T, M = np.zeros((ux.size, 2)), np.zeros(ux.size)
+    for t in range(1, ux.size):
+        u += np.array([ux[t] - ux[t - 1], uy[t] - uy[t - 1]])[None, :]
+        m = np.hypot(u[:, 0], u[:, 1])
+        u *= np.where(m > umax, umax / np.where(m > 0, m, 1.0), 1.0)[:, None]
+        th = np.clip(th + tw[t] - tw[t - 1], -tmax, tmax)
+        T[t] = 8 * G_STAR * (u * l[:, None]).sum(axis=0)
+        M[t] = 16 * G_C * (th * w).sum()
+    return T[:, 0], T[:, 1], M
+
+
+def formulations():
+    """BEM errors [force / (mu N), moment / (mu N a)] of the law, the separate laws and the one-state-per-cell
+    formulations on every reference path."""
+    refs = all_references()
+    forms = {"twist_shear, 32 cells, 4 points": lambda *p: law(*p, 32, 4)[:3],
+             "twist_shear, 32 cells, 8 points": lambda *p: law(*p, 32, 8)[:3],
+             "separate laws (vector MDR and deresiewicz cells, 32)": separate_path}
     for kind in ("q1", "q1.5", "q2", "ring"):
         for rule in ("radial", "energy"):
-            row = {}
-            for label, ((_, ux, uy, tw), (_, Txr, Tyr, Mzr)) in refs.items():
-                Tx, Ty, M = candidate_path(kind, rule, ux, uy, tw)
-                row[label] = [round(float(np.max(np.hypot(Tx + Txr, Ty + Tyr)) / (MU * N)), 4),
-                              round(float(np.max(np.abs(M + Mzr)) / (MU * N * A)), 4)]
-            out[f"{kind}, {rule} return"] = row
+            forms[f"one state per cell, {kind}, {rule} return (128 cells)"] = (
+                lambda ux, uy, tw, kind=kind, rule=rule: candidate_path(kind, rule, ux, uy, tw))
+    out = {}
+    for name, fn in forms.items():
+        row = {}
+        for label, (ux, uy, tw, Txr, Tyr, Mzr) in refs.items():
+            Tx, Ty, M = fn(ux, uy, tw)
+            row[label] = [round(float(np.max(np.hypot(Tx + Txr, Ty + Tyr)) / (MU * N)), 4),
+                          round(float(np.max(np.abs(M + Mzr)) / (MU * N * A)), 4)]
+        out[name] = row
+        print(name, row, flush=True)
     return out
 
 
 def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bem-extra", action="store_true", help="also run the BEM on the paths the law was not built on")
+    args = ap.parse_args()
+    if args.bem_extra:
+        bem_extra()
     errs, curves = bem_errors()
     angles = np.linspace(0, np.pi / 2, 25)
     ex = disc_limit_surface(angles)
@@ -230,7 +321,7 @@ def main():
                 "law's distance from the origin over the exact one's, along the same ray, less 1 "
                 "(M scaled by 3 pi/16)": dev.round(4).tolist()},
            "closed loops at constant N": loops(),
-           "one state per cell, combined limit (128 cells): BEM errors [force, moment]": candidates()}
+           "BEM errors [force / (mu N), moment / (mu N a)] by formulation and path": formulations()}
     (HERE / "twist_shear.json").write_text(json.dumps(out, indent=1))
     print(json.dumps(out, indent=1))
     fig, axs = plt.subplots(1, 3, figsize=(14, 4.2))
