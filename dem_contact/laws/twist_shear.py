@@ -30,6 +30,18 @@ rotation are the two Fourier modes of the ring's field that carry force and mome
 theta = mean_k (v_k . e_k) / lambda; the other modes (radial, second harmonics) carry neither and are the
 memory of where the ring slipped. T and M are then the sums of the two exact laws.
 
+The slip lever (``slip_lever``). With ``limits`` (default) a point that passes its circle is returned
+radially: its traction turns with the increment du + lambda d(beta) e_k, the lever lambda = u_max /
+theta_max of the elastic response (1.06 a at s = a/2, G_c a / G* at the edge). Under sliding with spin
+into full slip the traction of a point then follows that lever, where Coulomb's law makes it follow the
+slip, the rigid relative motion du + r d(beta) e_phi at the point's radius r: the moment comes out about
+twice the reference's. With ``rings`` the part of a step after the point reaches its circle moves it with
+the lever rho(s) of ``ring_radius``, the mean radius of the rings whose pressure the cell's line load
+carries (the kernel r p(r) / sqrt(r^2 - s^2) of the MDR transform): the point moves by
+du + (f lambda + (1 - f) rho) d(beta) e_k, f the fraction of the step before it reaches the circle, and is
+returned to the circle. Both keep the two exact limits below (pure shear: d(beta) = 0; pure twist: every
+increment along e_k); ``rings`` is not associated with the points' elastic metric.
+
 What is exact: pure shear (every point of a cell alike: the vector MDR cell, so the Mindlin-Deresiewicz
 and Popov-Hess results, ``mdr_adaptive`` to rounding on the same grid); pure twist (every point at the
 same |theta|: the deresiewicz cell, so Lubkin 1951, Deresiewicz 1954, no-slip stiffness (16/3) G_c a^3 and
@@ -38,22 +50,20 @@ state of the form above. What is approximated: once the points of a ring slip di
 over the ring has modes that no rigid punch carries; the law gives them the 1D stiffness of the cells
 (each angle of the ring treated as its own axisymmetric problem), which the 3D problem does not (its slip
 zone is not axisymmetric and the punches are coupled through it). The error is measured against the
-boundary-element reference with twist (``reference.bem``; ``validation/twist/run_twist_shear.py``):
-within 0.02 mu N and mu N a on the twist paths of ``reference.paths.TWIST_SET`` (partial slip, a twist
-of a sheared contact), 0.033 mu N on a shear cycle of a twisted contact, but 0.06 to 0.12 mu N and 0.10 to
-0.15 mu N a under sliding with spin into combined full slip: there each point's traction follows the
-direction of its rigid increment in units of the limits, du / u_max + d(beta) / theta_max e_phi, a lever
-u_max / theta_max (1.06 a at s = a/2, G_c a / G* at the edge) where the exact slip direction at radius r
-has the lever r, and the exact full-slip cells are not at their limits (each is an average over r > s of
-differing directions), which no cell-local limit represents. The full-slip force and moment of steady
-sliding with spin lie up to 7% outside the exact limit surface of the Hertz disc. K points sample the
+boundary-element reference with twist (``reference.bem``; ``validation/twist/run_twist_shear.py``,
+``validation/twist/report.md``), 32 cells, 4 points: with ``limits``, within 0.015 mu N and mu N a on the
+twist paths of ``reference.paths.TWIST_SET`` (a twisted sheared contact) and 0.033 on a shear cycle of a
+twisted contact, but 0.12 mu N and 0.14 mu N a under sliding with spin into full slip; with ``rings``,
+within 0.034 mu N and mu N a on all of these (the circle with twist: 0.019 / 0.032), and on a random path
+0.063 / 0.050 (``limits``: 0.070 / 0.054). In exact full slip the cells are not at their limits (each is an
+average over r > s of differing slip directions), which no cell-local limit represents. K points sample the
 ring: the mean over K equispaced points is exact for trigonometric polynomials of degree < K, the law's
 results depend on the orientation of the points in a combined path by up to about 0.005 mu N with
-K = 4 (exactly invariant under turns by 2 pi / K). Energy: each point is elastic-perfectly plastic with
-radial return, but the physical work per cell is the sum over the points' works only where the cell's
-stored energy at the two limits is equal (G_M u_max^2 ds = 8 G_c s^2 theta_max^2 ds, true at no s in
-general), so the absence of energy creation on closed loops is checked (random loops at constant N, in
-the tests and the validation), not proven.
+K = 4 (exactly invariant under turns by 2 pi / K). Energy: with ``limits`` each point is elastic-perfectly
+plastic with radial return (``rings``: not associated), but the physical work per cell is the sum over
+the points' works only where the cell's stored energy at the two limits is equal (G_M u_max^2 ds =
+8 G_c s^2 theta_max^2 ds, true at no s in general), so the absence of energy creation on closed loops is
+checked (random loops at constant N, in the tests and the validation), not proven.
 
 Scope: constant normal force (the paths of the comparison); the grid is ``mdr_adaptive``'s and
 ``deresiewicz``'s (cell width R* times the power of 2 with n ds / 2 <= a < n ds). The law is a path
@@ -113,13 +123,31 @@ def limits(G_star, G_c, mu, N, a, ds, n):
     return l, w, umax, tmax
 
 
-def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int = CELLS, sectors: int = SECTORS):
+def ring_radius(s, a):
+    """Mean radius of the rings whose pressure the MDR line load at s carries, weighted by the kernel of
+    q_z(s) = 2 int_s^a r p(r) / sqrt(r^2 - s^2) dr for the Hertz pressure: rho(s) = (4/pi) int_0^(pi/2)
+    sqrt(s^2 + (a^2 - s^2) sin^2 t) cos^2 t dt (r^2 = s^2 + (a^2 - s^2) sin^2 t); 4 a / (3 pi) at s = 0, a at
+    s = a. Gauss-Legendre, 32 points (a smooth integrand)."""
+    g, wg = np.polynomial.legendre.leggauss(32)
+    t = 0.25 * np.pi * (g + 1.0)
+    s = np.asarray(s, float)[..., None]
+    r = np.sqrt(s * s + (a * a - s * s) * np.sin(t) ** 2)
+    return (r * np.cos(t) ** 2 * wg).sum(axis=-1)
+
+
+#: the slip levers (module docstring)
+SLIP_LEVERS = ("limits", "rings")
+
+
+def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int = CELLS, sectors: int = SECTORS,
+                     slip_lever: str = "limits"):
     """Tangential force (Tx, Ty) [N], moment M [N m] and work absorbed [J] along a path of tangential
     displacements (ux, uy) [m] and twists beta [rad] (relative, body 1 against body 2; arrays, the first row
     the state before the path, from rest) at the constant normal force N [N] and contact radius a [m]
     (module docstring). T and M resist the motion (T . du > 0 and M d(beta) > 0 while sticking). G_star,
     G_c: the tangential and twist moduli [Pa] (1/G* = sum (2 - nu)/G, 1/G_c = sum 1/G); R_star [m]: the
-    grid's scale; cells (even) and sectors (points per ring) as in the module docstring."""
+    grid's scale; cells (even), sectors (points per ring) and slip_lever (``limits`` or ``rings``) as in the
+    module docstring."""
     G_star = check_finite("G_star (tangential modulus, Pa)", G_star, lo=0.0)
     G_c = check_finite("G_c (twist modulus, Pa)", G_c, lo=0.0)
     mu = check_finite("mu (friction coefficient)", mu, lo=0.0)
@@ -131,6 +159,8 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
             raise InputError(f"{name} = {v!r} must be an integer in [{lo}, {hi}]")
     if cells % 2:
         raise InputError(f"cells = {cells} must be even (the grid of mdr_adaptive)")
+    if slip_lever not in SLIP_LEVERS:
+        raise InputError(f"slip_lever = {slip_lever!r} is unknown; choose one of: {', '.join(SLIP_LEVERS)}")
     cols = [np.asarray(v, dtype=float) for v in (ux, uy, beta)]
     if any(c.ndim != 1 for c in cols) or len({c.size for c in cols}) != 1 or cols[0].size < 1:
         raise InputError("ux, uy and beta must be 1D arrays of one length (at least one row)")
@@ -141,6 +171,9 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
     l, w, umax, tmax = limits(G_star, G_c, mu, N, a, ds, cells)
     on = l > 0.0
     lam = np.where(on, umax / np.where(on, tmax, 1.0), 0.0)
+    x0 = np.arange(cells) * ds
+    rho = lam if slip_lever == "limits" else np.where(on, ring_radius(0.5 * (x0 + np.minimum(x0 + ds, a)), a), 0.0)
+    U = umax[:, None]
     phi = (np.arange(sectors) + 0.5) * (2.0 * math.pi / sectors)
     e = np.stack([-np.sin(phi), np.cos(phi)], axis=1)              # e_phi of each point, (K, 2)
     v = np.zeros((cells, sectors, 2))
@@ -150,10 +183,24 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
     for t in range(1, rows):
         du = np.array([ux[t] - ux[t - 1], uy[t] - uy[t - 1]])
         db = beta[t] - beta[t - 1]
-        v += du[None, None, :] + (lam * db)[:, None, None] * e[None, :, :]
-        m = np.sqrt((v * v).sum(axis=2))
-        over = m > umax[:, None]
-        v[over] *= (np.broadcast_to(umax[:, None], m.shape)[over] / m[over])[:, None]
+        d = du[None, None, :] + (lam * db)[:, None, None] * e[None, :, :]
+        trial = v + d
+        m = np.sqrt((trial * trial).sum(axis=2))
+        over = m > U
+        if over.any():
+            if slip_lever == "rings":
+                # the fraction f of the step before the point reaches its circle (|v + f d| = u_max), then the
+                # rest with the lever rho: the point moves by du + (f lambda + (1 - f) rho) d(beta) e_k
+                dd = (d * d).sum(axis=2)
+                vd = (v * d).sum(axis=2)
+                root = np.sqrt(np.maximum(vd * vd - dd * ((v * v).sum(axis=2) - U * U), 0.0))
+                f = np.clip((root - vd) / np.where(dd > 0.0, dd, 1.0), 0.0, 1.0)
+                lever = f * lam[:, None] + (1.0 - f) * rho[:, None]
+                slid = v + du[None, None, :] + (lever * db)[:, :, None] * e[None, :, :]
+                trial[over] = slid[over]
+                m = np.sqrt((trial * trial).sum(axis=2))
+            trial[over] *= (np.broadcast_to(U, m.shape)[over] / m[over])[:, None]
+        v = trial
         u = v.mean(axis=1)
         theta = np.where(on, (v * e[None]).sum(axis=2).mean(axis=1) / np.where(on, lam, 1.0), 0.0)
         Tx[t], Ty[t] = 2.0 * GM * (u * l[:, None]).sum(axis=0)
