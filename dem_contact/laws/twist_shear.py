@@ -30,12 +30,12 @@ rotation are the two Fourier modes of the ring's field that carry force and mome
 theta = mean_k (v_k . e_k) / lambda; the other modes (radial, second harmonics) carry neither and are the
 memory of where the ring slipped. T and M are then the sums of the two exact laws.
 
-The slip lever (``slip_lever``). With ``limits`` (default) a point that passes its circle is returned
+The slip lever (``slip_lever``). With ``limits`` a point that passes its circle is returned
 radially: its traction turns with the increment du + lambda d(beta) e_k, the lever lambda = u_max /
 theta_max of the elastic response (1.06 a at s = a/2, G_c a / G* at the edge). Under sliding with spin
 into full slip the traction of a point then follows that lever, where Coulomb's law makes it follow the
 slip, the rigid relative motion du + r d(beta) e_phi at the point's radius r: the moment comes out about
-twice the reference's. With ``rings`` the part of a step after the point reaches its circle moves it with
+twice the reference's. With ``rings`` (default) the part of a step after the point reaches its circle moves it with
 the lever rho(s) of ``ring_radius``, the mean radius of the rings whose pressure the cell's line load
 carries (the kernel r p(r) / sqrt(r^2 - s^2) of the MDR transform): the point moves by
 du + (f lambda + (1 - f) rho) d(beta) e_k, f the fraction of the step before it reaches the circle, and is
@@ -82,7 +82,7 @@ from .twist import deresiewicz as _d
 
 #: Default cells (as ``deresiewicz.TWIST_CELLS``) and points per ring.
 CELLS = 32
-SECTORS = 4
+SECTORS = 8
 
 
 def _jtab(u):
@@ -140,7 +140,7 @@ SLIP_LEVERS = ("limits", "rings")
 
 
 def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int = CELLS, sectors: int = SECTORS,
-                     slip_lever: str = "limits"):
+                     slip_lever: str = "rings"):
     """Tangential force (Tx, Ty) [N], moment M [N m] and work absorbed [J] along a path of tangential
     displacements (ux, uy) [m] and twists beta [rad] (relative, body 1 against body 2; arrays, the first row
     the state before the path, from rest) at the constant normal force N [N] and contact radius a [m]

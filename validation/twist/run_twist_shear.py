@@ -52,15 +52,15 @@ A = math.sqrt(R * DELTA)
 N = 4 / 3 * E_STAR * math.sqrt(R) * DELTA**1.5
 
 
-def law(ux, uy, tw, cells, sectors, psi=0.0):
+def law(ux, uy, tw, cells, sectors, psi=0.0, lever="limits"):
     """The law along the path turned by psi; forces turned back."""
     c, s = math.cos(psi), math.sin(psi)
     Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, N, A, c * ux - s * uy, s * ux + c * uy, tw,
-                                    cells=cells, sectors=sectors)
+                                    cells=cells, sectors=sectors, slip_lever=lever)
     return c * Tx + s * Ty, -s * Tx + c * Ty, M, W
 
 
-def bem_errors():
+def bem_errors(lever="limits"):
     out = {}
     curves = {}
     for shape, size in TWIST_SET:
@@ -72,11 +72,11 @@ def bem_errors():
             for sectors in (4, 8):
                 errs = []
                 for psi in np.linspace(0.0, 2 * math.pi / sectors, 5)[:-1]:
-                    Tx, Ty, M, _ = law(ux, uy, tw, cells, sectors, psi)
+                    Tx, Ty, M, _ = law(ux, uy, tw, cells, sectors, psi, lever)
                     fe = float(np.max(np.hypot(-Tx - Txr, -Ty - Tyr)[1:]) / (MU * N))
                     me = float(np.max(np.abs(-M - Mzr)[1:]) / (MU * N * A))
                     errs.append((fe, me))
-                    if psi == 0.0 and cells == 32 and sectors == 4:
+                    if psi == 0.0 and cells == 32 and sectors == 8:
                         curves[label] = (tw, ux, uy, Txr, Tyr, Mzr, Tx, Ty, M)
                 e = np.array(errs)
                 rows[f"{cells} cells, {sectors} points"] = {
@@ -116,7 +116,7 @@ def ray_deviation(law_pts, exact_pts):
     return np.hypot(lw[:, 0], lw[:, 1]) / r_e - 1.0
 
 
-def law_limit_surface(angles, cells=32, sectors=4, steps=400):
+def law_limit_surface(angles, cells=32, sectors=8, steps=400, lever="limits"):
     """The law after a drive of 40 slip lengths at (v, w a) = (cos t, sin t)."""
     s = 3 * MU * N / (16 * G_STAR * A)       # the slip displacement of Mindlin's full slip
     b1 = 3 * MU * N / (16 * G_C * A * A)
@@ -125,12 +125,12 @@ def law_limit_surface(angles, cells=32, sectors=4, steps=400):
         k = np.linspace(0.0, 1.0, steps + 1)
         L = 40 * max(s, b1 * A)
         Tx, Ty, M, _ = twist_shear_path(G_STAR, G_C, MU, R, N, A, L * math.cos(t) * k, 0 * k, L * math.sin(t) * k / A,
-                                        cells=cells, sectors=sectors)
+                                        cells=cells, sectors=sectors, slip_lever=lever)
         out.append((Tx[-1] / (MU * N), M[-1] / (MU * N * A)))
     return np.array(out)
 
 
-def loops(count=200, seed=1, cells=32, sectors=4):
+def loops(count=200, seed=1, cells=32, sectors=8, lever="limits"):
     """Random histories, then a closed loop (two harmonics in ux, uy, beta, amplitude 10^-2.5 ... 2 slip
     lengths); the loop's work in mu N s times the amplitude."""
     rng = np.random.default_rng(seed)
@@ -148,7 +148,7 @@ def loops(count=200, seed=1, cells=32, sectors=4):
             loop += np.outer(np.sin(h * t), c[0]) + np.outer(1 - np.cos(h * t), c[1])
         path = np.vstack([pre, pre[-1] + loop[1:]])
         Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, N, A, s * path[:, 0], s * path[:, 1], b1 * path[:, 2],
-                                        cells=cells, sectors=sectors)
+                                        cells=cells, sectors=sectors, slip_lever=lever)
         works.append((W[-1] - W[39]) / (MU * N * s * amp))
     w = np.array(works)
     return {"loops": count, "negative work": int((w < 0).sum()), "least loop work / (mu N s amplitude)": float(w.min())}
@@ -284,8 +284,10 @@ def formulations():
     """BEM errors [force / (mu N), moment / (mu N a)] of the law, the separate laws and the one-state-per-cell
     formulations on every reference path."""
     refs = all_references()
-    forms = {"twist_shear, 32 cells, 4 points": lambda *p: law(*p, 32, 4)[:3],
-             "twist_shear, 32 cells, 8 points": lambda *p: law(*p, 32, 8)[:3],
+    forms = {"twist_shear limits, 32 cells, 4 points": lambda *p: law(*p, 32, 4)[:3],
+             "twist_shear limits, 32 cells, 8 points": lambda *p: law(*p, 32, 8)[:3],
+             "twist_shear rings, 32 cells, 4 points": lambda *p: law(*p, 32, 4, lever="rings")[:3],
+             "twist_shear rings, 32 cells, 8 points": lambda *p: law(*p, 32, 8, lever="rings")[:3],
              "separate laws (vector MDR and deresiewicz cells, 32)": separate_path}
     for kind in ("q1", "q1.5", "q2", "ring"):
         for rule in ("radial", "energy"):
@@ -310,34 +312,48 @@ def main():
     if args.bem_extra:
         bem_extra()
     errs, curves = bem_errors()
+    errs_rings, curves_rings = bem_errors("rings")
     angles = np.linspace(0, np.pi / 2, 25)
     ex = disc_limit_surface(angles)
-    lw = law_limit_surface(angles)
-    dev = ray_deviation(lw, ex)
+    surf = {"exact disc": ex.round(4).tolist()}
+    for lever in ("limits", "rings"):
+        lw = law_limit_surface(angles, lever=lever)
+        surf[f"law ({lever}, 32 cells, 8 points)"] = lw.round(4).tolist()
+        surf[f"{lever}: largest |law - exact| at the same (v, w a) [T, M]"] = (
+            np.abs(lw - ex).max(axis=0).round(4).tolist())
+        surf[f"{lever}: law's distance from the origin over the exact one's along the same ray, less 1 "
+             "(M scaled by 3 pi/16)"] = ray_deviation(lw, ex).round(4).tolist()
+        if lever == "limits":
+            lw_limits = lw
+        else:
+            lw_rings = lw
     out = {"scene": {"pair": "steel sphere R 10 mm on a steel wall", "delta": DELTA, "mu": MU, "N": N, "a": A},
-           "bem 128 across, max error (force / (mu N), moment / (mu N a))": errs,
-           "full slip: (T / (mu N), M / (mu N a)) at (v, w a) = (cos t, sin t), t = 0 ... pi/2":
-               {"exact disc": ex.round(4).tolist(), "law (32 cells, 4 points)": lw.round(4).tolist(),
-                "law's distance from the origin over the exact one's, along the same ray, less 1 "
-                "(M scaled by 3 pi/16)": dev.round(4).tolist()},
-           "closed loops at constant N": loops(),
+           "bem 128 across, max error (force / (mu N), moment / (mu N a)), slip lever limits": errs,
+           "bem 128 across, max error, slip lever rings": errs_rings,
+           "full slip: (T / (mu N), M / (mu N a)) at (v, w a) = (cos t, sin t), t = 0 ... pi/2": surf,
+           "closed loops at constant N, limits": loops(),
+           "closed loops at constant N, rings": loops(lever="rings"),
            "BEM errors [force / (mu N), moment / (mu N a)] by formulation and path": formulations()}
     (HERE / "twist_shear.json").write_text(json.dumps(out, indent=1))
     print(json.dumps(out, indent=1))
     fig, axs = plt.subplots(1, 3, figsize=(14, 4.2))
     for ax, label in zip(axs[:2], ("shear-twist 0.6", "circle-twist 0.4")):
         tw, ux, uy, Txr, Tyr, Mzr, Tx, Ty, M = curves[label]
+        Rx, Ry, RM = curves_rings[label][6:]
         k = np.arange(tw.size)
         ax.plot(k, np.hypot(Txr, Tyr) / (MU * N), "k-", lw=2.5, label="|T| BEM 128 across")
-        ax.plot(k, np.hypot(Tx, Ty) / (MU * N), "r--", label="|T| twist_shear")
+        ax.plot(k, np.hypot(Tx, Ty) / (MU * N), "r--", label="|T| twist_shear, limits")
+        ax.plot(k, np.hypot(Rx, Ry) / (MU * N), "g:", label="|T| twist_shear, rings")
         ax.plot(k, -Mzr / (MU * N * A), "b-", lw=2.5, alpha=0.5, label="M BEM")
-        ax.plot(k, M / (MU * N * A), "c--", label="M twist_shear")
+        ax.plot(k, M / (MU * N * A), "c--", label="M twist_shear, limits")
+        ax.plot(k, RM / (MU * N * A), "m:", label="M twist_shear, rings")
         ax.set_xlabel("row")
         ax.set_ylabel("|T| / (mu N), M / (mu N a)")
         ax.set_title(label)
         ax.legend(fontsize=7)
     axs[2].plot(ex[:, 0], ex[:, 1], "k-o", ms=3, label="exact Hertz disc")
-    axs[2].plot(lw[:, 0], lw[:, 1], "r--s", ms=3, label="twist_shear (32 cells, 4 points)")
+    axs[2].plot(lw_limits[:, 0], lw_limits[:, 1], "r--s", ms=3, label="twist_shear, limits")
+    axs[2].plot(lw_rings[:, 0], lw_rings[:, 1], "g--^", ms=3, label="twist_shear, rings")
     axs[2].set_xlabel("T / (mu N)")
     axs[2].set_ylabel("M / (mu N a)")
     axs[2].set_title("full slip under sliding and spin")
