@@ -51,19 +51,22 @@ over the ring has modes that no rigid punch carries; the law gives them the 1D s
 (each angle of the ring treated as its own axisymmetric problem), which the 3D problem does not (its slip
 zone is not axisymmetric and the punches are coupled through it). The error is measured against the
 boundary-element reference with twist (``reference.bem``; ``validation/twist/run_twist_shear.py``,
-``validation/twist/report.md``), 32 cells, 4 points: with ``limits``, within 0.015 mu N and mu N a on the
-twist paths of ``reference.paths.TWIST_SET`` (a twisted sheared contact) and 0.033 on a shear cycle of a
-twisted contact, but 0.12 mu N and 0.14 mu N a under sliding with spin into full slip; with ``rings``,
-within 0.034 mu N and mu N a on all of these (the circle with twist: 0.019 / 0.032), and on a random path
-0.063 / 0.050 (``limits``: 0.070 / 0.054). In exact full slip the cells are not at their limits (each is an
-average over r > s of differing slip directions), which no cell-local limit represents. K points sample the
-ring: the mean over K equispaced points is exact for trigonometric polynomials of degree < K, the law's
-results depend on the orientation of the points in a combined path by up to about 0.005 mu N with
-K = 4 (exactly invariant under turns by 2 pi / K). Energy: with ``limits`` each point is elastic-perfectly
-plastic with radial return (``rings``: not associated), but the physical work per cell is the sum over
-the points' works only where the cell's stored energy at the two limits is equal (G_M u_max^2 ds =
-8 G_c s^2 theta_max^2 ds, true at no s in general), so the absence of energy creation on closed loops is
-checked (random loops at constant N, in the tests and the validation), not proven.
+``validation/twist/report.md``), 32 cells, 8 points, max error in mu N / mu N a: with ``rings``
+(default), 0.022 / 0.006 and 0.017 / 0.027 on the twist paths of ``reference.paths.TWIST_SET`` (a sheared
+contact twisted, a circle with twist), 0.032 / 0.013 on a shear cycle of a twisted contact, 0.033 / 0.024
+and 0.045 / 0.056 under sliding with spin into full slip, 0.054 / 0.055 on a random path; with ``limits``,
+0.005 / 0.015, 0.016 / 0.009, 0.032 / 0.013, then 0.057 / 0.100 and 0.143 / 0.146 under sliding with spin,
+0.062 / 0.063 on the random path (the separate laws: 0.22 / 0.09, 0.10 / 0.14, 0.10 / 0.42, 0.12 / 0.45,
+0.34 / 0.27, 0.19 / 0.42). In exact full slip the cells are not at their limits (each is an average over
+r > s of differing slip directions), which no cell-local limit represents. K points sample the ring: the mean over K equispaced points is exact for trigonometric polynomials of degree < K, the law's
+results depend on the orientation of the points in a combined path by up to about 0.005 mu N (K = 4,
+``limits``) or 0.004 (K = 8, ``rings``), and are exactly invariant under turns by 2 pi / K.
+
+Energy: with ``limits`` each point is elastic-perfectly plastic with radial return (``rings``: not
+associated), but the physical work per cell is the sum over the points' works only where the cell's stored
+energy at the two limits is equal (G_M u_max^2 ds = 8 G_c s^2 theta_max^2 ds, true at no s in general),
+so the absence of energy creation on closed loops is checked (random loops at constant N, in the tests and
+the validation), not proven.
 
 Scope: constant normal force (the paths of the comparison); the grid is ``mdr_adaptive``'s and
 ``deresiewicz``'s (cell width R* times the power of 2 with n ds / 2 <= a < n ds). The law is a path
