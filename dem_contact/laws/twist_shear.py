@@ -59,8 +59,9 @@ and 0.045 / 0.056 under sliding with spin into full slip, 0.054 / 0.055 on a ran
 0.062 / 0.063 on the random path (the separate laws: 0.22 / 0.09, 0.10 / 0.14, 0.10 / 0.42, 0.12 / 0.45,
 0.34 / 0.27, 0.19 / 0.42). In exact full slip the cells are not at their limits (each is an average over
 r > s of differing slip directions), which no cell-local limit represents. K points sample the ring: the
-mean over K equispaced points is exact for trigonometric polynomials of degree < K; the law's results depend on the orientation of the points in a combined path by up to about 0.005 mu N (K = 4,
-``limits``) or 0.004 (K = 8, ``rings``), and are exactly invariant under turns by 2 pi / K.
+mean over K equispaced points is exact for trigonometric polynomials of degree < K; the law's results
+depend on the orientation of the points in a combined path by up to about 0.005 mu N (K = 4, ``limits``)
+or 0.004 (K = 8, ``rings``), and are exactly invariant under turns by 2 pi / K.
 
 Energy: with ``limits`` each point is elastic-perfectly plastic with radial return (``rings``: not
 associated), but the physical work per cell is the sum over the points' works only where the cell's stored
