@@ -5,9 +5,9 @@ limit shared at points of the ring.
 The two exact laws. Both are superpositions of rigid flat punches of radius s (Jaeger 1995, Arch. Appl.
 Mech. 65:478; Popov & Hess 2015, "Method of Dimensionality Reduction in Contact Mechanics and Friction",
 chapters 3 and 6). A punch displaced by a tangential vector holds a traction of uniform direction,
-Q / (2 pi s sqrt(s^2 - r^2)) (Johnson 1985, eq. 7.40 with a -> s); a punch twisted about the normal holds
-the circumferential traction 3 M r / (4 pi s^3 sqrt(s^2 - r^2)) (Reissner & Sagoci 1944; Johnson 1985,
-eq. 7.42). The MDR cell at s carries the tangential displacement u(s) (2 vector) with the limit
+Q / (2 pi s sqrt(s^2 - r^2)) (Johnson 1985, section 7.2, with a -> s); a punch twisted about the normal
+holds the circumferential traction 3 M r / (4 pi s^3 sqrt(s^2 - r^2)) (Reissner & Sagoci 1944; Johnson
+1985, section 7.4). The MDR cell at s carries the tangential displacement u(s) (2 vector) with the limit
 |u| <= u_max(s) = mu q_z(s) / G_M (q_z the MDR line load of the pressure p, G_M = 4 G*); the twist cell
 carries the rotation theta(s) with the limit |theta| <= theta_max(s) = mu L(s) / k (L the transform
 (2/pi) int_s^a p / sqrt(t^2 - s^2) dt of p, k = 4 G_c / pi). T = 2 G_M int u ds and
