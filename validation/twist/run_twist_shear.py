@@ -11,15 +11,16 @@ Writes validation/twist/twist_shear.json and twist_shear.png:
   limit surface of the Hertz disc, F = mu int p t dA, M = mu int p (r x t) dA with t the unit sliding
   direction of the rigid motion (numerical quadrature on a polar grid);
 - the work of random closed loops in (ux, uy, beta) after random histories at constant N;
-- the simpler formulations tried first (``candidates``): one state per cell, (x, z) = (u / u_max, theta /
-  theta_max), with a combined limit |x|^q + |z|^q <= 1 (q = 1: the largest traction around the ring,
-  |q_t| + |q_theta| <= mu p; q = 2: its mean square) or the exact limit curve of a ring sliding under
-  translation and spin, each with the radial return in (x, z) or the closest point in the cell's energy
-  norm (associated flow), 128 cells.
-
-- with --bem-extra (runs the BEM, 64 elements across, about a minute per path): paths that the law was not
-  built on, to twist_shear_extra.json: a twist to beta_1 then a shear cycle at that twist, sliding with spin
-  into combined full slip at two ratios, and a random smooth path in (ux, uy, beta).
+- both slip levers of the law, the separate laws (``separate_path``) and the simpler formulations tried
+  first (``candidate_path``): one state per cell, (x, z) = (u / u_max, theta / theta_max), with a combined
+  limit |x|^q + |z|^q <= 1 (q = 1: the largest traction around the ring, |q_t| + |q_theta| <= mu p; q = 2:
+  its mean square) or the limit curve of a ring sliding under translation and spin, each with the radial
+  return in (x, z) or the closest point in the cell's energy norm (associated flow), 128 cells, on every
+  reference path;
+- with --bem-extra, first the BEM (64 elements across, 400 steps, about 25 s in all) on paths that the law
+  was not built on, written to bem_extra/<label>_n64_s400.csv and then compared like the others: a twist to
+  beta_1 then a shear cycle at that twist, sliding with spin into combined full slip at two ratios, and a
+  random smooth path in (ux, uy, beta).
 
     python validation/twist/run_twist_shear.py [--bem-extra]
 """
