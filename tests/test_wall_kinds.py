@@ -133,6 +133,71 @@ def test_a_sphere_rolling_over_a_convex_ridge_feels_no_jump():
     assert np.abs(np.diff(fn)).max() <= 0.02 * fn.max()
 
 
+def _roof(angle_deg=10.0, L=0.01):
+    """Two flat patches meeting at a ridge along y (a roof, angle_deg each side), two triangles each,
+    normals up."""
+    h = L / 2 * math.tan(math.radians(angle_deg))
+    v = np.array([[-L / 2, -L / 2, 0.0], [0.0, -L / 2, h], [L / 2, -L / 2, 0.0],
+                  [-L / 2, L / 2, 0.0], [0.0, L / 2, h], [L / 2, L / 2, 0.0]])
+    return v, np.array([[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]]), h
+
+
+def test_a_sphere_sliding_over_a_convex_ridge_keeps_its_history():
+    """A sphere pressed onto a roof (10 degrees each side) slides slowly across the ridge, 0.1 um per step
+    (the Mindlin spring takes about 50 steps to reach mu N): one contact and one history key all the way
+    (a face, the edge, the other face), so the tangential force, at mu N, follows the turning normal with
+    no step in its magnitude (with the history restarted on the other face it would fall to nearly zero
+    and take some 50 steps to come back). Seen from below the ridge is concave: the two faces are keyed
+    apart there."""
+    v, t, h = _roof()
+    mesh = MeshWall(v, t)
+    a = math.radians(10.0)
+    xs = np.linspace(-3e-4, 3e-4, 6001)
+    lift = 0.99 * R
+    z = np.where(np.abs(xs) > lift * math.sin(a), h - np.abs(xs) * math.tan(a) + lift / math.cos(a),
+                 h + np.sqrt(np.maximum(lift ** 2 - xs ** 2, 0.0)))
+    path = np.column_stack([xs, np.zeros_like(xs), z])
+    hist = _Histories(_table())
+    dt = 1e-6
+    keys, ft, fn = set(), [], []
+    for k in range(1, len(path)):
+        c = wall_contacts(path[k][None, :], [R], [mesh])
+        assert len(c) == 1
+        keys.add(float(c.keys[0]))
+        f = hist.forces(c, ((path[k] - path[k - 1]) / dt)[None, :], np.zeros((1, 3)), dt)[0]
+        n = c.normals[0]
+        fn.append(abs(f @ n))
+        ft.append(np.linalg.norm(f - (f @ n) * n))
+    ft, fn = np.array(ft), np.array(fn)
+    assert len(keys) == 1
+    elements = {int(e) for e in wall_contacts(path[::500], np.full(len(path[::500]), R), [mesh]).element}
+    assert elements & {0, 1} and elements & {2, 3}                          # (both faces of the roof)
+    assert np.abs(ft[200:] - 0.4 * fn[200:]).max() <= 1e-9 * fn.max()        # sliding at mu N throughout
+    assert np.abs(np.diff(ft[200:])).max() <= 0.02 * ft.max()
+    below = np.array([[0.0, 0.0, h - lift / math.cos(a)]])                  # under the ridge, on both faces
+    c = wall_contacts(below, np.array([R]), [mesh])
+    assert len(c) == 2 and len(set(c.keys.tolist())) == 2 and not set(c.keys.tolist()) & keys
+
+
+def test_a_non_orientable_mesh_is_refused():
+    """A Moebius band (its triangles cannot be given normals that agree across every edge) has no two sides
+    to key its contacts by: refused naming the wall."""
+    n = 12
+    v = []
+    for k in range(n):
+        q = 2 * math.pi * k / n
+        d = np.array([math.cos(q / 2) * math.cos(q), math.cos(q / 2) * math.sin(q), math.sin(q / 2)])
+        c = np.array([math.cos(q), math.sin(q), 0.0])
+        v += [c + 0.2 * d, c - 0.2 * d]
+    t = []
+    for k in range(n):
+        a, b = 2 * k, 2 * k + 1
+        c, d = (2 * (k + 1), 2 * (k + 1) + 1) if k < n - 1 else (1, 0)       # the half twist closes the band
+        t += [[a, b, c], [b, d, c]]
+    with pytest.raises(InputError, match=r"walls\[0\].*not orientable"):
+        pack([MeshWall(np.array(v), np.array(t))])
+
+
 def _prism(rc, n, z0, z1):
     """A polygonal prism of n sides circumscribed about the cylinder of radius rc (axis z), two
     triangles per side, from z0 to z1."""

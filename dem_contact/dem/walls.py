@@ -61,7 +61,7 @@ def _find(x, radius, walls):
                 ids[k, 0] = i
                 ids[k, 1] = w
                 ids[k, 2] = e
-                keys[k] = W.history_key(walls, w, e)
+                keys[k] = W.history_key(walls, w, e, x[i, 0], x[i, 1], x[i, 2])
                 normals[k, 0] = nx
                 normals[k, 1] = ny
                 normals[k, 2] = nz

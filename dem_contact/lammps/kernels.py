@@ -8,9 +8,9 @@ atom sorting): the keys of its rows, ``keys`` (nmax, slots), in a narrow array r
 each row the separation of its contact when it was last matched and a mark of an out-of-date second copy
 (see below), ``sep`` (nmax, 4 slots), in another; and the rows in a third, viewed as ``H`` (nmax * slots, history_size): row i * slots + s is row s of atom i. A key is the
 partner's atom id (> 0), the wall's key (< 0, ``walls.table.history_key``: -(w + 1) for wall w when
-every wall has one patch, as planes and cylinders; one per flat patch of a mesh) for a wall, or 0 for a
-free row. A wall contact that moves from one element to another of its patch (a mesh's triangles) keeps
-its row: the row of a wall contact that ended is freed only after the new contacts of the step have
+every wall has one patch, as planes and cylinders; for a mesh, one per side and set of triangles joined
+by flat or convex edges) for a wall, or 0 for a free row. A wall contact that moves from one element to
+another of its patch (a mesh's triangles) keeps its row: the row of a wall contact that ended is freed only after the new contacts of the step have
 looked for their rows by key. A contact is the partner and the
 periodic image it is touched through: in a periodic box narrower than two diameters an atom can touch
 two images of one partner, each its own contact with its own row, told apart by the separation
@@ -390,15 +390,16 @@ def _free_row(keys, i):
 
 
 @njit(inline="always", cache=True)
-def _candidate(cand, cand_walls, walls, c, tag, nlocal):
+def _candidate(cand, cand_walls, walls, c, tag, nlocal, x):
     """Candidate c of the lists (sphere pairs, then wall pairs): (i, j, key of j in atom i's rows, whether
-    j is a local atom); j = -1 for a wall, keyed by its wall and element."""
+    j is a local atom); j = -1 for a wall, keyed by its wall, element and the side of the atom (x)."""
     npc = cand.shape[0]
     if c < npc:
         j = cand[c, 1]
         return cand[c, 0], j, float(tag[j]), j < nlocal
     k = c - npc
-    return cand_walls[k, 0], -1, W.history_key(walls, cand_walls[k, 1], cand_walls[k, 2]), False
+    i = cand_walls[k, 0]
+    return i, -1, W.history_key(walls, cand_walls[k, 1], cand_walls[k, 2], x[i, 0], x[i, 1], x[i, 2]), False
 
 
 @njit(inline="always", cache=True)
@@ -803,7 +804,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
         # have looked for theirs (the contact may have moved to another element of its patch: the row is
         # kept in cand_rows[c, 1] till then)
         c = work[k, 2]
-        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
+        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal, x)
         r = cand_rows[c, 0]
         if j < 0:
             cand_rows[c, 0] = -1
@@ -819,7 +820,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
     for k in range(late):
         # rows not cached: found by their keys (first step after a rebuild) or none yet (a new contact)
         c = work[k, 1]
-        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
+        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal, x)
         dx = dy = dz = 0.0
         if j >= 0:
             dx, dy, dz, _, _ = _separation(x, radius, i, j)
@@ -835,7 +836,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
     for k in range(ended):
         # the rows of wall contacts that ended, unless a new contact of the atom took them over
         c = work[k, 2]
-        i, j, key_i, _ = _candidate(cand, cand_walls, walls, c, tag, nlocal)
+        i, j, key_i, _ = _candidate(cand, cand_walls, walls, c, tag, nlocal, x)
         if j >= 0:
             continue
         r = cand_rows[c, 1]
@@ -861,7 +862,7 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
         # the next check); the law reads atom i's row, else atom j's, else none (zeros)
         n_ = work[k, 0]
         c = work[k, 1]
-        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal)
+        i, j, key_i, local_j = _candidate(cand, cand_walls, walls, c, tag, nlocal, x)
         ri = cand_rows[c, 0]
         rj = cand_rows[c, 1] if local_j else -1
         # the history read: the current copy (``_copies``), else the other, else none (a new contact)

@@ -36,9 +36,10 @@ Each kind of wall is one module of this package that provides:
       1 / R2 [1/m] of the surface at c that enters R* = 1 / (1 / R1 + k): 0 for a plane, > 0 convex, < 0
       concave. The parameter rows of the contacts (``pairs.pair_table``) carry it through the wall's
       material: ``materials.Wall(..., curvature=k)`` (checked where walls meet a table);
-  ``patch(walls, w, e) -> int``
-      the history key index (0 ... n_keys - 1) of a contact with element e: contacts that move from one
-      element to another of the same patch keep their history (a mesh: coplanar neighbours);
+  ``patch(walls, w, e, x, y, z) -> int``
+      the history key index (0 ... n_keys - 1) of a contact of the sphere centred at (x, y, z) with
+      element e: contacts that move from one element to another of the same patch keep their history (a
+      mesh: the triangles connected across flat or convex edges on the sphere's side);
   ``place(walls, w, t)``
       write the pose of wall w at time t [s] into its row and payload rows (from its pose at time 0, kept
       there too); called only for walls whose motion moves their surface.
@@ -46,8 +47,8 @@ Each kind of wall is one module of this package that provides:
 Users of the contract: the LAMMPS bridge (``lammps.kernels``: its Verlet lists hold (sphere, wall,
 element)) and the 3D batch face (``dem.walls.wall_contacts``).
 
-The history of a wall contact is keyed per wall and patch: ``table.history_key(walls, w, e)`` =
--(first key of wall w + patch(e) + 1), a negative number (sphere partners are keyed by their positive atom
+The history of a wall contact is keyed per wall and patch: ``table.history_key(walls, w, e, x, y, z)`` =
+-(first key of wall w + patch(e, x, y, z) + 1), a negative number (sphere partners are keyed by their positive atom
 ids); ``table.pack`` numbers the keys of the walls one after the other, so for walls with one key each,
 the key of wall w is -(w + 1).
 

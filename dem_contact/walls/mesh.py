@@ -19,15 +19,22 @@ too, with the plane's distance and normal; over a convex edge or vertex one cont
 continuously from one face to the next; in a concave corner one contact per face it touches. This is the
 rule of LIGGGHTS (``tri_mesh_I.h``, ``resolveTriSphereContactBary``: barycentric regions, a shared edge and
 a corner owned by one triangle) with the shadowing decided from the geometry of the neighbours at each
-step (no state). A contact keeps its history while it moves across its patch (keyed by the patch, not
-the triangle: LIGGGHTS copies the history onto a coplanar neighbour); crossing a non-coplanar edge starts
-a new history. An edge shared by more than two triangles is refused. The mesh is two-sided: the normal
-points from the sphere's centre to the closest point, whichever side the sphere is on; a sphere whose
-centre crosses the surface is pushed out on the other side.
+step (no state). The mesh is two-sided: the normal points from the sphere's centre to the closest point,
+whichever side the sphere is on; a sphere whose centre crosses the surface is pushed out on the other
+side. An edge shared by more than two triangles is refused.
+
+History. A contact keeps its history while it moves from triangle to triangle over a surface that is
+convex or flat on the sphere's side: the history key is the sphere's side of the contact's triangle (the
+triangles oriented alike across every edge) and the set of triangles connected across the edges that are
+flat or convex on that side. So a contact that crosses a seam of a flat patch (as LIGGGHTS, which copies
+the history onto a coplanar neighbour) or rolls over a convex edge or vertex, where it is one contact
+throughout, keeps its tangential history (the law turns it with the normal); in a concave corner, where
+the sphere has a contact per face, the faces are keyed apart. A non-orientable mesh is refused.
 
 Payload rows (one per triangle, from column 1): the vertices now (9) and at time 0 (9), the vertex ids
-(3), the neighbour across each edge k = (V_k, V_k+1) (3; -1: none) and the patch. Row data: the number
-of triangles.
+(3), the neighbour across each edge k = (V_k, V_k+1) (3; -1: none), the flat patch, the orientation
+(+1 / -1: the sign that makes the triangles' normals agree across the edges) and the history keys of its
+two sides (front: along the oriented normal). Row data: the number of triangles.
 """
 from __future__ import annotations
 
@@ -43,12 +50,14 @@ from .contract import DATA, FIRST, move_point, rigid
 
 CLASS = "MeshWall"
 N_DATA = 1
-PAYLOAD_WIDTH = 25
+PAYLOAD_WIDTH = 28
 _V = 1          # payload: vertices now (9)
 _V0 = 10        # vertices at time 0 (9)
 _ID = 19        # vertex ids (3)
 _NB = 22        # neighbour triangle across edge k (3)
-_PATCH = 25     # patch
+_PATCH = 25     # flat patch
+_ORIENT = 26    # orientation (+1 / -1)
+_KEY = 27       # history keys of the front and back sides (2)
 DATA_NT = DATA  # row data: the number of triangles
 
 #: triangles whose unit normals differ by less than this angle [rad] across an edge are one patch
@@ -135,6 +144,7 @@ class MeshWall:
     def packed(self, k: int):
         """(data, payload, n_elements, n_keys, moves): see ``contract`` (k: the wall's index, for messages)."""
         v, t, nb, patches = self.topology(k)
+        orient, keys = self.history_keys(v, t, nb, patches, k)
         vel, om, _ = checks.motion(k, self, tuple(v.mean(axis=0).tolist()))
         payload = np.zeros((len(t), PAYLOAD_WIDTH + 1))
         payload[:, _V:_V + 9] = v[t].reshape(-1, 9)
@@ -142,8 +152,74 @@ class MeshWall:
         payload[:, _ID:_ID + 3] = t
         payload[:, _NB:_NB + 3] = nb
         payload[:, _PATCH] = patches
+        payload[:, _ORIENT] = orient
+        payload[:, _KEY:_KEY + 2] = keys
         moves = checks.norm(vel) > 0.0 or checks.norm(om) > 0.0
-        return (float(len(t)),), payload[:, 1:], len(t), int(patches.max()) + 1, moves
+        return (float(len(t)),), payload[:, 1:], len(t), int(keys.max()) + 1, moves
+
+    @staticmethod
+    def history_keys(v, t, nb, patches, k: int = 0):
+        """(orient float64[nt] (+1 / -1), keys int64[nt, 2]): the orientation that makes the triangles'
+        normals agree across every edge (each connected part oriented from its lowest triangle), and the
+        history key of each side of each triangle (front: along the oriented normal): the connected sets
+        of triangles across the edges that are flat (one patch) or convex on that side, numbered front sets
+        first. InputError (naming walls[k]) for a non-orientable mesh."""
+        nt = len(t)
+        orient = np.zeros(nt)
+        for start in range(nt):
+            if orient[start] != 0.0:
+                continue
+            orient[start] = 1.0
+            stack = [start]
+            while stack:
+                j = stack.pop()
+                for q in range(3):
+                    o = int(nb[j, q])
+                    if o < 0:
+                        continue
+                    a, b = t[j, q], t[j, (q + 1) % 3]
+                    # the same orientation traverses the shared edge in opposite directions
+                    same_dir = any(t[o, r] == a and t[o, (r + 1) % 3] == b for r in range(3))
+                    want = -orient[j] if same_dir else orient[j]
+                    if orient[o] == 0.0:
+                        orient[o] = want
+                        stack.append(o)
+                    elif orient[o] != want:
+                        raise InputError(f"walls[{k}]: the mesh is not orientable (its triangles cannot all be "
+                                         f"given normals that agree across their edges): a mesh wall needs "
+                                         f"two sides")
+        c = v[t]
+        normal = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0]) * orient[:, None]
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        size = np.linalg.norm(v.max(axis=0) - v.min(axis=0))
+        parents = [list(range(nt)), list(range(nt))]
+
+        def root(parent, i):
+            while parent[i] != i:
+                parent[i] = parent[parent[i]]
+                i = parent[i]
+            return i
+
+        for j in range(nt):
+            for q in range(3):
+                o = int(nb[j, q])
+                if o <= j:
+                    continue
+                if patches[o] == patches[j]:
+                    sides = (0, 1)                    # flat: one surface on both sides
+                else:
+                    # the vertex of o off the shared edge lies behind j's front: convex seen from the front
+                    p = next(r for r in range(3) if t[o, r] not in (t[j, q], t[j, (q + 1) % 3]))
+                    h = float(np.dot(v[t[o, p]] - v[t[j, q]], normal[j]))
+                    sides = (0,) if h < -1e-12 * size else (1,) if h > 1e-12 * size else (0, 1)
+                for side in sides:
+                    parents[side][root(parents[side], j)] = root(parents[side], o)
+        keys = np.empty((nt, 2), dtype=np.int64)
+        front = np.unique([root(parents[0], j) for j in range(nt)], return_inverse=True)[1]
+        back = np.unique([root(parents[1], j) for j in range(nt)], return_inverse=True)[1]
+        keys[:, 0] = front
+        keys[:, 1] = back + front.max() + 1
+        return orient, keys
 
 
 @njit(inline="always", cache=True)
@@ -331,9 +407,12 @@ def curvature(walls, w, e, cx, cy, cz):
 
 
 @njit(inline="always", cache=True)
-def patch(walls, w, e):
-    """The flat patch of triangle e."""
-    return int(walls[int(walls[w, FIRST]) + e, _PATCH])
+def patch(walls, w, e, x, y, z):
+    """The history key of a contact of triangle e with the sphere centred at (x, y, z): that of the
+    triangle's side where the centre lies (the module's docstring)."""
+    q = int(walls[w, FIRST]) + e
+    _, _, _, _, _, _, _, _, _, d = _closest(walls, q, x, y, z)
+    return int(walls[q, _KEY] if d * walls[q, _ORIENT] >= 0.0 else walls[q, _KEY + 1])
 
 
 @njit(inline="always", cache=True)

@@ -92,7 +92,7 @@ def curvature(walls, w, e, cx, cy, cz):
 
 
 @njit(inline="always", cache=True)
-def patch(walls, w, e):
+def patch(walls, w, e, x, y, z):
     """A plane is one patch."""
     return 0
 

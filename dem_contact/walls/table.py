@@ -143,10 +143,10 @@ place = _dispatch("place", KINDS)
 
 
 @njit(inline="always")
-def history_key(walls, w, e):
-    """Key of the history of a contact with element e of wall w: -(first key of wall w + its patch + 1)
-    (negative; ``contract``)."""
-    return -(walls[w, KEY_BASE] + patch(walls, w, e) + 1.0)
+def history_key(walls, w, e, x, y, z):
+    """Key of the history of a contact of the sphere centred at (x, y, z) with element e of wall w:
+    -(first key of wall w + its patch + 1) (negative; ``contract``)."""
+    return -(walls[w, KEY_BASE] + patch(walls, w, e, x, y, z) + 1.0)
 
 
 @njit(cache=True)
