@@ -210,6 +210,8 @@ def test_histories_too_large_to_move_between_ranks_are_refused():
     assert r.returncode == 2, r.stderr[-2000:]
     assert "values per atom" in r.stderr and "on several ranks use slots <=" in r.stderr
 
+
+def test_a_run_in_pieces_is_one_run():
     """A pour run as 12 LAMMPS runs of 50 steps equals one run of 600 steps (default law, spin of the
     contact frame on): the contact forces of each run's last step are reapplied at the next run's set-up,
     and the histories and the Verlet lists carry over."""
