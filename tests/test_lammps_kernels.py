@@ -34,6 +34,32 @@ def test_candidates_are_every_close_pair_once_lower_id_first():
     assert {(int(i), int(w), int(e)) for i, w, e in wall_pairs} == want_w     # (a plane: one element, 0)
 
 
+def test_wall_candidates_of_a_mesh_are_every_close_element_in_order():
+    """The Verlet list of wall elements, with a mesh's triangles binned into the cells of the atoms: every
+    (atom, wall, element) whose element is closer than r + skin to the centre (brute force over all
+    triangles, by the contract's distance), none other, each once, in the order of atom, wall, element; the
+    plane between the mesh's walls in that order too; a mesh far from every atom has none."""
+    import os
+
+    from dem_contact.walls import MeshWall
+    from dem_contact.walls import table as W
+
+    nall, nlocal, skin = 400, 300, 0.01
+    x, radius = _points(nall, 3)
+    hopper = MeshWall.from_stl(os.path.join(os.path.dirname(__file__), "..", "examples", "hopper.stl"))
+    span = hopper.vertices.max(axis=0) - hopper.vertices.min(axis=0)
+    scale = 1.2 / span.max()                                 # the hopper over the atoms' box, and beyond it
+    near = MeshWall(hopper.vertices * scale - 0.1, hopper.triangles)
+    far = MeshWall(hopper.vertices * scale + 50.0, hopper.triangles)
+    walls, _ = pack([near, PlaneWall((0.0, 0.0, 0.5), (0.0, 0.0, 1.0)), far])
+    tag = np.arange(nall, dtype=np.int64) + 1
+    _, hits = K.candidates(nlocal, nall, x, radius, tag, walls, radius.max(), skin)
+    want = [(i, w, e) for i in range(nlocal) for w in range(3) for e in range(W.elements(walls, w))
+            if W.distance(walls, w, e, *x[i]) < radius[i] + skin]
+    assert len(want) > nlocal // 2 and any(w == 0 for _, w, _ in want)
+    assert [tuple(int(q) for q in h) for h in hits] == want
+
+
 def test_near_boundary_marks_atoms_within_reach_of_open_faces_only():
     x = np.array([[4.6, 5.0, 5.0], [3.0, 5.0, 5.0], [0.2, 5.0, 5.0], [3.0, 9.7, 5.0], [3.0, 5.0, 0.1]])
     near = np.zeros(len(x), dtype=np.bool_)

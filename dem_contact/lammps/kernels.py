@@ -265,24 +265,100 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         fill[first[c]] = q + 1
         pairs[q, 0] = first[c]
         pairs[q, 1] = second[c]
+    return pairs, _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which)
+
+
+@njit(cache=True)
+def _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which):
+    """The wall pairs of ``candidates``, in the order of i, then wall and element: the unbounded elements
+    (``walls.contract.bounds``: planes, cylinders) against every local atom; each bounded one (a mesh's
+    triangle) listed in the cells that its box, grown by r_max + skin, overlaps, and tested against the
+    local atoms of those cells only."""
     nw = W.count(walls)
+    if nlocal == 0:
+        return np.empty((0, 3), dtype=np.int64)
+    d0 = dims[0]
+    d1 = dims[1]
+    d2 = dims[2]
+    ncell = d0 * d1 * d2
+    reach = rmax + skin
+    # bounded elements per cell (counting sort, in the order of wall and element)
+    counts = np.zeros(ncell + 1, dtype=np.int64)
+    c0 = np.empty(3, dtype=np.int64)
+    c1 = np.empty(3, dtype=np.int64)
+    listed = np.empty((0, 2), dtype=np.int64)
+    fill = counts[:0]
+    for sweep in range(2):
+        if sweep == 1:
+            for k in range(ncell):
+                counts[k + 1] += counts[k]
+            listed = np.empty((counts[ncell], 2), dtype=np.int64)
+            fill = counts[:ncell].copy()
+        for w in range(nw):
+            for e in range(W.elements(walls, w)):
+                b = W.bounds(walls, w, e)
+                if not (math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2])
+                        and math.isfinite(b[3]) and math.isfinite(b[4]) and math.isfinite(b[5])):
+                    continue
+                empty = False
+                for d in range(3):
+                    # (clamped as floats first: a box far from the atoms has no cell)
+                    f0 = min(max((b[d] - reach - lo[d]) / cell, -1.0), dims[d] + 1.0)
+                    f1 = min(max((b[d + 3] + reach - lo[d]) / cell, -1.0), dims[d] + 1.0)
+                    c0[d] = max(int(math.floor(f0)), 0)
+                    c1[d] = min(int(math.floor(f1)), dims[d] - 1)
+                    if c0[d] > c1[d]:
+                        empty = True
+                if empty:
+                    continue
+                for ax in range(c0[0], c1[0] + 1):
+                    for ay in range(c0[1], c1[1] + 1):
+                        for az in range(c0[2], c1[2] + 1):
+                            k = (ax * d1 + ay) * d2 + az
+                            if sweep == 0:
+                                counts[k + 1] += 1
+                            else:
+                                listed[fill[k], 0] = w
+                                listed[fill[k], 1] = e
+                                fill[k] += 1
     cap = nlocal * nw + 16
     while True:
         hits = np.empty((cap, 3), dtype=np.int64)
         kw = 0
         for i in range(nlocal):
+            k = which[i]
+            q = counts[k]
             for w in range(nw):
+                bounded = False
                 for e in range(W.elements(walls, w)):
+                    b = W.bounds(walls, w, e)
+                    if math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2]) \
+                            and math.isfinite(b[3]) and math.isfinite(b[4]) and math.isfinite(b[5]):
+                        bounded = True
+                        continue
                     if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
                         if kw < cap:
                             hits[kw, 0] = i
                             hits[kw, 1] = w
                             hits[kw, 2] = e
                         kw += 1
+                if not bounded:
+                    continue
+                while q < counts[k + 1] and listed[q, 0] < w:
+                    q += 1
+                while q < counts[k + 1] and listed[q, 0] == w:
+                    e = listed[q, 1]
+                    if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
+                        if kw < cap:
+                            hits[kw, 0] = i
+                            hits[kw, 1] = w
+                            hits[kw, 2] = e
+                        kw += 1
+                    q += 1
         if kw <= cap:
             break
         cap = kw
-    return pairs, hits[:kw]
+    return hits[:kw]
 
 
 @njit(inline="always", cache=True)
@@ -992,12 +1068,15 @@ def contact_buffers(n, params):
 @njit(cache=True)
 def behind_walls(nlocal, x, radius, walls):
     """int64[n_walls]: the local atoms whose centre is behind each wall (signed distance to its surface < 0:
-    a wall that faces away from the domain, or atoms placed through it)."""
+    a wall that faces away from the domain, or atoms placed through it). Only unbounded elements have a
+    back (``walls.contract.bounds``: a mesh's triangles are two-sided)."""
     nw = W.count(walls)
     count = np.zeros(max(nw, 1), dtype=np.int64)
     for i in range(nlocal):
         for w in range(nw):
             for e in range(W.elements(walls, w)):
+                if math.isfinite(W.bounds(walls, w, e)[0]):
+                    continue
                 s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
                 if s < 0.0:
                     count[w] += 1

@@ -128,6 +128,12 @@ def curvature(walls, w, e, cx, cy, cz):
 
 
 @njit(inline="always", cache=True)
+def bounds(walls, w, e):
+    """A cylinder is unbounded (infinite along its axis)."""
+    return -math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf
+
+
+@njit(inline="always", cache=True)
 def patch(walls, w, e, x, y, z):
     """A cylinder is one patch."""
     return 0

@@ -416,6 +416,19 @@ def patch(walls, w, e, x, y, z):
 
 
 @njit(inline="always", cache=True)
+def bounds(walls, w, e):
+    """The box of triangle e's vertices now."""
+    q = int(walls[w, FIRST]) + e
+    xlo = min(walls[q, _V], walls[q, _V + 3], walls[q, _V + 6])
+    ylo = min(walls[q, _V + 1], walls[q, _V + 4], walls[q, _V + 7])
+    zlo = min(walls[q, _V + 2], walls[q, _V + 5], walls[q, _V + 8])
+    xhi = max(walls[q, _V], walls[q, _V + 3], walls[q, _V + 6])
+    yhi = max(walls[q, _V + 1], walls[q, _V + 4], walls[q, _V + 7])
+    zhi = max(walls[q, _V + 2], walls[q, _V + 5], walls[q, _V + 8])
+    return xlo, ylo, zlo, xhi, yhi, zhi
+
+
+@njit(inline="always", cache=True)
 def place(walls, w, t):
     """The vertices at time t."""
     rot = rigid(walls, w, t)

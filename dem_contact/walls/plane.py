@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 from numba import njit
 
 from . import checks
@@ -89,6 +91,12 @@ def distance(walls, w, e, x, y, z):
 def curvature(walls, w, e, cx, cy, cz):
     """A plane is flat: 1 / R2 = 0."""
     return 0.0
+
+
+@njit(inline="always", cache=True)
+def bounds(walls, w, e):
+    """A plane is unbounded."""
+    return -math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf
 
 
 @njit(inline="always", cache=True)

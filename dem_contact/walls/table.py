@@ -33,7 +33,7 @@ KINDS = (
 )
 
 #: the contract's per-kind kernels, dispatched on the kind of the row
-KERNELS = ("contact", "distance", "curvature", "patch", "place")
+KERNELS = ("contact", "distance", "curvature", "patch", "bounds", "place")
 
 #: The user classes of the kinds, in the order of KINDS.
 CLASSES = tuple(getattr(mod, mod.CLASS) for _, mod in KINDS)
@@ -139,6 +139,7 @@ contact = _dispatch("contact", KINDS)
 distance = _dispatch("distance", KINDS)
 curvature = _dispatch("curvature", KINDS)
 patch = _dispatch("patch", KINDS)
+bounds = _dispatch("bounds", KINDS)
 place = _dispatch("place", KINDS)
 
 
