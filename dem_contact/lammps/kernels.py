@@ -283,6 +283,12 @@ def _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which
     ncell = d0 * d1 * d2
     reach = rmax + skin
     # bounded elements per cell (counting sort, in the order of wall and element)
+    # (a wall's elements are all bounded or all unbounded: ``walls.contract.bounds``)
+    bounded = np.zeros(nw, dtype=np.bool_)
+    for w in range(nw):
+        b = W.bounds(walls, w, 0)
+        bounded[w] = (math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2]) and math.isfinite(b[3])
+                      and math.isfinite(b[4]) and math.isfinite(b[5]))
     counts = np.zeros(ncell + 1, dtype=np.int64)
     c0 = np.empty(3, dtype=np.int64)
     c1 = np.empty(3, dtype=np.int64)
@@ -295,11 +301,10 @@ def _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which
             listed = np.empty((counts[ncell], 2), dtype=np.int64)
             fill = counts[:ncell].copy()
         for w in range(nw):
+            if not bounded[w]:
+                continue
             for e in range(W.elements(walls, w)):
                 b = W.bounds(walls, w, e)
-                if not (math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2])
-                        and math.isfinite(b[3]) and math.isfinite(b[4]) and math.isfinite(b[5])):
-                    continue
                 empty = False
                 for d in range(3):
                     # (clamped as floats first: a box far from the atoms has no cell)
@@ -329,20 +334,14 @@ def _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which
             k = which[i]
             q = counts[k]
             for w in range(nw):
-                bounded = False
-                for e in range(W.elements(walls, w)):
-                    b = W.bounds(walls, w, e)
-                    if math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2]) \
-                            and math.isfinite(b[3]) and math.isfinite(b[4]) and math.isfinite(b[5]):
-                        bounded = True
-                        continue
-                    if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
-                        if kw < cap:
-                            hits[kw, 0] = i
-                            hits[kw, 1] = w
-                            hits[kw, 2] = e
-                        kw += 1
-                if not bounded:
+                if not bounded[w]:
+                    for e in range(W.elements(walls, w)):
+                        if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
+                            if kw < cap:
+                                hits[kw, 0] = i
+                                hits[kw, 1] = w
+                                hits[kw, 2] = e
+                            kw += 1
                     continue
                 while q < counts[k + 1] and listed[q, 0] < w:
                     q += 1
@@ -1075,8 +1074,8 @@ def behind_walls(nlocal, x, radius, walls):
     for i in range(nlocal):
         for w in range(nw):
             for e in range(W.elements(walls, w)):
-                if math.isfinite(W.bounds(walls, w, e)[0]):
-                    continue
+                if math.isfinite(W.bounds(walls, w, 0)[0]):
+                    break
                 s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
                 if s < 0.0:
                     count[w] += 1
