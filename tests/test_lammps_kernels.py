@@ -84,7 +84,7 @@ def _bridge_step(S, g, step, all_atoms, save):
         np.zeros(K.N_ONSET), *buf[:12])
     assert stale == 0
     _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, _, _, forces, tforces, spins, torques = buf
-    K.relative_spins(g["omega"], body, m, spins)
+    K.relative_spins(g["omega"], body, m, spins, g["walls"], True)
     contact_forces_serial(t.normal_id, t.tangential_id, t.params, rows[:m], S["H"], normals[:m], overlaps[:m],
                           vel[:m], wn[:m], g["dt"], forces[:m], tforces[:m], src[:m], spins=spins[:m],
                           torques=torques[:m])

@@ -513,3 +513,37 @@ def test_a_floor_moving_along_its_normal_is_lammps_moving_region():
     assert ours[-1, 2] > 0.0011 + 5e-4 and np.abs(native[:, 9:]).max() > 0 and builds >= 1
     for a, b in ((ours[:, :3], native[:, :3]), (ours[:, 3:], native[:, 3:])):
         assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max()
+
+
+@pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra")
+@pytest.mark.parametrize("frame_spin", [True, False])
+def test_a_sphere_turning_with_a_turntable_feels_no_twist(frame_spin):
+    """A sphere pressed onto a floor that turns about the vertical through the sphere's centre, spinning
+    with it (no relative motion), in LAMMPS through the bridge, with the twist and rolling models (sds): no
+    torque acts and the spin is kept to rounding. Counting the floor as not turning (frame_spin=False,
+    LAMMPS's convention for its fix wall/gran) the twist model brakes the spin instead."""
+    from dem_contact.lammps import LammpsContacts, new_lammps
+
+    spin = 40.0
+    lmp = new_lammps()
+    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+                "create_atoms 1 single 0.0 0.0 0.00099", "set type 1 diameter 0.002",
+                f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix nve all nve/sphere",
+                "fix press all addforce 0.0 0.0 -0.05"):
+        lmp.command(cmd)
+    lmp.numpy.extract_atom("omega")[0] = (0.0, 0.0, spin)
+    lmp.command("pair_style none")
+    table = pair_table([Sphere(R, GLASS)], [Wall(GLASS)], mu=0.4, normal="hertz", tangential="mindlin_total",
+                       twist="sds", k_twist=1e-4, gamma_twist=1e-7, mu_twist=0.1 * R,
+                       rolling="sds", k_roll=1e-4, gamma_roll=1e-7, mu_roll=0.1 * R)
+    floor = PlaneWall.axis("z", 0.0, "lo", angular_velocity=(0.0, 0.0, spin), centre=(0.0, 0.0, 0.0))
+    bridge = LammpsContacts(lmp, table, [floor], slots=2, v_max=1.0, frame_spin=frame_spin)
+    bridge.run(400)
+    w = lmp.numpy.extract_atom("omega")[0].copy()
+    assert bridge.stats()["contacts"] == 1
+    lmp.close()
+    if frame_spin:
+        assert np.abs(w - (0.0, 0.0, spin)).max() <= 1e-12 * spin
+    else:
+        assert w[2] < 0.99 * spin

@@ -281,3 +281,23 @@ def test_a_floor_sliding_in_its_plane_is_lammps_wall_gran_shear():
     assert np.abs(ours - native).max() <= 1e-13 * np.abs(native).max()
     at_rest = _sliding_floor_run(False, 0.0)
     assert np.abs(at_rest - ours).max() > 1e-3 * np.abs(native).max()
+
+
+def test_the_batch_face_takes_spins_relative_to_a_turning_wall():
+    """A drum turning at W about its axis (CylinderWall, inside) and spheres spinning with it: the twist and
+    rolling laws get w - W = 0 (``relative_spins``), the contact frame turns with the mean spin
+    0.5 (w + W) . n (``frame_spin``), and at a wall at rest both are the sphere's own."""
+    from dem_contact.dem.walls import wall_contacts
+    from dem_contact.walls import CylinderWall
+
+    W = np.array([0.0, 3.0, 0.0])
+    drum = CylinderWall((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 0.05, inside=True, angular_velocity=tuple(W))
+    x = np.array([[0.0, 0.0, -0.0495], [0.0495, 0.01, 0.0]])
+    spins = np.array([[0.0, 3.0, 0.0], [1.0, -2.0, 0.5]])
+    for wall, w_wall in ((drum, W), (CylinderWall((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 0.05, inside=True), 0.0 * W)):
+        c = wall_contacts(x, np.full(2, 1e-3), [wall])
+        assert len(c) == 2
+        assert np.array_equal(c.relative_spins(spins), spins[c.sphere] - w_wall)
+        assert np.allclose(c.frame_spin(spins), 0.5 * np.einsum("ij,ij->i", spins[c.sphere] + w_wall, c.normals),
+                           rtol=0.0, atol=1e-15)
+    assert np.array_equal(wall_contacts(x, np.full(2, 1e-3), [drum]).relative_spins(spins)[0], [0.0, 0.0, 0.0])

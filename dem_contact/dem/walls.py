@@ -6,7 +6,8 @@ bridge computes, for any kind of wall of the table.
     rows = contacts.pair_rows(table, types)                  # table.wall_row[type, wall material]
     v = contacts.relative_velocities(velocities, spins)      # v_i + R_i w_i x n - v_wall
     contact_forces(nid, tid, table.params, rows, H, contacts.normals, contacts.overlaps, v,
-                   contacts.frame_spin(spins), dt, forces, tforces, history_rows=...)
+                   contacts.frame_spin(spins), dt, forces, tforces, history_rows=...,
+                   spins=contacts.relative_spins(spins), torques=...)   # (twist and rolling laws)
     loads = contacts.loads(forces)                            # each wall's force, torque, power
 
 Body 1 is the sphere, body 2 the wall: ``normals`` point from the sphere toward the wall, ``forces`` is the
@@ -103,7 +104,8 @@ class WallContacts:
     surface [m]; wall_velocities: float64[m, 3] the wall's velocity there [m/s]; curvature: float64[m]
     1 / R2 of the wall there [1/m] (0 for a plane: R* = R of the sphere, as ``pairs.pair_table``'s
     sphere-wall rows); radii: float64[m] the spheres' radii; centres: float64[n_walls, 3] each wall's centre of
-    rotation at this time (``loads`` takes torques about it)."""
+    rotation at this time (``loads`` takes torques about it); wall_spins: float64[m, 3] the wall's angular
+    velocity [rad/s] (its rigid motion)."""
 
     sphere: np.ndarray
     wall: np.ndarray
@@ -118,6 +120,7 @@ class WallContacts:
     radii: np.ndarray
     n_spheres: int
     centres: np.ndarray = None
+    wall_spins: np.ndarray = None
 
     def __len__(self):
         return len(self.overlaps)
@@ -136,11 +139,18 @@ class WallContacts:
         return out
 
     def frame_spin(self, spins) -> np.ndarray:
-        """float64[m]: wn = 0.5 w . n, the spin of the contact frame about the normal (the wall does not
-        turn); pass zeros instead to keep the history fixed in space (LAMMPS's granular models)."""
-        w = _points("spins", spins, self.n_spheres)[self.sphere]
+        """float64[m]: wn = 0.5 (w + W) . n, the spin of the contact frame about the normal (w the sphere's,
+        W the wall's angular velocity); pass zeros instead to keep the history fixed in space (LAMMPS's
+        granular models)."""
+        w = _points("spins", spins, self.n_spheres)[self.sphere] + self.wall_spins
         n = self.normals
         return 0.5 * (w[:, 0] * n[:, 0] + w[:, 1] * n[:, 1] + w[:, 2] * n[:, 2])
+
+    def relative_spins(self, spins) -> np.ndarray:
+        """float64[m, 3]: w - W, the sphere's angular velocity relative to the wall's (the ``spins`` input of
+        the twist and rolling laws: a sphere turning with a drum has none). Pass the spheres' own instead to
+        count the walls as not turning (LAMMPS's ``fix wall/gran``)."""
+        return _points("spins", spins, self.n_spheres)[self.sphere] - self.wall_spins
 
     def loads(self, forces, torques=None) -> "WallLoads":
         """Each wall's load from the contacts' forces on the spheres (float64[m, 3], as ``contact_forces``
@@ -241,4 +251,5 @@ def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     ids, keys, normals, overlaps, points, vel, curv = _find(x, r, rows)
     nw = len(mats)
     return WallContacts(ids[:, 0].copy(), ids[:, 1].copy(), ids[:, 2].copy(), mats[ids[:, 1]], keys, normals,
-                        overlaps, points, vel, curv, r[ids[:, 0]], len(x), rows[:nw, W.CENTRE:W.CENTRE + 3].copy())
+                        overlaps, points, vel, curv, r[ids[:, 0]], len(x), rows[:nw, W.CENTRE:W.CENTRE + 3].copy(),
+                        np.ascontiguousarray(rows[ids[:, 1], W.OMEGA:W.OMEGA + 3]))

@@ -477,9 +477,10 @@ class LammpsContacts:
     slots: history rows per atom; v_max: largest normal impact speed expected [m/s] (time-step check);
     skin: neighbour skin [m] (default 0.3 r_max); ghost_cutoff: LAMMPS's
     ghost cutoff [m] (default and minimum 2 r_max + skin); frame_spin: pass the spin of the contact
-    frame about the normal to the laws (False: zero, as LAMMPS's granular models do, for comparisons
-    with them); check_every: steps between the global checks of the history slots (each is a
-    collective reduction; an atom out of slots loses the contacts that do not fit until the run stops at
+    frame about the normal to the laws, and a wall's angular velocity to the twist and rolling laws (False:
+    zero, and walls that count as not turning, as LAMMPS's granular models do, for comparisons with
+    them); check_every: steps between the global checks of the history slots (each is a collective
+    reduction; an atom out of slots loses the contacts that do not fit until the run stops at
     the next check); huge_pages: back the history arrays with transparent huge pages (Linux; see
     ``_huge_pages``); prefix: of the LAMMPS ids this object creates (a restart file's histories are taken
     by a bridge of the same prefix); r_max: the largest radius of any atom [m] (default: the table's).
@@ -1415,7 +1416,7 @@ class LammpsContacts:
         else:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
-        K.relative_spins(omega, body, m, spins)
+        K.relative_spins(omega, body, m, spins, self.walls, self.frame_spin)
         self._law(t.normal_id, t.tangential_id, pc, prow[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
                   spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:

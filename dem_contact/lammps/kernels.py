@@ -772,7 +772,9 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
             wn[n] = 0.0
             if frame_spin:
-                wn[n] = 0.5 * (omega[i, 0] * nx + omega[i, 1] * ny + omega[i, 2] * nz)
+                # (the frame turns with the mean spin of the sphere and the wall)
+                wn[n] = 0.5 * ((omega[i, 0] + walls[w, W.OMEGA]) * nx + (omega[i, 1] + walls[w, W.OMEGA + 1]) * ny
+                               + (omega[i, 2] + walls[w, W.OMEGA + 2]) * nz)
         body[n, 0] = a
         body[n, 1] = b
         normals[n, 0] = nx
@@ -1084,13 +1086,18 @@ def behind_walls(nlocal, x, radius, walls):
 
 
 @njit(cache=True)
-def relative_spins(omega, body, m, spins):
-    """spins[k] = w1 - w2 of the m contacts (a wall does not turn): the input of the twist and rolling laws."""
+def relative_spins(omega, body, m, spins, walls, wall_spin):
+    """spins[k] = w1 - w2 of the m contacts, the input of the twist and rolling laws: body 2 a wall turns
+    with its rigid motion's angular velocity if ``wall_spin`` (else it counts as not turning, as LAMMPS's
+    ``fix wall/gran``)."""
     for k in range(m):
         a = body[k, 0]
         b = body[k, 1]
         for d in range(3):
-            spins[k, d] = omega[a, d] - (omega[b, d] if b >= 0 else 0.0)
+            if b >= 0:
+                spins[k, d] = omega[a, d] - omega[b, d]
+            else:
+                spins[k, d] = omega[a, d] - (walls[-b - 1, W.OMEGA + d] if wall_spin else 0.0)
 
 
 @njit(cache=True)
