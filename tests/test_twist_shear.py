@@ -179,3 +179,30 @@ def test_bad_input_is_refused():
         law(z, z, np.array([0.0, np.nan, 0.0]))
     with pytest.raises(InputError):
         twist_shear_path(G_STAR, G_C, 0.0, R, N, A, z, z, z)
+
+
+def test_the_path_command_runs_the_coupled_law():
+    """``dem-contact path --shape shear-twist --coupled``: the command's forces and moment on body 1 (its
+    Hertz N and a, the scene's moduli) against the stored BEM history of the same path, within the law's
+    0.03 mu N and 0.03 mu N a; a path whose overlap varies, or --coupled with another law, is refused (exit 2)."""
+    import json
+    import subprocess
+    import sys
+
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dem_contact", "path", *a], capture_output=True,  # noqa: E731
+                                    text=True, timeout=600)
+    r = run("--shape", "shear-twist", "--coupled", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    _, (Nr, Txr, Tyr, Mzr) = read_twist_reference(BEM / "shear-twist_0.6_n128_s400.csv")
+    assert np.allclose(out["N"], N, rtol=1e-12)
+    assert np.max(np.hypot(np.array(out["Tx"]) - Txr, np.array(out["Ty"]) - Tyr)) < 0.03 * MU * N
+    assert np.max(np.abs(np.array(out["Mz"]) - Mzr)) < 0.03 * MU * N * A
+    for args in (("--shape", "shear-twist", "--coupled", "--reference"), ("--shape", "twist-cycle", "--coupled",
+                                                                          "--twist", "sds")):
+        r = run(*args)
+        assert r.returncode == 2 and "--coupled" in r.stderr and "Traceback" not in r.stderr
+    from dem_contact.studies.paths import coupled_path
+
+    with pytest.raises(InputError, match="constant overlap"):
+        coupled_path(chart_scene(), [1e-5, 2e-5], [0.0, 1e-7], [0.0, 0.0], [0.0, 0.0])

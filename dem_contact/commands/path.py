@@ -70,6 +70,10 @@ def add_options(p):
                    help=f"twist law: the moment about the normal from the twist (default: the library's, "
                         f"{table.DEFAULTS['twist']!r}; 'none' ignores the twist, Mz = 0: a path that twists is "
                         f"refused unless a law is named)")
+    s.add_argument("--coupled", action="store_true",
+                   help="twist and shear from one local state (laws.twist_shear: the cells of the default "
+                        "tangential law and of deresiewicz sharing the Coulomb limit at points of each ring; "
+                        "Hertz, constant overlap only)")
     s.add_argument("--reference", action="store_true",
                    help="use the boundary-element reference (exact 3D Cattaneo-Mindlin with the twist, slow) "
                         "instead of a law")
@@ -121,13 +125,16 @@ def _scene(args, delta_max: float):
 
 def run(args) -> int:
     from ..reference.paths import DEFAULT_SIZES, scene_path
-    from ..studies.paths import read_path_csv, reference_path, run_path, write_path_csv
+    from ..studies.paths import coupled_path, read_path_csv, reference_path, run_path, write_path_csv
 
     # output paths first: nothing is computed for a file that cannot be written
     if args.csv:
         check_output_file("--csv", args.csv)
     if args.plot:
         check_output_file("--plot", args.plot, (".png",))
+    if args.coupled and (args.reference or args.tangential is not None or args.twist is not None):
+        raise InputError("--coupled is a law of its own (the default tangential law and deresiewicz coupled): "
+                         "give it without --reference, --tangential and --twist")
     if args.reference and args.tangential is not None:
         raise InputError("give either --reference or --tangential, not both")
     if args.reference and args.twist is not None:
@@ -153,7 +160,7 @@ def run(args) -> int:
     delta, ux, uy = path[:3]
     twist = path[3] if len(path) == 4 else np.zeros(delta.size)
     twists = bool(np.any(twist != 0.0))
-    if twists and not args.reference and scene.twist == "none" and args.twist is None:
+    if twists and not (args.reference or args.coupled) and scene.twist == "none" and args.twist is None:
         source = f"the {args.shape} path" if named else f"the twist column of {args.path_csv}"
         raise InputError(f"{source} twists the contact, but the twist law is 'none' (no moment: Mz = 0); "
                          f"choose --twist LAW (one of: {', '.join(table.ids('twist'))}; --twist none to accept "
@@ -161,6 +168,9 @@ def run(args) -> int:
     if args.reference:
         N, Tx, Ty, Mz = reference_path(scene, delta, ux, uy, twist, n_across=args.n_across)
         law = f"boundary-element reference ({args.n_across} elements across)"
+    elif args.coupled:
+        N, Tx, Ty, Mz = coupled_path(scene, delta, ux, uy, twist)
+        law = f"{scene.normal} / twist and shear coupled (laws.twist_shear)"
     else:
         from ..impacts.sweep import compile_notice
 

@@ -105,6 +105,35 @@ def path_scene(scene: Scene, delta_max: float) -> Scene:
     return scene.replace(mdr_springs=scene.mdr_springs, mdr_max_radius=1.05 * a)
 
 
+def coupled_path(scene: Scene, delta, ux, uy, twist):
+    """(N, Tx, Ty, Mz) [N, N m] along a path at a constant overlap, as ``run_path``, with the tangential
+    force and the moment of one local state: ``laws.twist_shear.twist_shear_path`` (the cells of the
+    default tangential law and of the exact twist law ``deresiewicz`` sharing the Coulomb limit at points
+    of each ring), for a Hertz contact (the scene's materials, mu and R*). The path starts from rest before
+    its first row. InputError for another normal law or an overlap that varies or is not > 0 (the law is
+    for a constant normal force)."""
+    from ..laws.twist.deresiewicz import twist_modulus
+    from ..laws.twist_shear import twist_shear_path
+
+    if not isinstance(scene, Scene):
+        raise InputError("scene must be a Scene")
+    if scene.normal != "hertz":
+        raise InputError(f"the coupled twist and shear law is for a Hertz contact (normal 'hertz'), got "
+                         f"{scene.normal!r}")
+    delta, ux, uy, tw = check_path(delta, ux, uy, scene, twist=twist)
+    if not (delta[0] > 0.0 and np.all(delta == delta[0])):
+        raise InputError("the coupled twist and shear law needs a constant overlap > 0 along the path (it holds "
+                         "the normal force constant); use a law or the reference for a path that loads or unloads")
+    pr = scene.pair
+    a = math.sqrt(pr.R_star * delta[0])
+    N = 4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * delta[0] ** 1.5         # Hertz (Johnson 1985, eq. 4.23)
+    z = np.zeros(1)
+    Tx, Ty, M, _ = twist_shear_path(pr.G_star, twist_modulus(scene.sphere, scene.body2), scene.mu, pr.R_star, N, a,
+                                    np.concatenate([z, ux]), np.concatenate([z, uy]), np.concatenate([z, tw]))
+    # (the law's force and moment resist the motion of body 1: the path's are those on body 1, as run_path's)
+    return np.full(delta.size, N), -Tx[1:], -Ty[1:], -M[1:]
+
+
 def run_path(scene: Scene, delta, ux, uy, twist=None, *, dt: float = 1.0):
     """Forces of the scene's laws along the path: (N, Tx, Ty), float arrays [N], one per row; with
     ``twist`` [rad] per row, (N, Tx, Ty, Mz), Mz the moment on body 1 about the normal [N m] of the scene's
