@@ -36,6 +36,11 @@ def run_cli(capsys, *args):
     (["impact", "--series"], "--series"),
     (["sweep", "--mu", "0", "--no-progress"], "--mu"),
     (["sweep", "--plot", "a.png", "--no-plot"], "--no-plot"),
+    (["impact3d", "--k-twist", "5"], "k_twist"),
+    (["impact3d", "--twist", "sds"], "k_twist"),
+    (["impact3d", "--rolling", "sds", "--k-roll", "-1", "--gamma-roll", "0", "--mu-roll", "0"], "k_roll"),
+    (["path", "--shape", "twist-cycle", "--twist", "marshall", "--mu-twist", "1e-3"], "mu_twist"),
+    (["path", "--shape", "twist-cycle", "--reference", "--k-twist", "1"], "--k-twist"),
     # magnitudes outside what double precision computes
     (["impact", "--vn", "1e-300"], "vn"),
     (["impact", "--vn", "1e300"], "vn"),

@@ -41,6 +41,12 @@ def test_impact_and_impact3d(cli):
     assert abs(r3["e_n"] - r["e_n"]) < 1e-4           # the planar impact seen in 3D
     p = _strict(cli("impact", "--case", "PE", "--vn", "2", "--json"))
     assert 0.5 < p["e_n"] < 0.95                       # Thornton's plastic contact dissipates
+    # spin about the normal: kept without a twist law, braked by the exact one (a twist dissipates)
+    free = _strict(cli("impact3d", "--angle", "30", "--spin-vector", "0", "0", "300", "--json"))
+    twisted = _strict(cli("impact3d", "--angle", "30", "--spin-vector", "0", "0", "300", "--twist", "deresiewicz",
+                          "--json"))
+    assert free["spin_r"][2] == 300.0 and 0.0 < twisted["spin_r"][2] < 299.0
+    assert twisted["model"]["twist_law"] == "deresiewicz"
 
 
 @pytest.mark.slow

@@ -123,6 +123,38 @@ def scene_from_args(args, v_ref: float | None = None) -> Scene:
                         **{k: getattr(args, k) for k in SCENE_KEYWORDS})
 
 
+#: The twist and rolling options (group "twist and rolling"), each a ``Scene`` argument of its name: the
+#: laws (default: the library's, 'none') and the coefficients of LAMMPS's engine models.
+TORQUE_OPTIONS = (
+    _option("--twist", choices=["none", "marshall", "sds", "deresiewicz"], default=None,
+            help="twist law, the moment about the normal: deresiewicz (exact for Hertz contacts: Lubkin "
+                 "1951, Deresiewicz 1954), LAMMPS's marshall or sds (default none: no moment)"),
+    _option("--k-twist", type=float, default=None, help="twist sds: spring [N m/rad]"),
+    _option("--gamma-twist", type=float, default=None, help="twist sds: dashpot [N m s/rad]"),
+    _option("--mu-twist", type=float, default=None, help="twist sds: Coulomb limit per unit normal force [m]"),
+    _option("--rolling", choices=["none", "sds"], default=None,
+            help="rolling resistance, LAMMPS's engine model sds (a calibration of shape and roughness, not "
+                 "contact mechanics of smooth spheres; default none)"),
+    _option("--k-roll", type=float, default=None, help="rolling sds: spring [N/m]"),
+    _option("--gamma-roll", type=float, default=None, help="rolling sds: dashpot [N s/m]"),
+    _option("--mu-roll", type=float, default=None, help="rolling sds: Coulomb limit per unit normal force"),
+)
+
+
+def add_torque_options(p, rolling: bool = True):
+    """The options of TORQUE_OPTIONS (group "twist and rolling"); rolling=False: the twist ones only."""
+    g = p.add_argument_group("twist and rolling (the moment about the normal; rolling resistance)")
+    for flag, kwargs in TORQUE_OPTIONS:
+        if rolling or "roll" not in flag:
+            g.add_argument(flag, **kwargs)
+
+
+def torque_laws(args) -> dict:
+    """The Scene arguments that the twist and rolling options given set (none: {})."""
+    return {dest(flag): getattr(args, dest(flag)) for flag, _ in TORQUE_OPTIONS
+            if getattr(args, dest(flag), None) is not None}
+
+
 def time_options(args) -> dict:
     """The keyword arguments of an impact that the time-step options give."""
     return {dest(flag): getattr(args, dest(flag)) for flag, _ in TIME_OPTIONS}
@@ -193,7 +225,8 @@ def dump_json(obj) -> str:
 def model_line(r) -> str:
     """The first line of an impact's text report: laws, friction, scheme and time step of result ``r``."""
     m = r.model
-    return (f"model: normal {m['normal_law']}, tangential {m['tangential_law']}, mu = {m['mu']:g}, "
+    torque = "".join(f", {k} {m[f'{k}_law']}" for k in ("twist", "rolling") if m.get(f"{k}_law", "none") != "none")
+    return (f"model: normal {m['normal_law']}, tangential {m['tangential_law']}{torque}, mu = {m['mu']:g}, "
             f"kappa = {m['kappa']:.4f}; {r.settings['scheme']} scheme, {r.settings['steps_per_contact']:.4g} "
             f"steps per contact (dt = {r.dt:.4g} s)")
 

@@ -10,8 +10,8 @@ import warnings
 from ..errors import InputError
 from ..impacts.impact3d import impact3d, sweep3d
 from ..impacts.sweep import compile_notice, merge_warnings
-from .common import (add_scene_options, check_output_file, dump_json, model_line, print_energy_and_warnings,
-                     scene_from_args, time_options)
+from .common import (add_scene_options, add_torque_options, check_output_file, dump_json, model_line,
+                     print_energy_and_warnings, scene_from_args, time_options, torque_laws)
 from .sweep import parse_angles
 
 ORDER = 2
@@ -34,6 +34,7 @@ DESCRIPTION = ("Simulate a 3D impact of a sphere on a flat wall with a tangentia
 
 def add_options(p):
     add_scene_options(p)
+    add_torque_options(p)
     g = p.add_argument_group("incident motion")
     g.add_argument("--vt", type=float, nargs=2, default=None, metavar=("VX", "VY"),
                    help="tangential velocity of the centre [m/s] (default: from --angle)")
@@ -57,6 +58,8 @@ def add_options(p):
 
 def run(args) -> int:
     scene = scene_from_args(args)
+    if torque_laws(args):
+        scene = scene.replace(**torque_laws(args))
     given = [name for name, v in (("--vt", args.vt), ("--angle", args.angle), ("--angles", args.angles))
              if v is not None]
     if len(given) > 1:

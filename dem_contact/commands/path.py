@@ -70,6 +70,11 @@ def add_options(p):
                    help=f"twist law: the moment about the normal from the twist (default: the library's, "
                         f"{table.DEFAULTS['twist']!r}; 'none' ignores the twist, Mz = 0: a path that twists is "
                         f"refused unless a law is named)")
+    from .common import TORQUE_OPTIONS
+
+    for flag, kwargs in TORQUE_OPTIONS:
+        if flag in ("--k-twist", "--gamma-twist", "--mu-twist"):
+            s.add_argument(flag, **kwargs)
     s.add_argument("--coupled", action="store_true",
                    help="twist and shear from one local state (laws.twist_shear: the cells of the default "
                         "tangential law and of deresiewicz sharing the Coulomb limit at points of each ring; "
@@ -115,6 +120,7 @@ def _scene(args, delta_max: float):
     laws = {} if args.tangential is None else {"tangential": args.tangential}
     if args.twist is not None:
         laws["twist"] = args.twist
+    laws.update({k: getattr(args, k) for k in ("k_twist", "gamma_twist", "mu_twist") if getattr(args, k) is not None})
     if args.tangential == "mdr":
         # a path has no impact speed to place the springs by: they cover the contact radius of its largest
         # overlap (as studies.paths.path_scene does)
@@ -132,9 +138,13 @@ def run(args) -> int:
         check_output_file("--csv", args.csv)
     if args.plot:
         check_output_file("--plot", args.plot, (".png",))
-    if args.coupled and (args.reference or args.tangential is not None or args.twist is not None):
+    coefficients = [f"--{k.replace('_', '-')}" for k in ("k_twist", "gamma_twist", "mu_twist")
+                    if getattr(args, k) is not None]
+    if args.coupled and (args.reference or args.tangential is not None or args.twist is not None or coefficients):
         raise InputError("--coupled is a law of its own (the default tangential law and deresiewicz coupled): "
-                         "give it without --reference, --tangential and --twist")
+                         "give it without --reference, --tangential, --twist and the twist coefficients")
+    if args.reference and coefficients:
+        raise InputError(f"{', '.join(coefficients)} cannot act on --reference (it solves the twist exactly)")
     if args.reference and args.tangential is not None:
         raise InputError("give either --reference or --tangential, not both")
     if args.reference and args.twist is not None:
