@@ -26,21 +26,21 @@ from numba import njit
 
 from ..errors import InputError
 from ..walls import table as W
+from ..walls.search import near_elements
 
 
 @njit(cache=True)
 def _find(x, radius, walls):
     """The sphere-wall contacts (overlap > 0), in the order of the spheres, then the walls, then their
-    elements."""
-    n = x.shape[0]
-    nw = W.count(walls)
+    elements (the elements near each sphere: ``walls.search.near_elements``)."""
+    near = near_elements(x.shape[0], x, radius, walls, 0.0)
+    gaps = np.empty((len(near), 4))
     m = 0
-    for i in range(n):
-        for w in range(nw):
-            for e in range(W.elements(walls, w)):
-                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
-                if radius[i] - s > 0.0:
-                    m += 1
+    for q in range(len(near)):
+        i, w, e = near[q, 0], near[q, 1], near[q, 2]
+        gaps[q, 0], gaps[q, 1], gaps[q, 2], gaps[q, 3] = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+        if radius[i] - gaps[q, 0] > 0.0:
+            m += 1
     ids = np.empty((m, 3), dtype=np.int64)
     keys = np.empty(m)
     normals = np.empty((m, 3))
@@ -49,30 +49,29 @@ def _find(x, radius, walls):
     vel = np.empty((m, 3))
     curv = np.empty(m)
     k = 0
-    for i in range(n):
-        for w in range(nw):
-            for e in range(W.elements(walls, w)):
-                s, nx, ny, nz = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
-                delta = radius[i] - s
-                if not delta > 0.0:
-                    continue
-                cx = x[i, 0] + s * nx
-                cy = x[i, 1] + s * ny
-                cz = x[i, 2] + s * nz
-                ids[k, 0] = i
-                ids[k, 1] = w
-                ids[k, 2] = e
-                keys[k] = W.history_key(walls, w, e, x[i, 0], x[i, 1], x[i, 2])
-                normals[k, 0] = nx
-                normals[k, 1] = ny
-                normals[k, 2] = nz
-                overlaps[k] = delta
-                points[k, 0] = cx
-                points[k, 1] = cy
-                points[k, 2] = cz
-                vel[k, 0], vel[k, 1], vel[k, 2] = W.velocity(walls, w, cx, cy, cz)
-                curv[k] = W.curvature(walls, w, e, cx, cy, cz)
-                k += 1
+    for q in range(len(near)):
+        i, w, e = near[q, 0], near[q, 1], near[q, 2]
+        s, nx, ny, nz = gaps[q, 0], gaps[q, 1], gaps[q, 2], gaps[q, 3]
+        delta = radius[i] - s
+        if not delta > 0.0:
+            continue
+        cx = x[i, 0] + s * nx
+        cy = x[i, 1] + s * ny
+        cz = x[i, 2] + s * nz
+        ids[k, 0] = i
+        ids[k, 1] = w
+        ids[k, 2] = e
+        keys[k] = W.history_key(walls, w, e, x[i, 0], x[i, 1], x[i, 2])
+        normals[k, 0] = nx
+        normals[k, 1] = ny
+        normals[k, 2] = nz
+        overlaps[k] = delta
+        points[k, 0] = cx
+        points[k, 1] = cy
+        points[k, 2] = cz
+        vel[k, 0], vel[k, 1], vel[k, 2] = W.velocity(walls, w, cx, cy, cz)
+        curv[k] = W.curvature(walls, w, e, cx, cy, cz)
+        k += 1
     return ids, keys, normals, overlaps, points, vel, curv
 
 
@@ -230,7 +229,8 @@ def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     """The contacts of spheres (centres float64[n, 3] [m], radii float64[n] > 0 [m]) with ``walls`` (a list
     of walls of ``dem_contact.walls``: ``PlaneWall``, ``CylinderWall``, ``MeshWall``) at ``time`` [s] (the
     walls' poses are those at time 0), as the batch kernels take them (``WallContacts``). Checked:
-    ``InputError`` naming the parameter and its valid range. O(n x number of wall elements)."""
+    ``InputError`` naming the parameter and its valid range. A mesh's triangles are binned into cells over the
+    centres (``walls.search``): the cost grows with the spheres and the contacts, not with n x triangles."""
     x = _points("centres", centres)
     try:
         r = np.array(radii, dtype=np.float64)

@@ -60,6 +60,7 @@ from ..laws.dispatch import uses_rate
 from ..laws.slots import P_DELTA_Y, P_F_Y, P_MSTAR, P_RSTAR
 from ..laws.vector import V_N
 from ..walls import table as W
+from ..walls.search import near_elements
 
 # columns of the per-atom statistics array (d2 property, written for local atoms every step)
 ST_PAIRS = 0     # sphere-sphere contacts of the atom
@@ -175,7 +176,7 @@ _AHEAD = np.array([[1, -1], [1, 0], [1, 1], [0, 1]], dtype=np.int64)
 def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
     """Verlet lists of the local atoms: sphere pairs (i local; j local with a higher atom id, or ghost) closer
     than r_i + r_j + skin, in the order of i, and wall pairs (i, w, element e) whose surface is closer to
-    the centre than r_i + skin. walls: the packed rows (``walls.table.pack``). Valid while no atom has moved
+    the centre than r_i + skin (``walls.search.near_elements``: a mesh's triangles binned into cells). walls: the packed rows (``walls.table.pack``). Valid while no atom has moved
     more than skin / 2 and the local and ghost atoms keep their indices. Returns (pairs int64[m, 2],
     wall_pairs int64[k, 3]).
 
@@ -265,99 +266,7 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         fill[first[c]] = q + 1
         pairs[q, 0] = first[c]
         pairs[q, 1] = second[c]
-    return pairs, _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which)
-
-
-@njit(cache=True)
-def _wall_candidates(nlocal, x, radius, walls, rmax, skin, lo, dims, cell, which):
-    """The wall pairs of ``candidates``, in the order of i, then wall and element: the unbounded elements
-    (``walls.contract.bounds``: planes, cylinders) against every local atom; each bounded one (a mesh's
-    triangle) listed in the cells that its box, grown by r_max + skin, overlaps, and tested against the
-    local atoms of those cells only."""
-    nw = W.count(walls)
-    if nlocal == 0:
-        return np.empty((0, 3), dtype=np.int64)
-    d0 = dims[0]
-    d1 = dims[1]
-    d2 = dims[2]
-    ncell = d0 * d1 * d2
-    reach = rmax + skin
-    # bounded elements per cell (counting sort, in the order of wall and element)
-    # (a wall's elements are all bounded or all unbounded: ``walls.contract.bounds``)
-    bounded = np.zeros(nw, dtype=np.bool_)
-    for w in range(nw):
-        b = W.bounds(walls, w, 0)
-        bounded[w] = (math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2]) and math.isfinite(b[3])
-                      and math.isfinite(b[4]) and math.isfinite(b[5]))
-    counts = np.zeros(ncell + 1, dtype=np.int64)
-    c0 = np.empty(3, dtype=np.int64)
-    c1 = np.empty(3, dtype=np.int64)
-    listed = np.empty((0, 2), dtype=np.int64)
-    fill = counts[:0]
-    for sweep in range(2):
-        if sweep == 1:
-            for k in range(ncell):
-                counts[k + 1] += counts[k]
-            listed = np.empty((counts[ncell], 2), dtype=np.int64)
-            fill = counts[:ncell].copy()
-        for w in range(nw):
-            if not bounded[w]:
-                continue
-            for e in range(W.elements(walls, w)):
-                b = W.bounds(walls, w, e)
-                empty = False
-                for d in range(3):
-                    # (clamped as floats first: a box far from the atoms has no cell)
-                    f0 = min(max((b[d] - reach - lo[d]) / cell, -1.0), dims[d] + 1.0)
-                    f1 = min(max((b[d + 3] + reach - lo[d]) / cell, -1.0), dims[d] + 1.0)
-                    c0[d] = max(int(math.floor(f0)), 0)
-                    c1[d] = min(int(math.floor(f1)), dims[d] - 1)
-                    if c0[d] > c1[d]:
-                        empty = True
-                if empty:
-                    continue
-                for ax in range(c0[0], c1[0] + 1):
-                    for ay in range(c0[1], c1[1] + 1):
-                        for az in range(c0[2], c1[2] + 1):
-                            k = (ax * d1 + ay) * d2 + az
-                            if sweep == 0:
-                                counts[k + 1] += 1
-                            else:
-                                listed[fill[k], 0] = w
-                                listed[fill[k], 1] = e
-                                fill[k] += 1
-    cap = nlocal * nw + 16
-    while True:
-        hits = np.empty((cap, 3), dtype=np.int64)
-        kw = 0
-        for i in range(nlocal):
-            k = which[i]
-            q = counts[k]
-            for w in range(nw):
-                if not bounded[w]:
-                    for e in range(W.elements(walls, w)):
-                        if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
-                            if kw < cap:
-                                hits[kw, 0] = i
-                                hits[kw, 1] = w
-                                hits[kw, 2] = e
-                            kw += 1
-                    continue
-                while q < counts[k + 1] and listed[q, 0] < w:
-                    q += 1
-                while q < counts[k + 1] and listed[q, 0] == w:
-                    e = listed[q, 1]
-                    if W.distance(walls, w, e, x[i, 0], x[i, 1], x[i, 2]) < radius[i] + skin:
-                        if kw < cap:
-                            hits[kw, 0] = i
-                            hits[kw, 1] = w
-                            hits[kw, 2] = e
-                        kw += 1
-                    q += 1
-        if kw <= cap:
-            break
-        cap = kw
-    return hits[:kw]
+    return pairs, near_elements(nlocal, x, radius, walls, skin)
 
 
 @njit(inline="always", cache=True)
