@@ -301,3 +301,25 @@ def test_the_batch_face_takes_spins_relative_to_a_turning_wall():
         assert np.allclose(c.frame_spin(spins), 0.5 * np.einsum("ij,ij->i", spins[c.sphere] + w_wall, c.normals),
                            rtol=0.0, atol=1e-15)
     assert np.array_equal(wall_contacts(x, np.full(2, 1e-3), [drum]).relative_spins(spins)[0], [0.0, 0.0, 0.0])
+
+
+def test_walls_packed_once_give_the_contacts_of_the_list():
+    """wall_contacts with the (rows, materials) of walls.pack, packed once and used at several times, gives
+    the contacts of the list of walls at each time (a turning mesh and a plane); anything else given as
+    packed walls is refused."""
+    from dem_contact.dem.walls import wall_contacts
+    from dem_contact.walls import MeshWall, PlaneWall, pack
+
+    v = np.array([[-0.01, -0.01, 0.0], [0.01, -0.01, 0.0], [0.01, 0.01, 0.0], [-0.01, 0.01, 0.0]])
+    walls = [MeshWall(v, np.array([[0, 1, 2], [0, 2, 3]]), angular_velocity=(0.0, 0.0, 2.0), centre=(0, 0, 0)),
+             PlaneWall.axis("x", -0.005, "lo", velocity=(0.01, 0.0, 0.0))]
+    rng = np.random.default_rng(4)
+    x = np.column_stack([rng.uniform(-0.008, 0.008, (40, 2)), rng.uniform(0.0002, 0.0015, 40)])
+    r = np.full(40, 1e-3)
+    packed = pack(walls)
+    for t in (0.0, 0.3, 0.1):
+        a, b = wall_contacts(x, r, walls, time=t), wall_contacts(x, r, packed, time=t)
+        assert len(a) > 0 and np.array_equal(a.keys, b.keys) and np.array_equal(a.element, b.element)
+        assert np.array_equal(a.normals, b.normals) and np.array_equal(a.wall_velocities, b.wall_velocities)
+    with pytest.raises(InputError, match="walls.pack"):
+        wall_contacts(x, r, (packed[0][:, :5].copy(), packed[1]))

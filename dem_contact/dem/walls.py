@@ -227,8 +227,10 @@ def check_curvatures(table, material, curvature, wall):
 
 def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     """The contacts of spheres (centres float64[n, 3] [m], radii float64[n] > 0 [m]) with ``walls`` (a list
-    of walls of ``dem_contact.walls``: ``PlaneWall``, ``CylinderWall``, ``MeshWall``) at ``time`` [s] (the
-    walls' poses are those at time 0), as the batch kernels take them (``WallContacts``). Checked:
+    of walls of ``dem_contact.walls``: ``PlaneWall``, ``CylinderWall``, ``MeshWall``; or the (rows,
+    materials) that ``walls.pack`` returned for them, packed once for every step: packing a mesh of 5,000
+    triangles takes about 0.15 s) at ``time`` [s] (the walls' poses are those at time 0), as the batch
+    kernels take them (``WallContacts``). Checked:
     ``InputError`` naming the parameter and its valid range. A mesh's triangles are binned into cells over the
     centres (``walls.search``): the cost grows with the spheres and the contacts, not with n x triangles."""
     x = _points("centres", centres)
@@ -242,7 +244,14 @@ def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     if bad.any():
         k = int(np.argmax(bad))
         raise InputError(f"radii[{k}] = {float(r[k])!r} must be finite and > 0 [m]")
-    rows, mats = W.pack(walls)
+    if isinstance(walls, tuple) and len(walls) == 2 and all(isinstance(a, np.ndarray) for a in walls):
+        rows, mats = walls
+        if not (rows.ndim == 2 and rows.shape[1] == W.ROW_SIZE and rows.dtype == np.float64
+                and rows.flags.c_contiguous and mats.ndim == 1 and mats.dtype == np.int64
+                and len(mats) == W.count(rows) <= rows.shape[0]):
+            raise InputError("walls given packed must be the (rows, materials) that walls.pack returned")
+    else:
+        rows, mats = W.pack(walls)
     t = float(time)
     if not math.isfinite(t):
         raise InputError(f"time must be finite [s], got {time!r}")
