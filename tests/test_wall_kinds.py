@@ -362,6 +362,18 @@ def test_stl_files_ascii_and_binary_and_the_hopper():
     assert patches.max() + 1 < len(t)                                     # quads of two coplanar triangles
 
 
+def _pressed_sphere(lmp, at):
+    """One glass sphere of radius R at ``at`` ("x y z" [m]) in a LAMMPS box of 2 cm, pressed down with
+    0.05 N, integrated by nve/sphere at a 2 us step."""
+    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+                f"create_atoms 1 single {at}", f"set type 1 diameter {2 * R!r}",
+                f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix nve all nve/sphere",
+                "fix press all addforce 0.0 0.0 -0.05"):
+        lmp.command(cmd)
+    return lmp
+
+
 # ------------------------------------------------------------------------------------------------ LAMMPS
 
 def _floor_run(mesh):
@@ -370,13 +382,7 @@ def _floor_run(mesh):
     plane."""
     from dem_contact.lammps import LammpsContacts, new_lammps
 
-    lmp = new_lammps()
-    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
-                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
-                "create_atoms 1 single -0.0031 -0.0025 0.0009874", "set type 1 diameter 0.002",
-                f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix nve all nve/sphere",
-                "fix press all addforce 0.0 0.0 -0.05"):
-        lmp.command(cmd)
+    lmp = _pressed_sphere(new_lammps(), "-0.0031 -0.0025 0.0009874")
     lmp.numpy.extract_atom("v")[0] = (5.0, 4.0, 0.0)
     lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
     lmp.command("pair_style none")
@@ -525,13 +531,7 @@ def test_a_sphere_turning_with_a_turntable_feels_no_twist(frame_spin):
     from dem_contact.lammps import LammpsContacts, new_lammps
 
     spin = 40.0
-    lmp = new_lammps()
-    for cmd in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
-                "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
-                "create_atoms 1 single 0.0 0.0 0.00099", "set type 1 diameter 0.002",
-                f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix nve all nve/sphere",
-                "fix press all addforce 0.0 0.0 -0.05"):
-        lmp.command(cmd)
+    lmp = _pressed_sphere(new_lammps(), "0.0 0.0 0.00099")
     lmp.numpy.extract_atom("omega")[0] = (0.0, 0.0, spin)
     lmp.command("pair_style none")
     table = pair_table([Sphere(R, GLASS)], [Wall(GLASS)], mu=0.4, normal="hertz", tangential="mindlin_total",
