@@ -142,18 +142,19 @@ def _roof(angle_deg=10.0, L=0.01):
     return v, np.array([[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]]), h
 
 
-def test_a_sphere_sliding_over_a_convex_ridge_keeps_its_history():
-    """A sphere pressed onto a roof (10 degrees each side) slides slowly across the ridge, 0.1 um per step
-    (the Mindlin spring takes about 50 steps to reach mu N): one contact and one history key all the way
-    (a face, the edge, the other face), so the tangential force, at mu N, follows the turning normal with
-    no step in its magnitude (with the history restarted on the other face it would fall to nearly zero
-    and take some 50 steps to come back). Seen from below the ridge is concave: the two faces are keyed
-    apart there."""
-    v, t, h = _roof()
+@pytest.mark.parametrize("angle", [10.0, 60.0])
+def test_a_sphere_sliding_over_a_convex_ridge_keeps_its_history(angle):
+    """A sphere pressed onto a roof (10 or 60 degrees each side: normals 20 or 120 degrees apart) slides
+    slowly across the ridge, 0.16 or 0.39 um per step (the Mindlin spring takes some 10 to 30 steps to
+    reach mu N): one contact and one history key all the way (a face, the edge, the other face), so the
+    tangential force, at mu N, follows the turning normal with no step in its magnitude (with the history
+    restarted it would fall to nearly zero and take those steps to come back). Seen from below the ridge is
+    concave: the two faces are keyed apart there."""
+    v, t, h = _roof(angle)
     mesh = MeshWall(v, t)
-    a = math.radians(10.0)
-    xs = np.linspace(-3e-4, 3e-4, 6001)
+    a = math.radians(angle)
     lift = 0.99 * R
+    xs = np.linspace(-1.0, 1.0, 6001) * (lift * math.sin(a) + 3e-4)        # face, edge, face
     z = np.where(np.abs(xs) > lift * math.sin(a), h - np.abs(xs) * math.tan(a) + lift / math.cos(a),
                  h + np.sqrt(np.maximum(lift ** 2 - xs ** 2, 0.0)))
     path = np.column_stack([xs, np.zeros_like(xs), z])

@@ -317,7 +317,7 @@ def test_walls_packed_once_give_the_contacts_of_the_list():
     x = np.column_stack([rng.uniform(-0.008, 0.008, (40, 2)), rng.uniform(0.0002, 0.0015, 40)])
     r = np.full(40, 1e-3)
     packed = pack(walls)
-    for t in (0.0, 0.3, 0.1):
+    for t in (0.0, 0.3, 0.1, 0.0):
         a, b = wall_contacts(x, r, walls, time=t), wall_contacts(x, r, packed, time=t)
         assert len(a) > 0 and np.array_equal(a.keys, b.keys) and np.array_equal(a.element, b.element)
         assert np.array_equal(a.normals, b.normals) and np.array_equal(a.wall_velocities, b.wall_velocities)

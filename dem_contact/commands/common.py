@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..impacts.presets import CASES, DEFAULT_TANGENTIAL, preset_scene
+from ..laws.dispatch import ROLLING_NAMES as ROLLING_LAWS, TWIST_NAMES as TWIST_LAWS
 from ..laws.model import MDR_PROFILES, MODELS, NORMAL_LAWS, TANGENTIAL_LAWS, Scene
 from ..materials import STEEL
 
@@ -126,13 +127,13 @@ def scene_from_args(args, v_ref: float | None = None) -> Scene:
 #: The twist and rolling options (group "twist and rolling"), each a ``Scene`` argument of its name: the
 #: laws (default: the library's, 'none') and the coefficients of LAMMPS's engine models.
 TORQUE_OPTIONS = (
-    _option("--twist", choices=["none", "marshall", "sds", "deresiewicz"], default=None,
+    _option("--twist", choices=list(TWIST_LAWS), default=None,
             help="twist law, the moment about the normal: deresiewicz (exact for Hertz contacts: Lubkin "
                  "1951, Deresiewicz 1954), LAMMPS's marshall or sds (default none: no moment)"),
     _option("--k-twist", type=float, default=None, help="twist sds: spring [N m/rad]"),
     _option("--gamma-twist", type=float, default=None, help="twist sds: dashpot [N m s/rad]"),
     _option("--mu-twist", type=float, default=None, help="twist sds: Coulomb limit per unit normal force [m]"),
-    _option("--rolling", choices=["none", "sds"], default=None,
+    _option("--rolling", choices=list(ROLLING_LAWS), default=None,
             help="rolling resistance, LAMMPS's engine model sds (a calibration of shape and roughness, not "
                  "contact mechanics of smooth spheres; default none)"),
     _option("--k-roll", type=float, default=None, help="rolling sds: spring [N/m]"),
@@ -141,12 +142,11 @@ TORQUE_OPTIONS = (
 )
 
 
-def add_torque_options(p, rolling: bool = True):
-    """The options of TORQUE_OPTIONS (group "twist and rolling"); rolling=False: the twist ones only."""
+def add_torque_options(p):
+    """The options of TORQUE_OPTIONS (group "twist and rolling")."""
     g = p.add_argument_group("twist and rolling (the moment about the normal; rolling resistance)")
     for flag, kwargs in TORQUE_OPTIONS:
-        if rolling or "roll" not in flag:
-            g.add_argument(flag, **kwargs)
+        g.add_argument(flag, **kwargs)
 
 
 def torque_laws(args) -> dict:

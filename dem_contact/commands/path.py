@@ -197,10 +197,14 @@ def run(args) -> int:
             a = np.sqrt(scene.pair.R_star * np.clip(delta, 0.0, None))
             moment = np.where(N > 0, Mz / np.where(N > 0, scene.mu * N * a, 1.0), np.nan)
         path_figure(delta, ux, uy, N, Tx, Ty, scene.mu, args.plot, title=title, moment=moment)
+    model = scene.describe()
+    if args.coupled:
+        model = dict(model, twist_law="deresiewicz", coupling="laws.twist_shear: the tangential and twist cells "
+                     "share the Coulomb limit at points of each ring")
     if args.json:
         print(dump_json({"N": [float(x) + 0.0 for x in N], "Tx": [float(x) + 0.0 for x in Tx],
                          "Ty": [float(x) + 0.0 for x in Ty], "Mz": [float(x) + 0.0 for x in Mz], "law": law,
-                         "model": scene.describe()}))
+                         "model": model}))
         return 0
     print(f"# {law}; mu = {scene.mu:g}, kappa = {scene.pair.kappa:.4f}; {len(N)} rows; forces [N] and moment "
           f"about the normal [N m] on body 1")

@@ -12,8 +12,9 @@ bridge computes, for any kind of wall of the table.
 
 Body 1 is the sphere, body 2 the wall: ``normals`` point from the sphere toward the wall, ``forces`` is the
 force on the sphere; its torque is R n x F_t (the arm of a wall contact is the full radius, as in LAMMPS's
-``fix wall/gran``). ``keys`` identify each contact's history (one per wall and patch: a contact that moves
-across a mesh's flat patch keeps its key) from one step to the next. Walls that move are placed at the
+``fix wall/gran``). ``keys`` identify each contact's history (one per wall, and for a mesh per side and set of
+triangles joined across flat or convex edges: a contact that moves across a mesh's seams or over its convex
+edges keeps its key) from one step to the next. Walls that move are placed at the
 ``time`` given (their pose at time 0 and their rigid motion: ``walls.contract``).
 """
 from __future__ import annotations
@@ -98,7 +99,7 @@ class WallContacts:
     sphere, wall, element: int64[m] the sphere's index, the wall's index in the list, and the element of
     the wall touched (0 for a plane); material: int64[m] the wall's material (its ``wall``: the column of
     ``PairTable.wall_row``); keys: float64[m] the key of the contact's history (negative, one per wall and
-    element; with the sphere's index it names the contact); normals: float64[m, 3] unit, from the sphere
+    patch, ``walls.contract``; with the sphere's index it names the contact); normals: float64[m, 3] unit, from the sphere
     toward the wall; overlaps: float64[m] > 0 [m]; points: float64[m, 3] the contact points on the wall's
     surface [m]; wall_velocities: float64[m, 3] the wall's velocity there [m/s]; curvature: float64[m]
     1 / R2 of the wall there [1/m] (0 for a plane: R* = R of the sphere, as ``pairs.pair_table``'s
@@ -120,6 +121,10 @@ class WallContacts:
     n_spheres: int
     centres: np.ndarray = None
     wall_spins: np.ndarray = None
+
+    def __post_init__(self):
+        if self.wall_spins is None:      # (walls at rest)
+            object.__setattr__(self, "wall_spins", np.zeros((len(self.overlaps), 3)))
 
     def __len__(self):
         return len(self.overlaps)
@@ -255,8 +260,7 @@ def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     t = float(time)
     if not math.isfinite(t):
         raise InputError(f"time must be finite [s], got {time!r}")
-    if t != 0.0:
-        W.place_walls(rows, t)
+    W.place_walls(rows, t)                 # (walls packed once are placed at each call's time)
     ids, keys, normals, overlaps, points, vel, curv = _find(x, r, rows)
     nw = len(mats)
     return WallContacts(ids[:, 0].copy(), ids[:, 1].copy(), ids[:, 2].copy(), mats[ids[:, 1]], keys, normals,

@@ -827,7 +827,9 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
             continue
         r = cand_rows[c, 1]
         cand_rows[c, 1] = -1
-        if r < 0 or keys[i, r] != key_i:
+        # (the row of this wall contact: a wall's key, which may differ from the key at the atom's place
+        # now, a mesh's side and patch)
+        if r < 0 or keys[i, r] >= 0.0:
             continue
         taken = False
         for q in range(late):

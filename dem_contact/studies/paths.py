@@ -105,7 +105,7 @@ def path_scene(scene: Scene, delta_max: float) -> Scene:
     return scene.replace(mdr_springs=scene.mdr_springs, mdr_max_radius=1.05 * a)
 
 
-def coupled_path(scene: Scene, delta, ux, uy, twist):
+def coupled_path(scene: Scene, delta, ux, uy, twist=None):
     """(N, Tx, Ty, Mz) [N, N m] along a path at a constant overlap, as ``run_path``, with the tangential
     force and the moment of one local state: ``laws.twist_shear.twist_shear_path`` (the cells of the
     default tangential law and of the exact twist law ``deresiewicz`` sharing the Coulomb limit at points
@@ -120,7 +120,7 @@ def coupled_path(scene: Scene, delta, ux, uy, twist):
     if scene.normal != "hertz":
         raise InputError(f"the coupled twist and shear law is for a Hertz contact (normal 'hertz'), got "
                          f"{scene.normal!r}")
-    delta, ux, uy, tw = check_path(delta, ux, uy, scene, twist=twist)
+    delta, ux, uy, tw = check_path(delta, ux, uy, scene, twist=np.zeros(np.size(delta)) if twist is None else twist)
     if not (delta[0] > 0.0 and np.all(delta == delta[0])):
         raise InputError("the coupled twist and shear law needs a constant overlap > 0 along the path (it holds "
                          "the normal force constant); use a law or the reference for a path that loads or unloads")

@@ -42,9 +42,9 @@ Each kind of wall is one module of this package that provides:
       mesh: the triangles connected across flat or convex edges on the sphere's side);
   ``bounds(walls, w, e) -> (xlo, ylo, zlo, xhi, yhi, zhi)``
       the axis-aligned box of element e's surface now [m] (the Verlet lists bin the bounded elements
-      into their cells); +-inf where it is unbounded. A wall's elements are all bounded or all
-      unbounded. An unbounded element (a plane, a cylinder) is one-sided: a sphere's centre behind it is
-      refused; a bounded one (a triangle) is two-sided;
+      into their cells); +-inf where it is unbounded. A wall's elements (at least one) are all bounded
+      or all unbounded. An unbounded element (a plane, a cylinder) is one-sided (the LAMMPS bridge refuses
+      a sphere's centre behind it); a bounded one (a triangle) is two-sided;
   ``place(walls, w, t)``
       write the pose of wall w at time t [s] into its row and payload rows (from its pose at time 0, kept
       there too); called only for walls whose motion moves their surface.

@@ -1,6 +1,6 @@
 """Triangle-mesh walls (``MeshWall``, from vertices and triangles or an STL file), two-sided, moving by a
-prescribed rigid motion (``contract``). Each triangle is an element; the history keys are the mesh's flat
-patches (connected sets of coplanar triangles).
+prescribed rigid motion (``contract``). Each triangle is an element; the history keys are the sides of the
+sets of triangles joined across edges flat or convex on that side (see History below).
 
 Contact rule (one contact per sphere and contact region, none counted twice where triangles meet). For a
 sphere's centre x and each triangle T, the closest point of T to x is a point of its face (x projects
@@ -25,8 +25,9 @@ side. An edge shared by more than two triangles is refused.
 
 History. A contact keeps its history while it moves from triangle to triangle over a surface that is
 convex or flat on the sphere's side: the history key is the sphere's side of the contact's triangle (the
-triangles oriented alike across every edge) and the set of triangles connected across the edges that are
-flat or convex on that side. So a contact that crosses a seam of a flat patch (as LIGGGHTS, which copies
+triangles oriented alike across every edge; at an edge or a vertex, the side of the triangles that meet
+there; at a free edge of the mesh, its front) and the set of triangles connected across the edges that
+are flat or convex on that side. So a contact that crosses a seam of a flat patch (as LIGGGHTS, which copies
 the history onto a coplanar neighbour) or rolls over a convex edge or vertex, where it is one contact
 throughout, keeps its tangential history (the law turns it with the normal); in a concave corner, where
 the sphere has a contact per face, the faces are keyed apart. A non-orientable mesh is refused.
@@ -410,9 +411,21 @@ def curvature(walls, w, e, cx, cy, cz):
 def patch(walls, w, e, x, y, z):
     """The history key of a contact of triangle e with the sphere centred at (x, y, z): that of the
     triangle's side where the centre lies (the module's docstring)."""
-    q = int(walls[w, FIRST]) + e
-    _, _, _, _, _, _, _, _, _, d = _closest(walls, q, x, y, z)
-    return int(walls[q, _KEY] if d * walls[q, _ORIENT] >= 0.0 else walls[q, _KEY + 1])
+    first = int(walls[w, FIRST])
+    q = first + e
+    feat, idx, _, _, _, _, _, _, _, d = _closest(walls, q, x, y, z)
+    side = d * walls[q, _ORIENT]
+    if feat > 0:
+        # an edge or a vertex: the side of the triangles that meet there (the sum of the distances along
+        # their oriented normals, >= 0 in the region in front of an edge convex seen from the front, however
+        # sharp); at a free edge, the front
+        for j in range(feat):
+            k = idx if j == 0 else (idx + 2) % 3
+            nb = int(walls[q, _NB + k])
+            if nb < 0:
+                return int(walls[q, _KEY])
+            side += _closest(walls, first + nb, x, y, z)[9] * walls[first + nb, _ORIENT]
+    return int(walls[q, _KEY] if side >= 0.0 else walls[q, _KEY + 1])
 
 
 @njit(inline="always", cache=True)

@@ -19,7 +19,8 @@ from . import table as W
 
 @njit(inline="always", cache=True)
 def _bounded(walls, w):
-    """Whether wall w's elements are bounded (all or none of them are: ``contract.bounds``)."""
+    """Whether wall w's elements are bounded (all or none of them are, and a wall has at least one:
+    ``contract``)."""
     b = W.bounds(walls, w, 0)
     return (math.isfinite(b[0]) and math.isfinite(b[1]) and math.isfinite(b[2]) and math.isfinite(b[3])
             and math.isfinite(b[4]) and math.isfinite(b[5]))
@@ -35,34 +36,36 @@ def near_elements(n, x, radius, walls, skin):
     reach = skin
     for i in range(n):
         reach = max(reach, radius[i] + skin)
-    # the grid over the centres: cells of side reach, coarser where the spheres are sparse (memory O(n))
-    lo = np.empty(3)
-    hi = np.empty(3)
-    for d in range(3):
-        lo[d] = x[0, d]
-        hi[d] = x[0, d]
+    # the grid over the centres: cells of side reach, coarser where the spheres are sparse (at most 4 n + 1000
+    # cells)
+    # (a centre that is not finite is near nothing)
+    lo = np.full(3, np.inf)
+    hi = np.full(3, -np.inf)
     for i in range(n):
-        for d in range(3):
-            lo[d] = min(lo[d], x[i, d])
-            hi[d] = max(hi[d], x[i, d])
+        if math.isfinite(x[i, 0]) and math.isfinite(x[i, 1]) and math.isfinite(x[i, 2]):
+            for d in range(3):
+                lo[d] = min(lo[d], x[i, d])
+                hi[d] = max(hi[d], x[i, d])
+    if not lo[0] <= hi[0]:
+        return np.empty((0, 3), dtype=np.int64)
     cell = reach
-    total = 1.0
-    for d in range(3):
-        total *= (hi[d] - lo[d]) / cell + 1.0
-    if total > 4.0 * n + 1000.0:
-        cell *= (total / (4.0 * n + 1000.0)) ** (1.0 / 3.0)
     dims = np.empty(3, dtype=np.int64)
-    for d in range(3):
-        dims[d] = int((hi[d] - lo[d]) / cell) + 1
+    while True:
+        for d in range(3):
+            dims[d] = int(min((hi[d] - lo[d]) / cell, 4.0 * n + 1000.0)) + 1
+        if dims[0] * dims[1] * dims[2] <= 4 * n + 1000:
+            break
+        cell *= 1.25
     d1 = dims[1]
     d2 = dims[2]
     ncell = dims[0] * d1 * d2
-    which = np.empty(n, dtype=np.int64)
+    which = np.full(n, -1, dtype=np.int64)
     for i in range(n):
-        cx = min(int((x[i, 0] - lo[0]) / cell), dims[0] - 1)
-        cy = min(int((x[i, 1] - lo[1]) / cell), d1 - 1)
-        cz = min(int((x[i, 2] - lo[2]) / cell), d2 - 1)
-        which[i] = (cx * d1 + cy) * d2 + cz
+        if math.isfinite(x[i, 0]) and math.isfinite(x[i, 1]) and math.isfinite(x[i, 2]):
+            cx = min(int((x[i, 0] - lo[0]) / cell), dims[0] - 1)
+            cy = min(int((x[i, 1] - lo[1]) / cell), d1 - 1)
+            cz = min(int((x[i, 2] - lo[2]) / cell), d2 - 1)
+            which[i] = (cx * d1 + cy) * d2 + cz
     bounded = np.zeros(nw, dtype=np.bool_)
     for w in range(nw):
         bounded[w] = _bounded(walls, w)
@@ -110,6 +113,8 @@ def near_elements(n, x, radius, walls, skin):
         kw = 0
         for i in range(n):
             k = which[i]
+            if k < 0:
+                continue
             q = counts[k]
             for w in range(nw):
                 if bounded[w]:

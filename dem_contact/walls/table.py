@@ -7,9 +7,9 @@ class.
 
 Adding a kind: write ``walls/<kind>.py`` keeping the contract (its user class, ``N_DATA``,
 ``PAYLOAD_WIDTH``, ``CLASS`` naming the class, and the kernels ``contact``, ``distance``, ``curvature``,
-``patch``, ``place`` with the contract's signatures), then add its row to ``KINDS``. Nothing else: ``pack`` accepts its
-class, ``ROW_SIZE`` grows to its numbers, and the dispatch functions here (``contact``, ``distance``,
-``curvature``, ``patch``, ``place``) are generated from ``KINDS`` when the module is imported: a chain of ``if walls[w,
+``patch``, ``bounds``, ``place`` with the contract's signatures), then add its row to ``KINDS``. Nothing else:
+``pack`` accepts its class, ``ROW_SIZE`` grows to its numbers, and the dispatch functions here (``contact``,
+``distance``, ``curvature``, ``patch``, ``bounds``, ``place``) are generated from ``KINDS`` when the module is imported: a chain of ``if walls[w,
 KIND] == id`` branches, one per kind, each a direct call (inlined: the callers compile the branches of
 every kind in the table). ``history_key`` and ``place_walls`` are written on them.
 """
