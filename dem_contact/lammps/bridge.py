@@ -124,17 +124,26 @@ def _mpich():
     return lib
 
 
+def _mpich_comm(lmp):
+    """(MPICH's libmpi, the instance's communicator) for a collective call, or None where LAMMPS runs over
+    an MPI other than MPICH."""
+    lib = _mpich()
+    if lib is None:
+        return None
+    return lib, lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+
+
 def max_rank(lmp, value: int) -> int | None:
     """The largest of the ints ``value`` of the MPI ranks of the LAMMPS instance (collective: every rank
     must call it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
     if lmp.extract_setting("world_size") <= 1:
         return int(value)
-    lib = _mpich()
-    if lib is None:
+    mpi = _mpich_comm(lmp)
+    if mpi is None:
         return None
     import ctypes
 
-    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))     # (ints in MPICH)
+    lib, comm = mpi
     one, out = ctypes.c_int(int(value)), ctypes.c_int(0)
     if lib.MPI_Allreduce(ctypes.byref(one), ctypes.byref(out), 1, _MPICH_INT, _MPICH_MAX, comm) != 0:
         return None
@@ -179,12 +188,12 @@ def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
     a = np.ascontiguousarray(values, dtype=np.float64)
     if lmp.extract_setting("world_size") <= 1:
         return a.copy()
-    lib = _mpich()
-    if lib is None:
+    mpi = _mpich_comm(lmp)
+    if mpi is None:
         return None
     import ctypes
 
-    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+    lib, comm = mpi
     out = np.empty_like(a)
     if lib.MPI_Allreduce(a.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p), a.size,
                          _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
@@ -199,12 +208,12 @@ def gather_rows(lmp, rows: np.ndarray) -> np.ndarray | None:
     a = np.ascontiguousarray(rows, dtype=np.float64)
     if lmp.extract_setting("world_size") <= 1:
         return a.copy()
-    lib = _mpich()
-    if lib is None:
+    mpi = _mpich_comm(lmp)
+    if mpi is None:
         return None
     import ctypes
 
-    comm = lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
+    lib, comm = mpi
     size = lmp.extract_setting("world_size")
     counts = np.zeros(size, dtype=np.intc)
     one = np.array([a.size], dtype=np.intc)

@@ -224,6 +224,20 @@ class MeshWall:
 
 
 @njit(inline="always", cache=True)
+def _edge(walls, q, lo, hi, x, y, z):
+    """The edge of triangle row q from its local vertex lo to hi: (t, the point of lo, the edge vector), t
+    the parameter of the point of the edge's line nearest (x, y, z) (0 at lo, 1 at hi)."""
+    px = walls[q, _V + 3 * lo]
+    py = walls[q, _V + 3 * lo + 1]
+    pz = walls[q, _V + 3 * lo + 2]
+    ex = walls[q, _V + 3 * hi] - px
+    ey = walls[q, _V + 3 * hi + 1] - py
+    ez = walls[q, _V + 3 * hi + 2] - pz
+    t = ((x - px) * ex + (y - py) * ey + (z - pz) * ez) / (ex * ex + ey * ey + ez * ez)
+    return t, px, py, pz, ex, ey, ez
+
+
+@njit(inline="always", cache=True)
 def _closest(walls, q, x, y, z):
     """The closest point of triangle row q to (x, y, z): (feature: 0 face, 1 edge, 2 vertex; its local
     index (edge k = (V_k, V_k+1), vertex k); the point; the squared distance; the unit normal (face); the
@@ -270,13 +284,7 @@ def _closest(walls, q, x, y, z):
     for k in range(3):
         k1 = (k + 1) % 3
         lo, hi = (k, k1) if walls[q, _ID + k] < walls[q, _ID + k1] else (k1, k)
-        px = walls[q, _V + 3 * lo]
-        py = walls[q, _V + 3 * lo + 1]
-        pz = walls[q, _V + 3 * lo + 2]
-        ex = walls[q, _V + 3 * hi] - px
-        ey = walls[q, _V + 3 * hi + 1] - py
-        ez = walls[q, _V + 3 * hi + 2] - pz
-        t = ((x - px) * ex + (y - py) * ey + (z - pz) * ez) / (ex * ex + ey * ey + ez * ez)
+        t, px, py, pz, ex, ey, ez = _edge(walls, q, lo, hi, x, y, z)
         f = 1
         i = k
         if t <= 0.0:
@@ -319,13 +327,7 @@ def _clear(walls, q, k, x, y, z):
     for kk in (k, (k + 2) % 3):
         other = (kk + 1) % 3 if kk == k else kk
         lo, hi = (k, other) if vid < walls[q, _ID + other] else (other, k)
-        px = walls[q, _V + 3 * lo]
-        py = walls[q, _V + 3 * lo + 1]
-        pz = walls[q, _V + 3 * lo + 2]
-        ex = walls[q, _V + 3 * hi] - px
-        ey = walls[q, _V + 3 * hi + 1] - py
-        ez = walls[q, _V + 3 * hi + 2] - pz
-        t = ((x - px) * ex + (y - py) * ey + (z - pz) * ez) / (ex * ex + ey * ey + ez * ez)
+        t = _edge(walls, q, lo, hi, x, y, z)[0]
         if (lo == k and t > 0.0) or (hi == k and t < 1.0):
             return False
     return True

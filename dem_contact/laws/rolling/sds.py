@@ -25,9 +25,8 @@ import math
 
 from numba import njit
 
-from ...errors import InputError
-from ...materials import check_finite
 from ..slots import P_GAMMA_ROLL, P_K_ROLL, P_MU_ROLL, P_RSTAR
+from ..twist.sds import configure_sds
 from ..vector import JIT
 
 NAME, FAMILY = "sds", "rolling"
@@ -94,15 +93,9 @@ def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
 
 
 def configure(scene, p):
-    args = scene.arguments
-    missing = [k for k in OPTIONS if args[k] is None]
-    if missing:
-        raise InputError(f"rolling='sds' needs {', '.join(missing)} (k_roll > 0 [N/m], gamma_roll >= 0 "
-                         f"[N s/m], mu_roll >= 0: LAMMPS's rolling sds coefficients)")
-    p[P_K_ROLL] = check_finite("k_roll (rolling spring, N/m)", args["k_roll"], lo=0.0)
-    p[P_GAMMA_ROLL] = check_finite("gamma_roll (rolling dashpot, N s/m)", args["gamma_roll"], lo=0.0,
-                                   lo_open=False)
-    p[P_MU_ROLL] = check_finite("mu_roll (rolling slider)", args["mu_roll"], lo=0.0, lo_open=False)
+    configure_sds(scene, p, "rolling='sds'", "LAMMPS's rolling sds coefficients",
+                  (("k_roll", "rolling spring", "N/m", P_K_ROLL), ("gamma_roll", "rolling dashpot", "N s/m",
+                   P_GAMMA_ROLL), ("mu_roll", "rolling slider", "", P_MU_ROLL)))
 
 
 def describe(scene, p):

@@ -61,15 +61,24 @@ def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
 
 
 def configure(scene, p):
+    configure_sds(scene, p, "twist='sds'", "LAMMPS's twisting sds coefficients",
+                  (("k_twist", "twist spring", "N m/rad", P_K_TWIST), ("gamma_twist", "twist dashpot", "N m s/rad",
+                   P_GAMMA_TWIST), ("mu_twist", "twist slider", "m", P_MU_TWIST)))
+
+
+def configure_sds(scene, p, law, source, coefficients):
+    """Check and store the spring, dashpot and slider coefficients of a spring-dashpot-slider engine model
+    (LAMMPS's twisting and rolling sds): coefficients, rows of (Scene argument, what it is, unit, parameter
+    slot); the spring > 0, the dashpot and the slider >= 0. InputError naming the missing or bad one."""
     args = scene.arguments
-    missing = [k for k in OPTIONS if args[k] is None]
+    missing = [name for name, *_ in coefficients if args[name] is None]
     if missing:
-        raise InputError(f"twist='sds' needs {', '.join(missing)} (k_twist > 0 [N m/rad], gamma_twist >= 0 "
-                         f"[N m s/rad], mu_twist >= 0 [m]: LAMMPS's twisting sds coefficients)")
-    p[P_K_TWIST] = check_finite("k_twist (twist spring, N m/rad)", args["k_twist"], lo=0.0)
-    p[P_GAMMA_TWIST] = check_finite("gamma_twist (twist dashpot, N m s/rad)", args["gamma_twist"], lo=0.0,
-                                    lo_open=False)
-    p[P_MU_TWIST] = check_finite("mu_twist (twist slider, m)", args["mu_twist"], lo=0.0, lo_open=False)
+        (k, _, ku, _), (g, _, gu, _), (m, _, mu_, _) = coefficients
+        raise InputError(f"{law} needs {', '.join(missing)} ({k} > 0 [{ku}], {g} >= 0 [{gu}], {m} >= 0"
+                         f"{f' [{mu_}]' if mu_ else ''}: {source})")
+    for q, (name, what, unit, slot) in enumerate(coefficients):
+        label = f"{name} ({what}, {unit})" if unit else f"{name} ({what})"
+        p[slot] = check_finite(label, args[name], lo=0.0, lo_open=q == 0)
 
 
 def describe(scene, p):
