@@ -223,7 +223,7 @@ def _renew(v, old, new, e, x0, ds, residual):
 
 
 def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int = CELLS, sectors: int = SECTORS,
-                     slip_lever: str = "rings", residual: str = "scaled"):
+                     slip_lever: str = "rings", residual: str = "scaled", stored: bool = False):
     """Tangential force (Tx, Ty) [N], moment M [N m] and work absorbed [J] along a path of tangential
     displacements (ux, uy) [m] and twists beta [rad] (relative, body 1 against body 2; arrays, the first row
     the state before the path, from rest) under the normal force N [N] and contact radius a [m]: numbers
@@ -232,7 +232,8 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
     G_c: the tangential and twist moduli [Pa] (1/G* = sum (2 - nu)/G, 1/G_c = sum 1/G); R_star [m]: the
     grid's scale; cells (even), sectors (points per ring), slip_lever (``limits`` or ``rings``) and
     residual (``scaled``, ``kept`` or ``dropped``: the ring's residual on a change of N) as in the module
-    docstring."""
+    docstring. With ``stored``, also the elastic energy [J] of the force and moment modes per row,
+    G_M sum l |u|^2 + 8 G_c sum w theta^2 (the energy of the flat punches whose T and M the law returns)."""
     G_star = check_finite("G_star (tangential modulus, Pa)", G_star, lo=0.0)
     G_c = check_finite("G_c (twist modulus, Pa)", G_c, lo=0.0)
     mu = check_finite("mu (friction coefficient)", mu, lo=0.0)
@@ -256,9 +257,10 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
     N = _per_row("N (normal force, N)", N, rows)
     a = _per_row("a (contact radius, m)", a, rows)
     touch = (N > 0.0) & (a**3 > 0.0)
-    Tx, Ty, M, work = np.zeros(rows), np.zeros(rows), np.zeros(rows), np.zeros(rows)
+    Tx, Ty, M, work, energy = (np.zeros(rows) for _ in range(5))
+    out = (Tx, Ty, M, work, energy) if stored else (Tx, Ty, M, work)
     if not touch.any():
-        return Tx, Ty, M, work
+        return out
     ds = cell_width(float(a[touch].max()), cells, R_star)     # one grid: the cells cover the largest contact
     x0 = np.arange(cells) * ds
     phi = (np.arange(sectors) + 0.5) * (2.0 * math.pi / sectors)
@@ -300,15 +302,17 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
                 if slip_lever == "rings":
                     # the fraction f of the step before the point reaches its circle (|v + f d| = u_max), then
                     # the rest with the lever rho: the point moves by du + (f lambda + (1 - f) rho) d(beta) e_k
-                    # (du and d(beta) times the entry weights of a cell that grows); a point beyond its circle
-                    # before the increment (a lowered limit) takes f = 1, the return of the exact laws
+                    # (du and d(beta) times the entry weights of a cell that grows). A point beyond its circle
+                    # before the increment (its limit lowered) slides through the step, with the lever
+                    # min(lambda, rho): never less far out than its elastic trial along e_k, so that the return
+                    # of a pure twist is deresiewicz's
                     dd = (d * d).sum(axis=2)
                     vd = (v * d).sum(axis=2)
                     vv = (v * v).sum(axis=2)
                     root = np.sqrt(np.maximum(vd * vd - dd * (vv - U * U), 0.0))
                     f = np.clip((root - vd) / np.where(dd > 0.0, dd, 1.0), 0.0, 1.0)
-                    f = np.where(vv > OUTSIDE * (U * U), 1.0, f)
-                    lever = f * lam[:, None] + (1.0 - f) * rho[:, None]
+                    lever = np.where(vv > OUTSIDE * (U * U), np.minimum(lam, rho)[:, None],
+                                     f * lam[:, None] + (1.0 - f) * rho[:, None])
                     slid = v + dc[:, None, :] + (lever * bt[:, None])[:, :, None] * e[None, :, :]
                     trial[over] = slid[over]
                     m = np.sqrt((trial * trial).sum(axis=2))
@@ -321,6 +325,7 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
             theta = np.where(on, (v * e[None]).sum(axis=2).mean(axis=1) / np.where(on, lam, 1.0), 0.0)
             Tx[t], Ty[t] = 2.0 * GM * (u * l1[:, None]).sum(axis=0)
             M[t] = 16.0 * G_c * (theta * w1).sum()
+            energy[t] = GM * ((u * u).sum(axis=1) * l1).sum() + 8.0 * G_c * (theta * theta * w1).sum()
         work[t] = work[t - 1] + 0.5 * ((Tx[t - 1] + Tx[t]) * du[0] + (Ty[t - 1] + Ty[t]) * du[1]
                                        + (M[t - 1] + M[t]) * db)
-    return Tx, Ty, M, work
+    return out
