@@ -28,6 +28,10 @@ a step by the trapezoidal rule, which under-counts a step that turns from stick 
 the coupled law and for the separate laws on the same cells (the coupled law run on the shear alone plus
 on the twist alone: its exact reductions to the vector MDR and deresiewicz cells).
 
+Diagnostics (``diagnostic_paths``, BEM stored the same way): the circle's shear alone and twist alone (the law
+is there the exact laws' cells: their own error), the random path at a constant overlap, and a slide with
+spin into full slip that then unloads and reloads; and |T| at the corners of the first path.
+
 Writes validation/twist/twist_shear_varying.json and twist_shear_varying.png.
 
     python validation/twist/run_twist_shear_varying.py [--bem]
@@ -94,22 +98,42 @@ def paths():
     return out
 
 
-def csv_name(label, n_across):
-    return EXTRA / f"{label.replace(' ', '_').replace(',', '').replace('%', 'pct')}_n{n_across}_s{STEPS}.csv"
+def diagnostic_paths():
+    """label -> (delta, ux, uy, beta) of the paths that separate the error's parts: the circle's shear alone and
+    twist alone (where the law is the exact laws' cells), the random path at a constant overlap, and a slide
+    with spin (2 s and 2 beta_1 per 100 steps) into full slip, then unloaded to 0.6 delta_0 and reloaded to
+    1.2 delta_0 while it goes on (100 steps each)."""
+    P = paths()
+    d, ux, uy, tw = P["circle twist, overlap 40%"]
+    out = {"circle twist, overlap 40%, shear alone": (d, ux, uy, 0 * tw),
+           "circle twist, overlap 40%, twist alone": (d, 0 * ux, 0 * uy, tw)}
+    d, ux, uy, tw = P["random smooth with overlap"]
+    out["random smooth, constant overlap"] = (0 * d + DELTA, ux, uy, tw)
+    k = np.linspace(0.0, 1.0, 101)[1:]
+    x = np.concatenate([[0.0], 2 * k, 2 + k, 3 + k])
+    d = np.concatenate([[1.0], 1 + 0 * k, 1 - 0.4 * k, 0.6 + 0.6 * k])
+    out["slide and spin, unload, reload"] = (DELTA * d, SLIP * x, 0 * x, BETA1 * x)
+    return out
+
+
+def csv_name(label, n_across, steps=STEPS):
+    return EXTRA / f"{label.replace(' ', '_').replace(',', '').replace('%', 'pct')}_n{n_across}_s{steps}.csv"
 
 
 def run_bem():
-    """The BEM along ``paths`` at 64 across, and the first path at 96 across, written as CSV."""
+    """The BEM along ``paths`` and ``diagnostic_paths`` at 64 across, and the first path at 96 across, written
+    as CSV."""
     from dem_contact.reference.bem import bem_path
     EXTRA.mkdir(exist_ok=True)
-    jobs = [(label, 64) for label in paths()] + [(next(iter(paths())), 96)]
+    every = {**paths(), **diagnostic_paths()}
+    jobs = [(label, 64) for label in every] + [(next(iter(paths())), 96)]
     for label, n in jobs:
-        d, ux, uy, tw = paths()[label]
+        d, ux, uy, tw = every[label]
         t0 = time.time()
         Nr, Txr, Tyr, Mzr = bem_path(E, NU, E, NU, R, MU, d, ux, uy, tw, n_across=n)
         print(f"{label}, {n} across: BEM {time.time() - t0:.1f} s", flush=True)
-        np.savetxt(csv_name(label, n), np.column_stack([d, ux, uy, tw, Nr, Txr, Tyr, Mzr]), delimiter=",",
-                   fmt="%.12e", header="delta,ux,uy,twist,N,Tx,Ty,Mz", comments="")
+        np.savetxt(csv_name(label, n, d.size - 1), np.column_stack([d, ux, uy, tw, Nr, Txr, Tyr, Mzr]),
+                   delimiter=",", fmt="%.12e", header="delta,ux,uy,twist,N,Tx,Ty,Mz", comments="")
 
 
 def coupled(d, ux, uy, tw, lever="rings", residual="scaled", cells=32, sectors=8):
@@ -163,14 +187,12 @@ def bem_comparison():
     return table, grid, refs, curves
 
 
-def loops(count=200, seed=5):
-    """Closed loops under a varying overlap after random histories (module docstring)."""
+def loop_paths(count=200, seed=5, pre_n=40):
+    """(N, a, ux, uy, beta, amplitude) of the random histories and closed loops (module docstring): pre_n rows
+    of history, then a loop of 80 steps."""
     rng = np.random.default_rng(seed)
     t = np.linspace(0, 2 * np.pi, 81)
-    forms = [(lever, rule) for lever in SLIP_LEVERS[::-1] for rule in RESIDUAL_RULES] + [("separate", None)]
-    stats = {f: {"negative loop work": 0, "negative loop dissipation": 0, "least loop work": math.inf,
-                 "least loop dissipation": math.inf, "least step dissipation in a loop": math.inf} for f in forms}
-    pre_n = 40
+    out = []
     for _ in range(count):
         pre = np.cumsum(rng.normal(0, 0.4, (pre_n, 4)), axis=0)
         pre[0] = 0.0
@@ -183,34 +205,94 @@ def loops(count=200, seed=5):
             loop += np.outer(np.sin(h * t), c[0]) + np.outer(1 - np.cos(h * t), c[1])
         p = np.vstack([pre, pre[-1] + loop[1:]])
         N, a = hertz(DELTA * np.exp(p[:, 0]))
-        ux, uy, tw = SLIP * p[:, 1], SLIP * p[:, 2], BETA1 * p[:, 3]
+        out.append((N, a, SLIP * p[:, 1], SLIP * p[:, 2], BETA1 * p[:, 3], amp))
+    return out
+
+
+def work_and_energy(form, N, a, ux, uy, tw, cells=32):
+    """(work, stored energy) per row of the coupled law (form = (lever, residual rule)) or of the separate laws
+    on the same cells (form = ("separate", None): the law on the shear alone plus on the twist alone)."""
+    if form[0] == "separate":
+        z = 0 * ux
+        s1 = twist_shear_path(G_STAR, G_C, MU, R, N, a, ux, uy, z, cells=cells, stored=True)
+        s2 = twist_shear_path(G_STAR, G_C, MU, R, N, a, z, z, tw, cells=cells, stored=True)
+        return s1[3] + s2[3], s1[4] + s2[4]
+    return twist_shear_path(G_STAR, G_C, MU, R, N, a, ux, uy, tw, cells=cells, slip_lever=form[0],
+                            residual=form[1], stored=True)[3:]
+
+
+def loops(count=200, pre_n=40):
+    """Closed loops under a varying overlap after random histories (module docstring); and, on the loop with
+    the least step dissipation of the default law, that least step dissipation with 32 and 128 cells, for the
+    shear alone, the twist alone and both."""
+    forms = [(lever, rule) for lever in SLIP_LEVERS[::-1] for rule in RESIDUAL_RULES] + [("separate", None)]
+    stats = {f: {"negative loop work": 0, "negative loop dissipation": 0, "least loop work": math.inf,
+                 "least loop dissipation": math.inf, "least step dissipation in a loop": math.inf} for f in forms}
+    cases = loop_paths(count, pre_n=pre_n)
+    worst = (math.inf, 0)
+    for j, (N, a, ux, uy, tw, amp) in enumerate(cases):
         scale = MU * N0 * SLIP * amp
         for f in forms:
-            if f[0] == "separate":
-                z = 0 * ux
-                s1 = twist_shear_path(G_STAR, G_C, MU, R, N, a, ux, uy, z, stored=True)
-                s2 = twist_shear_path(G_STAR, G_C, MU, R, N, a, z, z, tw, stored=True)
-                W, En = s1[3] + s2[3], s1[4] + s2[4]
-            else:
-                W, En = twist_shear_path(G_STAR, G_C, MU, R, N, a, ux, uy, tw, slip_lever=f[0], residual=f[1],
-                                         stored=True)[3:]
+            W, En = work_and_energy(f, N, a, ux, uy, tw)
             i = pre_n - 1
             wl = (W[-1] - W[i]) / scale
             dl = (W[-1] - W[i] - En[-1] + En[i]) / scale
-            step = np.diff(W - En)[i:] / (MU * N0 * SLIP)         # the loop's steps
+            step = float((np.diff(W - En)[i:] / (MU * N0 * SLIP)).min())         # the loop's steps
             s = stats[f]
             s["negative loop work"] += int(wl < 0)
             s["negative loop dissipation"] += int(dl < 0)
             s["least loop work"] = min(s["least loop work"], wl)
             s["least loop dissipation"] = min(s["least loop dissipation"], dl)
-            s["least step dissipation in a loop"] = min(s["least step dissipation in a loop"], float(step.min()))
+            s["least step dissipation in a loop"] = min(s["least step dissipation in a loop"], step)
+            if f == ("rings", "scaled"):
+                worst = min(worst, (step, j))
     out = {}
     for f, s in stats.items():
         name = "separate laws (the same cells)" if f[0] == "separate" else f"coupled, {f[0]}, residual {f[1]}"
         out[name] = {k: (v if isinstance(v, int) else float(f"{v:.3g}")) for k, v in s.items()}
         print(name, out[name], flush=True)
+    N, a, ux, uy, tw, amp = cases[worst[1]]
+    z = 0 * ux
+    cells = {}
+    for label, args in (("shear alone", (ux, uy, z)), ("twist alone", (z, z, tw)), ("shear and twist", (ux, uy, tw))):
+        for n in (32, 128):
+            W, En = work_and_energy(("rings", "scaled"), N, a, *args, cells=n)
+            cells[f"{label}, {n} cells"] = float(f"{(np.diff(W - En)[pre_n - 1:] / (MU * N0 * SLIP)).min():.3g}")
+    print(cells, flush=True)
     return {"loops": count, "units": "loop work and dissipation in mu N_0 s times the loop's amplitude; step "
-            "dissipation in mu N_0 s", "by formulation": out}
+            "dissipation in mu N_0 s", "by formulation": out,
+            f"least step dissipation of loop {worst[1]} (the default law's least) by cells": cells}
+
+
+def diagnostics(curves):
+    """The parts of the error (``diagnostic_paths``), and |T| / (mu N) at the corners of the first path."""
+    out = {}
+    for label, p in diagnostic_paths().items():
+        (d, *_), ref = read_twist_reference(csv_name(label, 64, p[0].size - 1))
+        assert np.allclose(d, p[0], rtol=1e-9)
+        out[f"{label}: default law (rings, scaled)"] = errors(d, coupled(*p), ref)
+        out[f"{label}: separate laws"] = errors(d, separate(*p), ref)
+        if label.startswith("slide"):
+            N, a = hertz(d)
+            rows = {}
+            for form, T in (("BEM", ref[1:]), ("default law", coupled(*p)),
+                            ("limits lever", coupled(*p, "limits"))):
+                rows[form] = [[round(float(-T[0][i] / (MU * N[i])), 3), round(float(-T[2][i] / (MU * N[i] * a[i])), 3)]
+                              for i in (100, 200, 300)]
+            out[f"{label}: (T / (mu N), M / (mu N a)) at rows 100 (full slip), 200 (unloaded to 0.6), 300 "
+                "(reloaded to 1.2)"] = rows
+    first = next(iter(paths()))
+    (d, *_), ref = read_twist_reference(csv_name(first, 64))
+    N = hertz(d)[0]
+    corners = {"BEM": ref[1:3]}
+    for name, tag in (("coupled, rings, residual scaled", "default law"), (SEPARATE, "separate laws")):
+        corners[tag] = curves[(name, first)][:2]
+    out[f"{first}: |T| / (mu N) at rows 80 (sheared), 160 (twisted), 240 (loaded), 320 (twisted back)"] = {
+        k: [round(float(np.hypot(Tx[i], Ty[i]) / (MU * N[i])), 3) for i in (80, 160, 240, 320)]
+        for k, (Tx, Ty) in corners.items()}
+    for k, v in out.items():
+        print(k, v, flush=True)
+    return out
 
 
 def figure(refs, curves):
@@ -239,7 +321,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bem", action="store_true", help="recompute the BEM histories (bem_extra/*.csv) first")
     args = ap.parse_args()
-    if args.bem or not all(csv_name(label, 64).exists() for label in paths()):
+    every = {**paths(), **diagnostic_paths()}
+    if args.bem or not all(csv_name(label, 64, p[0].size - 1).exists() for label, p in every.items()):
         run_bem()
     table, grid, refs, curves = bem_comparison()
     out = {"scene": {"pair": "steel sphere R 10 mm on a steel wall", "mu": MU, "delta_0": DELTA, "N_0": N0,
@@ -247,6 +330,7 @@ def main():
                                                                              chart_scene().body2))},
            "BEM 64 across, max error (force / (mu N), moment / (mu N a)), N and a of each row": table,
            "BEM grid error (same units)": grid,
+           "parts of the error (same units)": diagnostics(curves),
            "closed loops under a varying overlap": loops()}
     (HERE / "twist_shear_varying.json").write_text(json.dumps(out, indent=1))
     print(json.dumps(out, indent=1))
