@@ -172,7 +172,7 @@ def test_boundary_element_reference_with_twist(shape):
 def test_bad_input_is_refused():
     z = np.zeros(3)
     for kw in ({"cells": 15}, {"cells": 0}, {"sectors": 1}, {"sectors": 2.5}, {"cells": True},
-               {"slip_lever": "radius"}):
+               {"slip_lever": "radius"}, {"residual": "halved"}):
         with pytest.raises(InputError):
             law(z, z, z, **kw)
     with pytest.raises(InputError):
@@ -181,6 +181,9 @@ def test_bad_input_is_refused():
         law(z, z, np.array([0.0, np.nan, 0.0]))
     with pytest.raises(InputError):
         twist_shear_path(G_STAR, G_C, 0.0, R, N, A, z, z, z)
+    for n_, a_ in ((np.full(4, N), A), (N, np.array([A, -A, A])), (np.array([N, np.inf, N]), A)):
+        with pytest.raises(InputError, match="N \\(normal force|a \\(contact radius"):
+            twist_shear_path(G_STAR, G_C, MU, R, n_, a_, z, z, z)
 
 
 def test_the_path_command_runs_the_coupled_law():
