@@ -78,7 +78,7 @@ def add_options(p):
     s.add_argument("--coupled", action="store_true",
                    help="twist and shear from one local state (laws.twist_shear: the cells of the default "
                         "tangential law and of deresiewicz sharing the Coulomb limit at points of each ring; "
-                        "Hertz, constant overlap only)")
+                        "Hertz only; the overlap may vary: the Hertz normal force and contact radius of each row)")
     s.add_argument("--reference", action="store_true",
                    help="use the boundary-element reference (exact 3D Cattaneo-Mindlin with the twist, slow) "
                         "instead of a law")

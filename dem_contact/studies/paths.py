@@ -106,12 +106,12 @@ def path_scene(scene: Scene, delta_max: float) -> Scene:
 
 
 def coupled_path(scene: Scene, delta, ux, uy, twist=None):
-    """(N, Tx, Ty, Mz) [N, N m] along a path at a constant overlap, as ``run_path``, with the tangential
-    force and the moment of one local state: ``laws.twist_shear.twist_shear_path`` (the cells of the
-    default tangential law and of the exact twist law ``deresiewicz`` sharing the Coulomb limit at points
-    of each ring), for a Hertz contact (the scene's materials, mu and R*). The path starts from rest before
-    its first row. InputError for another normal law or an overlap that varies or is not > 0 (the law is
-    for a constant normal force)."""
+    """(N, Tx, Ty, Mz) [N, N m] along a path, as ``run_path``, with the tangential force and the moment of one
+    local state: ``laws.twist_shear.twist_shear_path`` (the cells of the default tangential law and of the
+    exact twist law ``deresiewicz`` sharing the Coulomb limit at points of each ring), for a Hertz contact
+    (the scene's materials, mu and R*): the Hertz normal force and contact radius of each row's overlap
+    (Johnson 1985, eq. 4.23; an overlap <= 0: no contact, the history released). The path starts from
+    rest, out of contact, before its first row. InputError for another normal law."""
     from ..laws.twist.deresiewicz import twist_modulus
     from ..laws.twist_shear import twist_shear_path
 
@@ -121,17 +121,16 @@ def coupled_path(scene: Scene, delta, ux, uy, twist=None):
         raise InputError(f"the coupled twist and shear law is for a Hertz contact (normal 'hertz'), got "
                          f"{scene.normal!r}")
     delta, ux, uy, tw = check_path(delta, ux, uy, scene, twist=np.zeros(np.size(delta)) if twist is None else twist)
-    if not (delta[0] > 0.0 and np.all(delta == delta[0])):
-        raise InputError("the coupled twist and shear law needs a constant overlap > 0 along the path (it holds "
-                         "the normal force constant); use a law or the reference for a path that loads or unloads")
     pr = scene.pair
-    a = math.sqrt(pr.R_star * delta[0])
-    N = 4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * delta[0] ** 1.5         # Hertz (Johnson 1985, eq. 4.23)
+    d = np.maximum(delta, 0.0)
+    a = np.sqrt(pr.R_star * d)
+    N = 4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * d**1.5           # Hertz (Johnson 1985, eq. 4.23)
     z = np.zeros(1)
-    Tx, Ty, M, _ = twist_shear_path(pr.G_star, twist_modulus(scene.sphere, scene.body2), scene.mu, pr.R_star, N, a,
-                                    np.concatenate([z, ux]), np.concatenate([z, uy]), np.concatenate([z, tw]))
+    Tx, Ty, M, _ = twist_shear_path(pr.G_star, twist_modulus(scene.sphere, scene.body2), scene.mu, pr.R_star,
+                                    np.concatenate([z, N]), np.concatenate([z, a]), np.concatenate([z, ux]),
+                                    np.concatenate([z, uy]), np.concatenate([z, tw]))
     # (the law's force and moment resist the motion of body 1: the path's are those on body 1, as run_path's)
-    return np.full(delta.size, N), -Tx[1:], -Ty[1:], -M[1:]
+    return N, -Tx[1:], -Ty[1:], -M[1:]
 
 
 def run_path(scene: Scene, delta, ux, uy, twist=None, *, dt: float = 1.0):
