@@ -29,6 +29,12 @@ step also to ``step_tol`` of the step's own largest rigid increment (``Tangentia
 convolutions in double precision (single precision rounds at 1e-7 of the displacements, above such a
 tolerance): the defaults here are step_tol = tol and ``single=False``.
 
+Accuracy. The error is first order in the step (an element entering the contact takes the whole step's
+increment) and, in partial slip, about first order in the element (the contact edge collocated at the
+element centres), of opposite signs; in full slip the element error is second order
+(``validation/twist/report.md``, Horak's spinning impact: refinement to 800 steps and 128 across, and
+extrapolation in both).
+
 Frame: the wall is z = 0, the sphere above it; x along the incident tangential velocity of the centre
 (when it has one), y = z cross x. The contact-point velocity of the sphere relative to the wall is
 v_c = V + omega x (-R e_z) = (Vx - R omega_y, Vy + R omega_x); the tangential force T at the contact point
