@@ -224,12 +224,15 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--convergence", action="store_true",
                     help="refine the BEM at Psi = 0.01, 1, 100 (vn = 2 m/s) instead; writes horak_bem_convergence.json")
-    ap.add_argument("--bem-n", type=int, default=BEM_N, help=f"BEM elements across the largest contact ({BEM_N})")
+    ap.add_argument("--bem-n", type=int, default=BEM_N,
+                    help=f"BEM elements across the largest contact, even ({BEM_N}; half as many too, for the extrapolation)")
     ap.add_argument("--bem-steps", type=int, default=BEM_STEPS,
                     help=f"BEM steps per contact, even ({BEM_STEPS}; half as many too, for the extrapolation)")
     args = ap.parse_args()
     if args.bem_steps % 2 or args.bem_steps < 8:
         ap.error(f"--bem-steps {args.bem_steps} must be an even integer >= 8")
+    if args.bem_n % 2 or not 8 <= args.bem_n <= 1024:
+        ap.error(f"--bem-n {args.bem_n} must be an even integer in [8, 1024]")
     if args.convergence:
         convergence()
     else:
