@@ -22,7 +22,7 @@ Psi = 0.01, 1, 100 (vn = 2 m/s) instead and writes horak_bem_convergence.json.
     python validation/twist/horak.py [--convergence] [--bem-n 64] [--bem-steps 400]
 
 Writes validation/twist/horak.png and horak.json (about 10 minutes on one core, nearly all in the BEM;
---convergence about 15).
+--convergence about 10).
 """
 import argparse
 import json
