@@ -156,6 +156,12 @@ def test_bad_inputs_raise_input_error():
     wall_scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
     with pytest.raises(InputError, match="spin"):
         bem_impact(wall_scene, 5.0, 1.0, spin=(1.0, 2.0))
+    with pytest.raises(InputError, match=r"step_tol .*\(0, 0.01\]"):
+        bem_impact(wall_scene, 5.0, 1.0, step_tol=0.0, n_across=8, steps=8)
+    with pytest.raises(InputError, match="single"):
+        bem_impact(wall_scene, 5.0, 1.0, single="yes", n_across=8, steps=8)
+    with pytest.raises(InputError, match="step_tol"):
+        B.bem_path(E, 0.3, E, 0.3, R, 0.3, [DELTA], [0.0], [0.0], step_tol=math.nan)
 
 
 def test_hertz_overlap_history_closed_forms():
@@ -190,7 +196,8 @@ def test_impact_matches_planar_mdr():
 
 def test_impact_spin_and_momentum():
     """Angular momentum about the contact point is conserved (the tangential force acts there):
-    m R V + I (omega_y, -omega_x) is unchanged; spin about the normal is kept; a turned incident velocity
+    m R V + I (omega_y, -omega_x) is unchanged (the twist moment only acts about the normal); the spin
+    about the normal is slowed, not reversed, by a sliding impact; a turned incident velocity
     gives the same f/mu to the grid's isotropy."""
     scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3)
     m, I, Rs = scene.sphere.mass, scene.sphere.inertia, scene.sphere.radius
@@ -198,7 +205,7 @@ def test_impact_spin_and_momentum():
     L0 = m * Rs * np.array([1.0, 0.0]) + I * np.array([-40.0, -10.0])
     L1 = m * Rs * b.v_r + I * np.array([b.omega_r[1], -b.omega_r[0]])
     assert np.allclose(L1, L0, rtol=1e-12, atol=1e-15)
-    assert b.omega_r[2] == 3.0
+    assert 0.0 < b.omega_r[2] < 3.0
     c, s = math.cos(0.5), math.sin(0.5)
     b0 = bem_impact(scene, 5.0, 2.0, n_across=8, steps=24)
     b1 = bem_impact(scene, 5.0, (2.0 * c, 2.0 * s), n_across=8, steps=24)
@@ -389,3 +396,107 @@ def test_a_pure_shear_path_has_no_moment():
     _, _, _, Mz = B.bem_path(E, 0.3, E, 0.3, R, 0.3, np.full(x.size, DELTA), s * x, s * y, np.zeros(x.size),
                              n_across=12)
     assert np.max(np.abs(Mz)) < 1e-6 * 0.3 * N * a      # (single-precision convolutions)
+
+
+# -- the impact with spin about the normal (Horak 1948's spinning sphere dropped on a plane) --------------
+def _horak_scene(mu=0.3):
+    return dc.Scene(dc.Sphere(0.005, dc.STEEL), dc.Wall(dc.STEEL), mu=mu, twist="deresiewicz")
+
+
+def _full_slip_spin_loss(scene, vn):
+    """(3 pi/16) mu int N a dt / I: the spin lost if the contact slides throughout, Lubkin's (1951) full-slip
+    moment over the Hertz impact (N = (4/3) E* sqrt(R*) delta^(3/2), a = sqrt(R* delta): N a = (4/3) E* R*
+    delta^2, Johnson 1985 ch. 11), by quadrature of the Hertz overlap history."""
+    pr = scene.pair
+    _, tc, _, _ = hertz_overlap_history(pr.E_star, pr.R_star, pr.m_star, vn, None)
+    t = np.linspace(0.0, tc, 4001)
+    d, _, _, _ = hertz_overlap_history(pr.E_star, pr.R_star, pr.m_star, vn, t)
+    Na = integrate.simpson(4 / 3 * pr.E_star * pr.R_star * d**2, x=t)
+    return 3 * math.pi / 16 * scene.mu * Na / scene.sphere.inertia
+
+
+def test_impact_full_slip_twist_loses_lubkin_angular_impulse():
+    """A fast spin about the normal (Psi ~ 200: the contact slides throughout) loses the angular impulse of
+    Lubkin's full-slip moment, (3 pi/16) mu int N a dt / I. The element pressures (collocated Hertz, scaled to
+    N) approximate the moment int mu p r dA at second order in h/a: within 0.3% at 16 elements across, and
+    closer than at 8. The circumferential traction carries no force: no tangential impulse."""
+    scene = _horak_scene()
+    dw = _full_slip_spin_loss(scene, 2.0)
+    err = []
+    for n in (8, 16):
+        b = bem_impact(scene, 2.0, 0.0, spin=(0.0, 0.0, 1e5), n_across=n, steps=40)
+        err.append(abs((1e5 - b.omega_r[2]) / dw - 1.0))
+        assert np.all(np.abs(b.tangential_impulse) < 1e-9 * 0.3 * b.normal_impulse)
+    assert err[1] < 3e-3 and err[1] < err[0]
+
+
+def test_impact_spin_about_the_normal_symmetries():
+    """Frictionless: the spin about the normal passes unchanged. With friction the mirror x -> -x reverses
+    the spin and the moment: a reversed spin loses exactly the same (the grid is mirror-symmetric), and the
+    spin is slowed, not reversed (the moment opposes the twist, Lubkin 1951)."""
+    b0 = bem_impact(_horak_scene(mu=0.0), 2.0, 0.0, spin=(0.0, 0.0, 500.0), n_across=8, steps=20)
+    assert b0.omega_r[2] == 500.0
+    scene = _horak_scene()
+    bp = bem_impact(scene, 2.0, 0.0, spin=(0.0, 0.0, 500.0), n_across=12, steps=20, series=True)
+    bm = bem_impact(scene, 2.0, 0.0, spin=(0.0, 0.0, -500.0), n_across=12, steps=20)
+    assert bm.omega_r[2] == pytest.approx(-bp.omega_r[2], rel=1e-12)
+    w = bp.series["spin"][:, 2]
+    assert 0.0 < bp.omega_r[2] < 500.0 and np.all(w > 0.0)
+    assert np.all(bp.series["moment_z"] <= 0.0)
+
+
+def test_sticking_twist_is_solved_to_the_step_tolerance():
+    """A slow spin (Psi = 0.01: the contact edge moves by ~1e-4 of the slip displacement per step) is
+    resolved: tightening the step-relative tolerance a hundredfold moves the spin lost by < 1e-5 of it
+    (the step solve's error is no part of the reference's error)."""
+    from dem_contact.laws import closed_forms as cf
+    from dem_contact.reference.paths import twist_modulus
+    scene = _horak_scene()
+    pr, vn = scene.pair, 2.0
+    tc = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
+    a = math.sqrt(pr.R_star * cf.hertz_max_overlap(pr.E_star, pr.R_star, pr.m_star, vn))
+    w0 = 0.01 * 0.3 * cf.hertz_max_force(pr.E_star, pr.R_star, pr.m_star, vn) / (
+        16 / 3 * twist_modulus(dc.STEEL.E, dc.STEEL.nu, dc.STEEL.E, dc.STEEL.nu) * a**2) / tc
+    lost = [1 - bem_impact(scene, vn, 0.0, spin=(0.0, 0.0, w0), n_across=12, steps=40, step_tol=st).omega_r[2] / w0
+            for st in (1e-5, 1e-7)]
+    assert abs(lost[0] / lost[1] - 1) < 1e-5
+
+
+@pytest.mark.parametrize("vt, spin", [(0.3, (0.0, 0.0, 3000.0)), ((0.2, -0.1), (40.0, -60.0, 800.0)),
+                                      (0.0, (0.0, 120.0, 50.0))])
+def test_impact_with_spin_creates_no_energy(vt, spin):
+    """Tangential and rotational kinetic energy after the impact <= before (friction dissipates; the
+    Hertz normal motion returns its energy), with spin about the normal in sliding and sticking impacts."""
+    scene = _horak_scene()
+    m, I = scene.sphere.mass, scene.sphere.inertia
+    V0 = np.array([vt, 0.0]) if np.ndim(vt) == 0 else np.array(vt)
+    b = bem_impact(scene, 1.0, vt, spin=spin, n_across=12, steps=30)
+    before = 0.5 * m * V0 @ V0 + 0.5 * I * np.dot(spin, spin)
+    after = 0.5 * m * b.v_r @ b.v_r + 0.5 * I * b.omega_r @ b.omega_r
+    assert after < before
+    assert b.omega_r[2] * spin[2] > 0.0
+
+
+def test_deresiewicz_law_against_the_bem_impact():
+    """Horak's impact at Psi = w0 t_c / beta_1 = 1 (partial slip; beta_1 = mu N a / ((16/3) G_c a^3) at the
+    largest force): the spin lost by the deresiewicz twist law (its time step converged, 2000 steps per
+    contact) against the BEM impact at 100 steps and 24 elements across. The reference's own error there,
+    from its refinement (validation/twist/report.md, Horak's spinning impact, Psi = 1), is first order in
+    the step (+1.4% at 100 steps: twice the change from 100 to 200) and in the element (-0.8% at 32 across
+    after the step extrapolation, so about -1.1% at 24): each within 1.5%, so a tolerance of 3% on the
+    fraction lost (the converged law and BEM agree to 0.2%)."""
+    from dem_contact.impacts.impact3d import impact3d
+    from dem_contact.laws import closed_forms as cf
+    from dem_contact.reference.paths import twist_modulus
+    scene = _horak_scene()
+    pr, vn = scene.pair, 2.0
+    tc = cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn)
+    a = math.sqrt(pr.R_star * cf.hertz_max_overlap(pr.E_star, pr.R_star, pr.m_star, vn))
+    N = cf.hertz_max_force(pr.E_star, pr.R_star, pr.m_star, vn)
+    Gc = twist_modulus(dc.STEEL.E, dc.STEEL.nu, dc.STEEL.E, dc.STEEL.nu)
+    w0 = 0.3 * N * a / (16 / 3 * Gc * a**3) / tc
+    law = impact3d(scene, vn, (0.0, 0.0), (0.0, 0.0, w0), steps_per_contact=2000)
+    b = bem_impact(scene, vn, 0.0, spin=(0.0, 0.0, w0), n_across=24, steps=100)
+    lost_law, lost_bem = 1 - law.spin_r[2] / w0, 1 - b.omega_r[2] / w0
+    assert abs(lost_law / lost_bem - 1) < 0.03
+    assert lost_bem < 0.5 * _full_slip_spin_loss(scene, vn) / w0       # partial slip: well below full slip

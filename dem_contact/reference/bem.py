@@ -60,6 +60,9 @@ DEFAULT_N_ACROSS = 64
 DEFAULT_TOL = 1e-5
 #: Iteration cap of one step solve (the solve raises NumericalError if it is reached).
 MAX_ITERATIONS = 20000
+#: Floor of a step-relative tolerance, in units of the rounding of the convolutions (their machine epsilon
+#: times the largest displacement of the step): the solve is not asked to resolve rounding.
+ROUNDING_MARGIN = 1e4
 
 
 def _corner_sums(X, Y, h):
@@ -202,15 +205,26 @@ class TangentialBEM:
 
     E1, nu1, E2, nu2: the materials (E = math.inf for a rigid body) [Pa, -]; R_star: effective radius [m];
     mu: friction coefficient; a_max: largest contact radius the grid must hold [m]; n_across: elements
-    across 2 a_max; tol: step-solve tolerance (fraction of the slip displacement); workers: FFT threads;
-    single: convolutions in single precision (default; double with False).
+    across 2 a_max; tol: step-solve tolerance (fraction of the slip displacement); step_tol: None (default)
+    or a second tolerance, a fraction of the step's own rigid increment (see ``step``); workers: FFT
+    threads; single: convolutions in single precision (default; double with False).
+
+    Tolerances. With ``tol`` alone a step is solved to tol times the slip displacement s = 3 mu N /
+    (16 G* a): right when the steps are a fair fraction of s, not when they are far smaller (a sticking
+    twist or shear of amplitude << s, in many steps): what a step leaves unresolved is stored as slip, so
+    over M steps of increment d the error is M tol s against the M d travelled, tol s / d relative.
+    ``step_tol`` bounds it by step_tol: the solve then stops at the smaller of tol s and step_tol d_max,
+    d_max the step's largest rigid increment |du + d beta n x r| over the contact, but not below
+    ``ROUNDING_MARGIN`` machine epsilons of the convolutions times the step's largest displacement (a step
+    with no rigid increment, only the overlap changing, is solved to that floor). In single precision the
+    floor (1e-3 of the displacements) exceeds tol s: use step_tol with ``single=False``.
 
     ``step(delta, dux, duy, dtwist)`` advances by one step and returns (N, Tx, Ty); ``moment()`` is the
     moment M_z about the normal of the current tractions.
     """
 
     def __init__(self, E1, nu1, E2, nu2, R_star, mu, a_max, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL,
-                 workers=1, single=True):
+                 workers=1, single=True, step_tol=None):
         E1 = check_finite("E1 (Young's modulus of body 1, Pa)", E1, lo=0.0, allow_inf=True)
         E2 = check_finite("E2 (Young's modulus of body 2, Pa)", E2, lo=0.0, allow_inf=True)
         nu1 = check_finite("nu1 (Poisson ratio of body 1)", nu1, lo=-1.0, hi=0.5)
@@ -223,6 +237,11 @@ class TangentialBEM:
         if isinstance(n_across, bool) or int(n_across) != n_across or not 4 <= n_across <= 1024:
             raise InputError(f"n_across = {n_across!r} must be an integer in [4, 1024]")
         self.tol = check_finite("tol (step-solve tolerance)", tol, lo=0.0, hi=1e-2)
+        self.step_tol = None if step_tol is None else check_finite(
+            "step_tol (step-solve tolerance, fraction of the step's rigid increment; or None)", step_tol, lo=0.0,
+            hi=1e-2)
+        if not isinstance(single, (bool, np.bool_)):
+            raise InputError(f"single = {single!r} must be True (single-precision convolutions) or False (double)")
         self.n = n = int(n_across)
         self.workers = workers
         inv_E = sum((1.0 - nu * nu) / E for E, nu in ((E1, nu1), (E2, nu2)) if not math.isinf(E))
@@ -236,6 +255,7 @@ class TangentialBEM:
         # the convolutions run in single precision by default (half the time; their rounding, 1e-7 of the
         # displacements, is far below the solve tolerance); tractions and sums stay in double precision
         self._real = np.float32 if single else np.float64
+        self._rounding = ROUNDING_MARGIN * float(np.finfo(self._real).eps)
         cplx = np.complex64 if single else np.complex128
         self._kxx = sfft.rfft2(kxx, workers=workers).astype(cplx)
         self._kyy = sfft.rfft2(kyy, workers=workers).astype(cplx)
@@ -309,7 +329,9 @@ class TangentialBEM:
         """Advance by one step: overlap ``delta`` [m] now, rigid tangential displacement increment
         (dux, duy) [m] and rigid twist increment ``dtwist`` [rad] (about the normal) of body 1 relative to
         body 2 since the last step. Returns (N, Tx, Ty) [N], T the tangential force on body 1 (``moment()``
-        gives the moment about the normal)."""
+        gives the moment about the normal). The solve's tolerance: tol times the slip displacement, or with
+        ``step_tol`` the smaller of that and step_tol times the step's largest rigid increment over the
+        contact, floored at the rounding of the convolutions (class text)."""
         N, a, p = self.normal(delta)
         self.N = N
         if N == 0.0:
@@ -327,7 +349,15 @@ class TangentialBEM:
             cy = cy + dtwist * self.xc[:, None]
         # displacement scale of the step: the slip displacement 3 mu N / (16 G* a), mu capped at 1
         scale = 3.0 * min(self.mu, 1.0) * N / (16.0 * self.G_star * a)
-        self._solve(rad, cx, cy, self._lipschitz(a), self.tol * scale)
+        tol = self.tol * scale
+        if self.step_tol is not None:
+            inside = rad > 0.0
+            ix = dux - dtwist * self.xc[None, :]
+            iy = duy + dtwist * self.xc[:, None]
+            inc = float(np.sqrt(np.max(np.where(inside, ix * ix + iy * iy, 0.0))))
+            floor = self._rounding * float(max(np.max(np.abs(cx)), np.max(np.abs(cy))))
+            tol = min(tol, max(self.step_tol * inc, floor))
+        self._solve(rad, cx, cy, self._lipschitz(a), tol)
         h2 = self.h * self.h
         return N, -h2 * float(self.qx.sum()), -h2 * float(self.qy.sum())
 
@@ -384,7 +414,7 @@ def _as_path(delta, ux, uy, twist=None):
 
 
 def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, twist=None, *, n_across=DEFAULT_N_ACROSS,
-             tol=DEFAULT_TOL, substeps=1, workers=1, return_solver=False):
+             tol=DEFAULT_TOL, substeps=1, workers=1, return_solver=False, single=True, step_tol=None):
     """Forces along a prescribed contact history, by the boundary-element method (see the module text).
 
     E1, nu1, E2, nu2: materials of the two bodies (E = math.inf: rigid) [Pa, -]; R_star: effective radius
@@ -396,7 +426,9 @@ def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, twist=None, *, n_acros
     across the largest contact diameter 2 sqrt(R* max(delta)). substeps: solve each row in this many
     equal steps (delta, u and the twist interpolated linearly from the previous row; the first row at its
     own delta): on turning paths the step error is first order in the step (the slip direction of a step
-    is that of its increment).
+    is that of its increment). tol, step_tol, single: the step solve's tolerances and the convolutions'
+    precision (``TangentialBEM``; for paths of many steps far smaller than the slip displacement pass
+    step_tol with single=False).
 
     Returns (N, Tx, Ty): arrays of the normal force [N] and the tangential force on body 1 [N] (opposing
     the displacement; T = -k u in the elastic limit); with ``twist``, (N, Tx, Ty, Mz), Mz the moment on
@@ -415,7 +447,7 @@ def bem_path(E1, nu1, E2, nu2, R_star, mu, delta, ux, uy, twist=None, *, n_acros
     solver = None
     if dmax > 0.0:
         solver = TangentialBEM(E1, nu1, E2, nu2, R_star, mu, math.sqrt(R_star * dmax), n_across=n_across,
-                               tol=tol, workers=workers)
+                               tol=tol, workers=workers, single=single, step_tol=step_tol)
         px = py = pb = 0.0
         pd = d[0]
         for i in range(n):
@@ -437,11 +469,11 @@ def _scene_materials(scene):
 
 
 def bem_path_scene(scene, delta, ux, uy, twist=None, *, n_across=DEFAULT_N_ACROSS, tol=DEFAULT_TOL, substeps=1,
-                   workers=1):
+                   workers=1, single=True, step_tol=None):
     """``bem_path`` with the materials, R* and mu of a ``Scene`` (dem_contact.laws.model)."""
     E1, nu1, E2, nu2, R = _scene_materials(scene)
     return bem_path(E1, nu1, E2, nu2, R, scene.mu, delta, ux, uy, twist, n_across=n_across, tol=tol,
-                    substeps=substeps, workers=workers)
+                    substeps=substeps, workers=workers, single=single, step_tol=step_tol)
 
 
 def time_per_step(n_across, steps=10, *, increment=0.08, tol=DEFAULT_TOL, repeats=3, E=208e9, nu=0.3,

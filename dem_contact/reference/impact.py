@@ -1,5 +1,7 @@
 """Oblique impact of an elastic sphere on a wall with the boundary-element tangential contact (``bem``):
-the exact reference for impacts, with any initial spin vector.
+the exact reference for impacts, with any initial spin vector, the spin about the normal included
+(Horak 1948's spinning sphere dropped on a plane; the twist resisted as in Lubkin 1951 and Deresiewicz
+1954, here without their axisymmetric assumption).
 
 The normal motion is Hertz's and, with the normal-tangential coupling dropped (as in the BEM and in MDR),
 independent of the tangential one: the overlap delta(t) is integrated once, to 1e-12 relative accuracy
@@ -7,6 +9,31 @@ independent of the tangential one: the overlap delta(t) is integrated once, to 1
 tangential motion (centre velocity, spin, contact-point displacement) is then integrated by velocity
 Verlet with ``steps`` equal steps over [0, t_c], the BEM giving the tangential force at every step. The
 impulses are the sums of the kicks, so the momentum identities hold to rounding error.
+
+Spin about the normal. Every step also passes the BEM the twist increment dt w_z and kicks w_z with the
+moment about the normal: I dw_z/dt = M_z, M_z = ``TangentialBEM.moment()``. Signs: the BEM's twist is the
+rotation of the sphere relative to the wall about the normal n = -e_z in a right-handed frame (x', y', n),
+and its elements' rigid increments are (du_x' - d beta y', du_y' + d beta x'). Taking x' = x, y' = -y
+(so that (x', y', n) is right-handed) and d beta = -w_z dt (a rotation w_z about +e_z is -w_z about n),
+the increments in (x, y) are (du_x - w_z dt y, du_y + w_z dt x): the same expressions with the wall-frame
+components and d beta = +w_z dt. So the BEM runs in (x, y) with dtwist = w_z dt, and its moment() is then
+the moment on the sphere about +e_z (the tractions act in the plane z = 0, at (x, y, -R) from the centre:
+their torque has the z component sum (x T_y - y T_x) and the in-plane part R (T_y, -T_x)). The tests check
+the physics: the spin decreases, kinetic energy is never created, and at full slip w_z loses Lubkin's
+angular impulse (3 pi/16) mu int N a dt / I.
+
+Step tolerance. A sticking twist (w_z t_c far below the no-slip twist at unit moment, Horak's small Psi)
+moves the contact edge by ~1e-4 of the slip displacement per step; a step solve stopped at a fraction of
+the slip displacement would leave ~10% of every step unresolved, stored as slip. So the impact solves each
+step also to ``step_tol`` of the step's own largest rigid increment (``TangentialBEM``), which needs the
+convolutions in double precision (single precision rounds at 1e-7 of the displacements, above such a
+tolerance): the defaults here are step_tol = tol and ``single=False``.
+
+Accuracy. The error is first order in the step (an element entering the contact takes the whole step's
+increment) and, in partial slip, about first order in the element (the contact edge collocated at the
+element centres), of opposite signs; in full slip the element error is second order
+(``validation/twist/report.md``, Horak's spinning impact: refinement to 800 steps and 128 across, and
+extrapolation in both).
 
 Frame: the wall is z = 0, the sphere above it; x along the incident tangential velocity of the centre
 (when it has one), y = z cross x. The contact-point velocity of the sphere relative to the wall is
@@ -37,7 +64,8 @@ class BEMImpactResult:
 
     f: impulse ratio P_t/P_n along the incident contact-point velocity (the Coulomb-opposing part);
     f_over_mu; Theta = 2 |v_ci| / ((1 + e_n) mu V_n) (e_n = 1: elastic Hertz); Omega_r = 2 R omega_r /
-    (5 (1 + e_n) mu V_n) with the planar omega = -omega_y; P_t the tangential impulse vector on the sphere.
+    (5 (1 + e_n) mu V_n) with the planar omega = -omega_y; P_t the tangential impulse vector on the sphere;
+    omega_r: the spin vector after the impact (its z component slowed by the moment about the normal).
     """
 
     f: float
@@ -85,14 +113,18 @@ def hertz_overlap_history(E_star, R_star, m_star, vn, t):
 
 
 def bem_impact(scene, vn, vt=0.0, spin=0.0, *, n_across=IMPACT_N_ACROSS, steps=IMPACT_STEPS,
-               tol=DEFAULT_TOL, series=False, workers=1) -> BEMImpactResult:
+               tol=DEFAULT_TOL, step_tol=DEFAULT_TOL, single=False, series=False, workers=1) -> BEMImpactResult:
     """Impact of the scene's sphere on its wall, Hertz normal contact, BEM tangential contact.
 
     scene: a ``Scene`` (laws.model) with a Wall as body 2 (its tangential law is not used); vn > 0:
     normal speed towards the wall [m/s]; vt: tangential velocity of the centre, a number (along x) or
     (vx, vy) [m/s]; spin: initial angular velocity, a number (the planar omega of Wu et al., v_t = vt +
     R omega) or (wx, wy, wz) [rad/s] in the frame of the module text. n_across: BEM elements across the
-    largest contact diameter; steps: velocity-Verlet steps over the contact time.
+    largest contact diameter; steps: velocity-Verlet steps over the contact time; tol, step_tol, single:
+    the step solve's tolerances (fractions of the slip displacement and of the step's rigid increment; None
+    drops step_tol) and the convolutions' precision (``TangentialBEM``; module text). series: also return
+    the histories t, overlap, normal_force, tangential_force (steps + 1 rows), moment_z [N m] and spin
+    (rows wx, wy, wz [rad/s]).
     """
     if not isinstance(scene.body2, Wall) or not isinstance(scene.sphere, Sphere):
         raise InputError("bem_impact simulates a sphere against a wall: scene.body2 must be a Wall")
@@ -126,7 +158,7 @@ def bem_impact(scene, vn, vt=0.0, spin=0.0, *, n_across=IMPACT_N_ACROSS, steps=I
     m1 = sph.material
     m2 = scene.body2.material
     bem = TangentialBEM(m1.E, m1.nu, m2.E, m2.nu, pr.R_star, scene.mu, math.sqrt(pr.R_star * dmax),
-                        n_across=n_across, tol=tol, workers=workers)
+                        n_across=n_across, tol=tol, workers=workers, single=single, step_tol=step_tol)
     dt = tc / steps
     inv_m, inv_I = 1.0 / m, 1.0 / inertia
 
@@ -138,21 +170,28 @@ def bem_impact(scene, vn, vt=0.0, spin=0.0, *, n_across=IMPACT_N_ACROSS, steps=I
     P = np.zeros(2)
     ser_T = np.zeros((steps + 1, 2))
     ser_N = np.zeros(steps + 1)
+    ser_M = np.zeros(steps + 1)
+    ser_W = np.zeros((steps + 1, 3))
+    ser_W[0] = W
+    Mz = 0.0
     for k in range(steps):
-        # velocity Verlet: half kick with the force of the current position, drift, force, half kick
+        # velocity Verlet: half kick with the force and moment of the current position, drift, force, half kick
         V += 0.5 * dt * inv_m * T
-        W[:2] += 0.5 * dt * inv_I * R * np.array([T[1], -T[0]])
+        W += 0.5 * dt * inv_I * np.array([R * T[1], -R * T[0], Mz])
         P += 0.5 * dt * T
         du = dt * contact_velocity(V, W)
-        N, Tx, Ty = bem.step(delta[k + 1], du[0], du[1])
+        N, Tx, Ty = bem.step(delta[k + 1], du[0], du[1], dt * W[2])
         T = np.array([Tx, Ty])
+        Mz = bem.moment()
         V += 0.5 * dt * inv_m * T
-        W[:2] += 0.5 * dt * inv_I * R * np.array([T[1], -T[0]])
+        W += 0.5 * dt * inv_I * np.array([R * T[1], -R * T[0], Mz])
         P += 0.5 * dt * T
         ser_T[k + 1] = T
         ser_N[k + 1] = N
-        if not np.all(np.isfinite(T)):
-            raise NumericalError(f"non-finite tangential force at step {k + 1}")
+        ser_M[k + 1] = Mz
+        ser_W[k + 1] = W
+        if not (np.all(np.isfinite(T)) and math.isfinite(Mz)):
+            raise NumericalError(f"non-finite tangential force or moment at step {k + 1}")
     Pn = m * (vn - vn_out)            # vn_out < 0: the rebound normal velocity (towards the wall positive)
     e_n = -vn_out / vn
     speed_ci = float(np.hypot(*v_ci))
@@ -170,5 +209,6 @@ def bem_impact(scene, vn, vt=0.0, spin=0.0, *, n_across=IMPACT_N_ACROSS, steps=I
         e_n=e_n, e_t=float(V[0] / vt) if np.ndim(vt) == 0 and vt != 0 else math.nan,
         normal_impulse=Pn, tangential_impulse=P, v_r=V.copy(), omega_r=W.copy(), v_cr=v_cr,
         contact_time=tc, max_overlap=dmax, steps=steps, n_across=bem.n,
-        series={"t": t, "overlap": delta, "normal_force": ser_N, "tangential_force": ser_T} if series else {},
+        series={"t": t, "overlap": delta, "normal_force": ser_N, "tangential_force": ser_T, "moment_z": ser_M,
+                "spin": ser_W} if series else {},
     )
