@@ -23,7 +23,7 @@ HERE = pathlib.Path(__file__).parent
 REF = HERE / "bem_paths_n64.csv"
 SPIN_REF = HERE.parent / "spin" / "bem_spin_reference.csv"
 TWIST_REF = HERE.parent / "bem" / "paths"
-#: The issue's targets on the twist paths: (force [mu N], moment [mu N a]); None: no target.
+#: The targets on the twist paths: (force [mu N], moment [mu N a]); None: no target.
 TWIST_TARGETS = {"twist-cycle 2": (None, 0.01), "shear-twist 0.6": (0.03, 0.03), "circle-twist 0.4": (0.03, 0.03)}
 
 
@@ -77,7 +77,8 @@ def twist_section():
               f"{abs(lm[k1]) / (sc.mu * N[k1] * a[k1]):.3f} with deresiewicz (Lubkin's value of the unsheared "
               "contact). The circle with twist shows the same coupling, smaller. The force and moment targets on "
               "these two paths need a law that couples twist and shear in one local state; the separate laws "
-              "do not meet them. Without a twist law the moment is simply missing (error = the BEM's moment); "
+              "do not meet them (the coupled path law `laws.twist_shear` does: validation/twist/report.md; it is "
+              "not a law of the 3D step charted here). Without a twist law the moment is simply missing (error = the BEM's moment); "
               "marshall (its stiffness from the tangential coefficient, slider (2/3) mu N a) and sds with the "
               "Hertz values (a linear spring up to Lubkin's full-slip moment) miss the hysteresis of the "
               "partial-slip annulus."]
