@@ -307,3 +307,22 @@ def test_the_path_command_runs_the_coupled_law_under_a_varying_overlap(tmp_path)
     for key, v in (("N", N), ("Tx", Tx), ("Ty", Ty), ("Mz", Mz)):
         assert np.array_equal(np.array(out[key]), v), key
     assert out["Tx"][40] == out["Mz"][40] == 0.0 and out["Tx"][41] != 0.0
+
+
+@pytest.mark.parametrize("lever", LEVERS)
+def test_pure_twist_under_a_varying_force_in_coarse_steps_is_deresiewicz(lever):
+    """No shear, coarse rows: the contact twisted into full slip, then unloaded to half its overlap while the
+    twist turns back by 1.5 beta_1 in one row (points beyond their lowered circles reversed past the far side),
+    and random coarse rows (twist steps ~2 beta_1, the overlap 0.6 to 1.9): deresiewicz's twist cells, to
+    rounding."""
+    rng = np.random.default_rng(2)
+    rows = [(np.array([0, 1, 1, 1, 0.5, 0.5]), np.array([0, 0, 1.0, 3.0, 1.5, 1.4]))]
+    for _ in range(20):
+        dl = rng.uniform(0.6, 1.9, 12)
+        dl[:3] = 0.0, 1.0, 1.9
+        rows.append((dl, np.r_[0.0, np.cumsum(rng.normal(0.0, 2.0, 11))]))
+    for dl, b in rows:
+        Nh, ah = hertz(DELTA * dl)
+        M_ref, _ = d.twist_path(G_C, MU, R, Nh, ah, BETA1 * b, 32)
+        _, _, M, _ = twist_shear_path(G_STAR, G_C, MU, R, Nh, ah, 0 * b, 0 * b, BETA1 * b, slip_lever=lever)
+        assert np.abs(M - M_ref).max() < 1e-9 * MU * N * A

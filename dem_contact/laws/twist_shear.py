@@ -357,7 +357,9 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
                     vv = (v * v).sum(axis=2)
                     root = np.sqrt(np.maximum(vd * vd - dd * (vv - U * U), 0.0))
                     f = np.clip((root - vd) / np.where(dd > 0.0, dd, 1.0), 0.0, 1.0)
-                    lever = np.where(vv > OUTSIDE * (U * U), np.minimum(lam, rho)[:, None],
+                    outside = vv > OUTSIDE * (U * U)
+                    forward = (v * e[None]).sum(axis=2) * bt[:, None] >= 0.0
+                    lever = np.where(outside, np.where(forward, np.minimum(lam, rho)[:, None], lam[:, None]),
                                      f * lam[:, None] + (1.0 - f) * rho[:, None])
                     slid = v + dc[:, None, :] + (lever * bt[:, None])[:, :, None] * e[None, :, :]
                     trial[over] = slid[over]
