@@ -84,9 +84,9 @@ limit lowered) slides through the step: with ``rings`` it moves with the lever m
 lever of a sliding point, wherever rho <= lambda: every cell but the innermost for steel; with lambda where
 that would leave it on the other side of the origin from its elastic trial, so that the return of a pure
 twist is deresiewicz's in any step), with ``limits`` with lambda. Under pure shear every point of a cell
-is alike (residual and theta 0 to rounding): the vector MDR cell, so ``mdr_adaptive`` to rounding on the same grid; under pure twist every point is
-lambda theta e_k (residual and u 0) and its return is deresiewicz's, to rounding (the tests, for every
-residual rule and both levers).
+is alike (residual and theta 0 to rounding): the vector MDR cell, so ``mdr_adaptive`` to rounding on the
+same grid; under pure twist every point is lambda theta e_k (residual and u 0) and its return is
+deresiewicz's, to rounding (the tests, for every residual rule and both levers).
 
 Measured against the BEM with twist under a varying overlap (``validation/twist/run_twist_shear_varying.py``,
 64 elements across, steel on steel, mu 0.3; max error in mu N / mu N a, N and a of each row), default law:
