@@ -458,8 +458,9 @@ def test_sticking_twist_is_solved_to_the_step_tolerance():
     w0 = 0.01 * 0.3 * cf.hertz_max_force(pr.E_star, pr.R_star, pr.m_star, vn) / (
         16 / 3 * twist_modulus(dc.STEEL.E, dc.STEEL.nu, dc.STEEL.E, dc.STEEL.nu) * a**2) / tc
     lost = [1 - bem_impact(scene, vn, 0.0, spin=(0.0, 0.0, w0), n_across=12, steps=40, step_tol=st).omega_r[2] / w0
-            for st in (1e-5, 1e-7)]
+            for st in (1e-5, 1e-7, None)]
     assert abs(lost[0] / lost[1] - 1) < 1e-5
+    assert abs(lost[2] / lost[1] - 1) > 1e-3       # (the step tolerance acts: without it the steps store slip)
 
 
 @pytest.mark.parametrize("vt, spin", [(0.3, (0.0, 0.0, 3000.0)), ((0.2, -0.1), (40.0, -60.0, 800.0)),

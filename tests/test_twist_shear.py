@@ -307,3 +307,38 @@ def test_the_path_command_runs_the_coupled_law_under_a_varying_overlap(tmp_path)
     for key, v in (("N", N), ("Tx", Tx), ("Ty", Ty), ("Mz", Mz)):
         assert np.array_equal(np.array(out[key]), v), key
     assert out["Tx"][40] == out["Mz"][40] == 0.0 and out["Tx"][41] != 0.0
+
+
+@pytest.mark.parametrize("lever", LEVERS)
+def test_pure_twist_under_a_varying_force_in_coarse_steps_is_deresiewicz(lever):
+    """No shear, coarse rows: the contact twisted into full slip, then unloaded to half its overlap while the
+    twist turns back by 1.5 beta_1 in one row (points beyond their lowered circles reversed past the far side),
+    and random coarse rows (twist steps ~2 beta_1, the overlap 0.6 to 1.9): deresiewicz's twist cells, to
+    rounding."""
+    rng = np.random.default_rng(2)
+    rows = [(np.array([0, 1, 1, 1, 0.5, 0.5]), np.array([0, 0, 1.0, 3.0, 1.5, 1.4]))]
+    for _ in range(20):
+        dl = rng.uniform(0.6, 1.9, 12)
+        dl[:3] = 0.0, 1.0, 1.9
+        rows.append((dl, np.r_[0.0, np.cumsum(rng.normal(0.0, 2.0, 11))]))
+    for dl, b in rows:
+        Nh, ah = hertz(DELTA * dl)
+        M_ref, _ = d.twist_path(G_C, MU, R, Nh, ah, BETA1 * b, 32)
+        _, _, M, _ = twist_shear_path(G_STAR, G_C, MU, R, Nh, ah, 0 * b, 0 * b, BETA1 * b, slip_lever=lever)
+        assert np.abs(M - M_ref).max() < 1e-9 * MU * N * A
+
+
+def test_sliding_with_spin_while_unloading_against_the_boundary_element_reference():
+    """A slide with spin into full slip, unloaded to 0.6 of its overlap and reloaded to 1.2 while it goes on
+    (the stored BEM history, 64 across, 300 steps): the points beyond their lowered circles slide (lever
+    min(lambda, rho)), and the moment follows the BEM's within 0.05 mu N a (taking their step elastically
+    instead, the moment keeps that of the larger radius: 0.142 against the BEM's 0.078 mu N a unloaded)."""
+    from dem_contact.studies.paths import coupled_path
+
+    (dl, ux, uy, tw), (Nr, Txr, Tyr, Mzr) = read_twist_reference(
+        BEM_VARYING / "slide_and_spin_unload_reload_n64_s300.csv")
+    Nh, ah = hertz(dl)
+    assert np.ptp(dl) > 0.5 * DELTA and np.allclose(Nr, Nh, rtol=1e-9)
+    _, Tx, Ty, Mz = coupled_path(chart_scene(), dl, ux, uy, tw)
+    assert np.max(np.hypot(Tx - Txr, Ty - Tyr) / (MU * Nh)) < 0.05
+    assert np.max(np.abs(Mz - Mzr) / (MU * Nh * ah)) < 0.05

@@ -81,12 +81,12 @@ u_max_old) r_k, the residual keeps its fraction of the limit (the pattern of sli
 in a ring at its limit is a pattern of the limit); ``kept``, r_k' = r_k, physical like the modes; ``dropped``,
 r_k' = 0, the ring forgets where it slipped. A point beyond its new circle before the step's increment (its
 limit lowered) slides through the step: with ``rings`` it moves with the lever min(lambda, rho) (rho, the
-lever of a sliding point, wherever rho <= lambda: every cell but the innermost for steel; never less far
-out along e_k than its elastic trial, so that the return of a pure twist is deresiewicz's), with ``limits``
-with lambda. Under pure shear every point of a cell is alike (residual and theta 0 to rounding): the vector
-MDR cell, so ``mdr_adaptive`` to rounding on the same grid; under pure twist every point is
-lambda theta e_k (residual and u 0) and its return is deresiewicz's, to rounding (the tests, for every
-residual rule and both levers).
+lever of a sliding point, wherever rho <= lambda: every cell but the innermost for steel; with lambda where
+that would leave it on the other side of the origin from its elastic trial, so that the return of a pure
+twist is deresiewicz's in any step), with ``limits`` with lambda. Under pure shear every point of a cell
+is alike (residual and theta 0 to rounding): the vector MDR cell, so ``mdr_adaptive`` to rounding on the
+same grid; under pure twist every point is lambda theta e_k (residual and u 0) and its return is
+deresiewicz's, to rounding (the tests, for every residual rule and both levers).
 
 Measured against the BEM with twist under a varying overlap (``validation/twist/run_twist_shear_varying.py``,
 64 elements across, steel on steel, mu 0.3; max error in mu N / mu N a, N and a of each row), default law:
@@ -350,14 +350,19 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
                     # the rest with the lever rho: the point moves by du + (f lambda + (1 - f) rho) d(beta) e_k
                     # (du and d(beta) times the entry weights of a cell that grows). A point beyond its circle
                     # before the increment (its limit lowered) slides through the step, with the lever
-                    # min(lambda, rho): never less far out than its elastic trial along e_k, so that the return
-                    # of a pure twist is deresiewicz's
+                    # min(lambda, rho), unless that would leave it on the other side of the origin from its
+                    # elastic trial (a step reversing it past the far side of its circle): then with lambda,
+                    # the exact laws' order, so that the return of a pure twist is deresiewicz's in any step
                     dd = (d * d).sum(axis=2)
                     vd = (v * d).sum(axis=2)
                     vv = (v * v).sum(axis=2)
                     root = np.sqrt(np.maximum(vd * vd - dd * (vv - U * U), 0.0))
                     f = np.clip((root - vd) / np.where(dd > 0.0, dd, 1.0), 0.0, 1.0)
-                    lever = np.where(vv > OUTSIDE * (U * U), np.minimum(lam, rho)[:, None],
+                    outside = vv > OUTSIDE * (U * U)
+                    low = np.minimum(lam, rho)[:, None]
+                    through = v + dc[:, None, :] + (low * bt[:, None])[:, :, None] * e[None, :, :]
+                    across = (through * trial).sum(axis=2) < 0.0
+                    lever = np.where(outside, np.where(across, lam[:, None], low),
                                      f * lam[:, None] + (1.0 - f) * rho[:, None])
                     slid = v + dc[:, None, :] + (lever * bt[:, None])[:, :, None] * e[None, :, :]
                     trial[over] = slid[over]
