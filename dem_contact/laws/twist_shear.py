@@ -104,7 +104,7 @@ associated), but the physical work per cell is the sum over the points' works on
 energy at the two limits is equal (G_M u_max^2 ds = 8 G_c s^2 theta_max^2 ds, true at no s in general),
 so the absence of energy creation on closed loops is checked (random loops, in the tests and the
 validation), not proven. Under a varying N a closed loop in (delta, u, beta) may give back work that the
-history stored (the exact laws too: 6 and 7 of 200 random loops); the loop's work less the change of the
+history stored (6 of 200 random loops; the separate exact laws on the same cells: 7); the loop's work less the change of the
 stored energy of the force and moment modes (``stored``) was positive in all 200, for every residual rule
 and lever. Single steps that unload can show a small negative one, at the cell cut by the receding edge
 (the exact laws' cells too; it falls as the cells refine) (``validation/twist/report.md``).
@@ -199,7 +199,7 @@ def _per_row(name, x, rows):
         raise InputError(f"{name} must be a number or one value per row ({rows}), got shape {v.shape}")
     bad = np.flatnonzero(~(np.isfinite(v) & (v >= 0.0)))
     if bad.size:
-        raise InputError(f"{name}[{bad[0]}] = {v[bad[0]]!r} must be finite and >= 0")
+        raise InputError(f"{name}[{bad[0]}] = {float(v[bad[0]]):g} must be finite and >= 0")
     return v
 
 
@@ -288,6 +288,8 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
         raise InputError(f"cells = {cells} must be even (the grid of mdr_adaptive)")
     if slip_lever not in SLIP_LEVERS:
         raise InputError(f"slip_lever = {slip_lever!r} is unknown; choose one of: {', '.join(SLIP_LEVERS)}")
+    if not isinstance(stored, (bool, np.bool_)):
+        raise InputError(f"stored = {stored!r} must be True (also return the stored energy) or False")
     if residual not in RESIDUAL_RULES:
         raise InputError(f"residual = {residual!r} is unknown; choose one of: {', '.join(RESIDUAL_RULES)}")
     cols = [np.asarray(v, dtype=float) for v in (ux, uy, beta)]
@@ -330,7 +332,7 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
         du = np.array([ux[t] - ux[t - 1], uy[t] - uy[t - 1]])
         db = beta[t] - beta[t - 1]
         new = state(t)
-        a1, l1, w1, umax, lam, rho = new
+        _, l1, w1, umax, lam, rho = new
         if not touch[t]:
             v[:] = 0.0
         else:

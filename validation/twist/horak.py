@@ -234,6 +234,8 @@ if __name__ == "__main__":
     if args.bem_n % 2 or not 8 <= args.bem_n <= 1024:
         ap.error(f"--bem-n {args.bem_n} must be an even integer in [8, 1024]")
     if args.convergence:
+        if (args.bem_n, args.bem_steps) != (BEM_N, BEM_STEPS):
+            ap.error("--convergence runs its own grids and steps: give it without --bem-n and --bem-steps")
         convergence()
     else:
         main(args.bem_n, args.bem_steps)

@@ -18,7 +18,7 @@ each row): the coupled law (``studies.paths.coupled_path``: 32 cells, 8 points) 
 the three residual rules, and the separate laws (the 3D kernel of the default tangential law mdr_adaptive
 with the twist law deresiewicz, ``studies.paths.run_path``). The BEM (64 elements across the largest
 contact, 400 steps; ``reference.bem.bem_path``) is stored in bem_extra/<label>_n64_s400.csv, and on the
-first path at 96 across (its grid error); --bem recomputes them (about a minute).
+first path at 96 across (its grid error); --bem recomputes them (about 45 s).
 
 Energy: 200 random histories in (delta, ux, uy, beta), each followed by a closed loop (two harmonics per
 coordinate); the loop's work (T . du + M d beta; the Hertz normal force is conservative and the loop closes
