@@ -262,7 +262,7 @@ def speed_range(scene: Scene) -> tuple:
 def _speed_range(E_star, R_star, m_star):
     lo, hi = math.log(SCALE_RANGE[0]), math.log(SCALE_RANGE[1])
     d1 = cf.hertz_max_overlap(E_star, R_star, m_star, 1.0)
-    scales = [(d1, 0.8), (4.0 / 3.0 * E_star * math.sqrt(R_star) * d1**1.5, 1.2),
+    scales = [(d1, 0.8), (cf.hertz_force(E_star, R_star, d1), 1.2),
               (cf.HERTZ_TC_FACTOR * d1, -0.2), (0.5 * m_star, 2.0)]
     v_lo, v_hi = -math.inf, math.inf
     for q1, k in scales:

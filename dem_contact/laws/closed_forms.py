@@ -28,9 +28,15 @@ def hertz_contact_time(E_star, R_star, m_star, v):
     return HERTZ_TC_FACTOR * hertz_max_overlap(E_star, R_star, m_star, v) / v
 
 
+def hertz_force(E_star, R_star, delta):
+    """Hertz's normal force N = (4/3) E* sqrt(R*) delta^(3/2) [N] at the overlap delta [m] (a number or an
+    array, delta >= 0; Johnson 1985, eq. 4.23)."""
+    return 4.0 / 3.0 * E_star * math.sqrt(R_star) * delta**1.5
+
+
 def hertz_max_force(E_star, R_star, m_star, v):
     """F_max = (4/3) E* sqrt(R*) delta_max^(3/2) [N]."""
-    return 4.0 / 3.0 * E_star * math.sqrt(R_star) * hertz_max_overlap(E_star, R_star, m_star, v) ** 1.5
+    return hertz_force(E_star, R_star, hertz_max_overlap(E_star, R_star, m_star, v))
 
 
 def thornton_yield_overlap(E_star, R_star, p_y):

@@ -203,7 +203,7 @@ def hertz_force_time(E_star, R_star, m_star, v, n: int = 400):
     tc = 2.0 * t_half[-1]
     t = np.concatenate([t_half, tc - t_half[-2::-1]])
     d = np.concatenate([x, x[-2::-1]]) * dmax
-    F = 4.0 / 3.0 * E_star * math.sqrt(R_star) * d**1.5
+    F = cf.hertz_force(E_star, R_star, d)
     return t, F, d
 
 

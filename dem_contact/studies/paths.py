@@ -112,6 +112,7 @@ def coupled_path(scene: Scene, delta, ux, uy, twist=None):
     (the scene's materials, mu and R*): the Hertz normal force and contact radius of each row's overlap
     (Johnson 1985, eq. 4.23; an overlap <= 0: no contact, the history released). The path starts from
     rest, out of contact, before its first row. InputError for another normal law."""
+    from ..laws.closed_forms import hertz_force
     from ..laws.twist.deresiewicz import twist_modulus
     from ..laws.twist_shear import twist_shear_path
 
@@ -124,7 +125,7 @@ def coupled_path(scene: Scene, delta, ux, uy, twist=None):
     pr = scene.pair
     d = np.maximum(delta, 0.0)
     a = np.sqrt(pr.R_star * d)
-    N = 4.0 / 3.0 * pr.E_star * math.sqrt(pr.R_star) * d**1.5           # Hertz (Johnson 1985, eq. 4.23)
+    N = hertz_force(pr.E_star, pr.R_star, d)
     z = np.zeros(1)
     Tx, Ty, M, _ = twist_shear_path(pr.G_star, twist_modulus(scene.sphere, scene.body2), scene.mu, pr.R_star,
                                     np.concatenate([z, N]), np.concatenate([z, a]), np.concatenate([z, ux]),
