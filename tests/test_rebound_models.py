@@ -122,3 +122,62 @@ def test_max_curve_difference():
     assert rm.max_curve_difference(EE["c"], EE["c"], 6.0) == 0.0
     shifted = (EE["c"][0] + 0.01,) + tuple(EE["c"][1:])
     assert rm.max_curve_difference(EE["c"], shifted, 5.0) == pytest.approx(0.01, abs=1e-12)
+
+
+def _linear_impact(kappa, Theta, mu=0.3, steps=4000):
+    """An independent oblique impact of a solid sphere (m = R = 1, I = 2/5) on a wall with linear springs
+    k_n = 1, k_t = kappa and a Coulomb slider (e_n = 1, no spin): whether the contact slides at every step,
+    at every step of the compression. Theta = v_ti / (mu V_ni) at e_n = 1."""
+    dt = np.pi / steps                          # contact time pi sqrt(m / k_n)
+    delta, vn, vt, w, F = 0.0, 1.0, Theta * mu, 0.0, 0.0
+    slid, slid_compression = True, True
+    while True:
+        delta += vn * dt
+        if delta <= 0.0:
+            return slid, slid_compression
+        N = delta
+        trial = F - kappa * (vt + w) * dt       # patch slip velocity vt + R w
+        sliding = abs(trial) >= mu * N
+        F = np.sign(trial) * mu * N if sliding else trial
+        slid &= sliding
+        if vn > 0.0:
+            slid_compression &= sliding
+        vn -= N * dt
+        vt += F * dt
+        w += F / 0.4 * dt
+
+
+@pytest.mark.parametrize("kappa", [0.2, 0.25, 0.5, 0.8235])
+def test_regime_boundaries_against_an_impact(kappa):
+    """The three boundaries against an independent linear spring-slider impact with k_t/k_n = kappa,
+    just above and below each, on both sides of kappa = 2/7 (below it all three are the initial-sliding
+    one: the margin kappa v_t - mu d(delta)/dt rises while the contact slides)."""
+    b = rm.regime_boundaries(kappa, 1.0)
+    assert b["initial_sliding"] <= b["compression_sliding"] <= b["persistent_sliding"]
+    assert b["persistent_sliding"] == rm.theta_c_theory(kappa, 1.0)
+    for fac in (1.02, 0.98):
+        slid, slid_compression = _linear_impact(kappa, fac * b["persistent_sliding"])
+        assert slid == (fac > 1.0), (kappa, fac)
+        slid, slid_compression = _linear_impact(kappa, fac * b["compression_sliding"])
+        assert slid_compression == (fac > 1.0), (kappa, fac)
+
+
+def test_regime_boundaries_ordered():
+    """Increasing in the order of the regimes for every kappa and e_n; continuous at kappa = 2/7."""
+    for kappa in np.linspace(0.05, 1.4, 55):
+        for e_n in (0.0, 0.3, 0.7, 1.0):
+            b = rm.regime_boundaries(kappa, e_n)
+            assert b["initial_sliding"] <= b["compression_sliding"] <= b["persistent_sliding"], (kappa, e_n)
+    lo, hi = rm.theta_c_theory(2 / 7 - 1e-12), rm.theta_c_theory(2 / 7 + 1e-12)
+    assert lo == pytest.approx(3.5, abs=1e-9) and hi == pytest.approx(3.5, abs=1e-9)
+    with pytest.raises(rm.InputError, match="kappa"):
+        rm.theta_c_theory(0.0)
+
+
+@pytest.mark.parametrize("model", ["wu", "bilinear", "rigid_body", "persistent_sliding"])
+def test_models_refuse_nan_theta(model):
+    args = {"wu": (EE["c"],), "bilinear": (0.8235,), "rigid_body": (), "persistent_sliding": ()}[model]
+    with pytest.raises(rm.InputError, match="Theta"):
+        getattr(rm, model)(np.array([1.0, np.nan]), *args)
+    with pytest.raises(rm.InputError, match="Theta"):
+        getattr(rm, model)(np.inf, *args)

@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import InputError, NumericalError
 from ..rebound.fit import critical_theta, fit_wu
 from ..materials import check_finite
-from ..rebound.models import PUBLISHED_FITS, max_curve_difference, theta_c_theory
+from ..rebound.models import PUBLISHED_FITS, eq_4_1, max_curve_difference, theta_c_theory
 from ..impacts.sweep import critical_angle, sweep_angles, sweep_speed
 from .common import (SCENE_OPTIONS, add_scene_options, check_output_file, default, dest, dump_json,
                      scene_from_args)
@@ -165,7 +165,7 @@ def run(args) -> int:
                "points": points, "fit": fit.to_dict() if fit else None, "fit_error": fit_error,
                "Theta_c_sim": crit.Theta if crit else None,
                "Theta_c_sim_angle_deg": crit.angle_deg if crit else None,
-               "Theta_c_theory": theory, "Theta_c_theory_e_n": e_n_slide, "Theta_c_eq41": theta_c_theory(kappa),
+               "Theta_c_theory": theory, "Theta_c_theory_e_n": e_n_slide, "Theta_c_eq41": eq_4_1(kappa),
                "published": comparison, "plot": plot_path,
                "warnings": res.warnings}
         why = {"fit": None if fit is not None else f"no fit: {fit_error}",

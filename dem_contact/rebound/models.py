@@ -60,40 +60,67 @@ def _check_e_n(e_n):
     return e_n
 
 
+def _check_kappa(kappa):
+    kappa = np.asarray(kappa, dtype=float)
+    if not np.all(np.isfinite(kappa) & (kappa > 0.0)):
+        raise InputError(f"kappa (k_t/k_n) must be finite and > 0, got {kappa}")
+    return kappa
+
+
 def theta_c_theory(kappa, e_n=1.0):
-    """Critical Theta above which sliding persists (no spin): Theta_c = 7 - 2 e_n / (kappa (1 + e_n)).
+    """Critical Theta above which sliding persists (no spin), ``regime_boundaries(...)["persistent_sliding"]``:
+    Theta_c = max(7 - 2 e_n / (kappa (1 + e_n)), 2 / (kappa (1 + e_n))).
 
     Persistent sliding needs kappa v_t >= mu d(delta)/dt at every instant of an elastic unloading with
-    k_t/k_n = kappa (Maw, Barber & Fawcett 1976; Johnson 1985, section 7.3); the margin falls through the
-    impact, so the condition binds at separation, where d(delta)/dt = -e_n V_ni. At e_n = 1 this is eq. 4.1 of
-    Wu, Thornton & Li (2009), (7 kappa - 1) / kappa. For an impact whose e_n changes with the angle, give the
-    e_n of the sliding impacts."""
-    kappa = np.asarray(kappa, dtype=float)
+    k_t/k_n = kappa (Maw, Barber & Fawcett 1976; Johnson 1985, section 7.3). While the contact slides, v_t
+    falls by 3.5 mu per unit of normal speed lost, so the margin kappa v_t - mu d(delta)/dt changes at the
+    rate (3.5 kappa - 1) mu times the normal deceleration: for kappa > 2/7 it falls through the impact and
+    the condition binds at separation, where d(delta)/dt = -e_n V_ni, giving 7 - 2 e_n / (kappa (1 + e_n))
+    (at e_n = 1 eq. 4.1 of Wu, Thornton & Li 2009, (7 kappa - 1) / kappa); for kappa <= 2/7 it rises, the
+    condition binds at first touch, and persistent sliding is sliding from first touch,
+    Theta > 2 / (kappa (1 + e_n)). The larger of the two is the boundary for every kappa. For an impact
+    whose e_n changes with the angle, give the e_n of the sliding impacts."""
+    kappa = _check_kappa(kappa)
     e_n = _check_e_n(e_n)
-    if np.any(kappa <= 2.0 * e_n / (7.0 * (1.0 + e_n))):
-        raise InputError(f"kappa must be > 2 e_n / (7 (1 + e_n)) (1/7 at e_n = 1), got {kappa}")
-    out = 7.0 - 2.0 * e_n / (kappa * (1.0 + e_n))
+    out = np.maximum(7.0 - 2.0 * e_n / (kappa * (1.0 + e_n)), 2.0 / (kappa * (1.0 + e_n)))
     return float(out) if out.ndim == 0 else out
 
 
 def regime_boundaries(kappa, e_n=1.0) -> dict:
     """The values of Theta (no spin) that separate the regimes of an oblique impact, by the argument of
-    ``theta_c_theory`` (kappa v_t against mu d(delta)/dt):
+    ``theta_c_theory`` (kappa v_t against mu d(delta)/dt), in increasing order:
 
     - ``initial_sliding``: the contact slides from first touch iff Theta > 2 / (kappa (1 + e_n)), i.e.
       kappa tan(theta_i) > mu (1/kappa at e_n = 1);
     - ``compression_sliding``: it slides through the whole compression iff Theta >= 7 / (1 + e_n), i.e.
-      tan(theta_i) >= 3.5 mu (3.5 at e_n = 1, whatever kappa);
+      tan(theta_i) >= 3.5 mu (3.5 at e_n = 1) for kappa >= 2/7;
     - ``persistent_sliding``: it slides until separation iff Theta >= ``theta_c_theory(kappa, e_n)``.
+
+    For kappa < 2/7 the margin kappa v_t - mu d(delta)/dt rises while the contact slides: a contact that
+    slides at first touch slides to the end, and one that does not cannot slide through the compression, so
+    all three boundaries are the initial-sliding one.
     """
+    kappa = float(_check_kappa(kappa))
     e_n = float(_check_e_n(e_n))
-    return {"initial_sliding": 2.0 / (float(kappa) * (1.0 + e_n)), "compression_sliding": 7.0 / (1.0 + e_n),
+    initial = 2.0 / (kappa * (1.0 + e_n))
+    return {"initial_sliding": initial, "compression_sliding": max(7.0 / (1.0 + e_n), initial),
             "persistent_sliding": theta_c_theory(kappa, e_n)}
+
+
+def eq_4_1(kappa):
+    """Eq. 4.1 of Wu, Thornton & Li (2009), Theta_c = (7 kappa - 1) / kappa: the critical Theta of an
+    elastic impact (e_n = 1) for kappa > 2/7, and the critical value of the bilinear model (eq. 5.2) for any
+    kappa > 1/7."""
+    kappa = _check_kappa(kappa)
+    if np.any(kappa <= 1.0 / 7.0):
+        raise InputError(f"kappa must be > 1/7 for eq. 4.1 (Theta_c = (7 kappa - 1) / kappa > 0), got {kappa}")
+    out = (7.0 * kappa - 1.0) / kappa
+    return float(out) if out.ndim == 0 else out
 
 
 def collapse_variable(Theta, kappa):
     """kappa Theta / (7 kappa - 1) = Theta / Theta_c(eq. 4.1): the RE curves of different nu collapse on it."""
-    return np.asarray(Theta, dtype=float) / theta_c_theory(kappa)
+    return np.asarray(Theta, dtype=float) / eq_4_1(kappa)
 
 
 def wu_curve(Theta, c):
@@ -124,6 +151,15 @@ def _identities(Theta, fm, Omega_i, mass_ratio):
             "Psi_r": Theta - 7.0 * fm}
 
 
+def _theta(Theta):
+    """Theta as a float array; NaN or infinite values refused (a comparison with Theta_c would put them
+    on either side silently)."""
+    Theta = np.asarray(Theta, dtype=float)
+    if not np.all(np.isfinite(Theta)):
+        raise InputError(f"Theta (dimensionless incidence) must be finite, got {Theta}")
+    return Theta
+
+
 def _mass_ratio(mass_ratio):
     if not 0.0 < mass_ratio <= 1.0:
         raise InputError(f"mass_ratio (m*/m1: 1 for a wall, 1/2 for two identical spheres) must be in (0, 1], "
@@ -138,8 +174,12 @@ def wu(Theta, c, Theta_c: float | None = None, Omega_i: float = 0.0, mass_ratio:
     c: (c1, c2, c3, c4); Theta_c: default the crossing of the curve with 1 (``wu_crossing``); give the
     paper's printed value to reproduce its piecewise curve; mass_ratio: m*/m1. Returns dict of arrays Theta,
     f_over_mu, Omega_r, e_t, Psi_r."""
-    Theta = np.asarray(Theta, dtype=float)
+    Theta = _theta(Theta)
+    if len(c) != 4 or not np.all(np.isfinite(np.asarray(c, dtype=float))):
+        raise InputError(f"c (the four c-parameters c1..c4 of eq. 4.5) must be four finite numbers, got {c}")
     tc = wu_crossing(c) if Theta_c is None else float(Theta_c)
+    if math.isnan(tc):
+        raise InputError("Theta_c must be a number (or None for the crossing of the curve with 1), got nan")
     fm = np.where(Theta < tc, wu_curve(Theta, c), 1.0)
     return _identities(Theta, fm, Omega_i, _mass_ratio(mass_ratio))
 
@@ -153,8 +193,8 @@ def bilinear(Theta, kappa, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dic
     """Bilinear model (Walton; Foerster et al.), eqs 5.1-5.6, at the patch Theta: Psi_r = -beta Theta below
     Theta_c = (7 kappa - 1)/kappa, Theta - 7 above, beta = 1/(7 kappa - 1); f/mu = (1 + beta) Theta / 7
     below, 1 above (the model holds e_n = 1 in its Theta_c)."""
-    Theta = np.asarray(Theta, dtype=float)
-    tc = theta_c_theory(kappa)
+    Theta = _theta(Theta)
+    tc = eq_4_1(kappa)
     beta = 1.0 / (7.0 * kappa - 1.0)
     fm = np.where(Theta < tc, (1.0 + beta) * Theta / 7.0, 1.0)
     return _identities(Theta, fm, Omega_i, _mass_ratio(mass_ratio))
@@ -163,7 +203,7 @@ def bilinear(Theta, kappa, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dic
 def rigid_body(Theta, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
     """Rigid-body dynamics (Brach), eqs 5.7-5.9, at the patch Theta: Theta_c = 7, f/mu = Theta/7 below (the
     patch ends at rest, Psi_r = 0; without spin e_t = 5/7, Omega_r = -Theta/7), 1 above."""
-    Theta = np.asarray(Theta, dtype=float)
+    Theta = _theta(Theta)
     fm = np.where(Theta < 7.0, Theta / 7.0, 1.0)
     return _identities(Theta, fm, Omega_i, _mass_ratio(mass_ratio))
 
@@ -171,7 +211,7 @@ def rigid_body(Theta, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
 def persistent_sliding(Theta, Omega_i: float = 0.0, mass_ratio: float = 1.0) -> dict:
     """Persistent sliding, f/mu = 1, at the patch Theta: Omega_r = Omega_i - m*/m1,
     e_t = 1 - 2/(Theta - 5 Omega_i), Psi_r = Theta - 7."""
-    Theta = np.asarray(Theta, dtype=float)
+    Theta = _theta(Theta)
     return _identities(Theta, np.ones_like(Theta), Omega_i, _mass_ratio(mass_ratio))
 
 

@@ -19,7 +19,7 @@ from ..errors import InputError, NumericalError
 from ..rebound.fit import fit_wu
 from ..impacts.impact import DEFAULT_STEPS_PER_CONTACT
 from ..laws.model import TANGENTIAL_LAWS
-from ..rebound.models import (PUBLISHED_FITS, collapse_variable, kappa_from_nu, max_curve_difference,
+from ..rebound.models import (PUBLISHED_FITS, collapse_variable, eq_4_1, kappa_from_nu, max_curve_difference,
                              theta_c_theory, wu_crossing, wu_f_over_mu)
 from ..impacts.presets import DEFAULT_TANGENTIAL, preset_scene
 from ..impacts.sweep import critical_angle, scene_with, sweep_angles, sweep_theta
@@ -261,7 +261,7 @@ def run_validation(outdir: str, log=print, grids: ValidationGrids = FULL) -> str
     w("")
     x = np.linspace(0.0, 1.0, 201)
     ours = [np.interp(x, collapse_variable(r.Theta, r.model["kappa"]), r.f_over_mu) for r in re.values()]
-    theirs = [wu_f_over_mu(x * theta_c_theory(kappa_from_nu(row["nu"])), row["c"]) for row in re_pub.values()]
+    theirs = [wu_f_over_mu(x * eq_4_1(kappa_from_nu(row["nu"])), row["c"]) for row in re_pub.values()]
     w("Plotted against kappa Theta/(7 kappa - 1), the RE curves of the three Poisson ratios nearly collapse: "
       f"over 0 <= kappa Theta/(7 kappa - 1) <= 1 the largest spread between them is "
       f"{np.max(np.ptp(ours, axis=0)):.3f} in f/mu for our curves and {np.max(np.ptp(theirs, axis=0)):.3f} for "
