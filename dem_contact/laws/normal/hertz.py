@@ -27,12 +27,20 @@ def contact_time(scene, vn):
 
 
 @njit(inline="always", cache=True)
-def hertz(p, delta):
-    """Hertz (Johnson 1985, eq. 4.23): a = sqrt(R* delta), N = (4/3) E* a delta."""
+def hertz_vector(E, R, delta):
+    """Hertz (Johnson 1985, eq. 4.23) on scalars: a = sqrt(R delta), N = (4/3) E a delta. Returns (N, a).
+    Every kernel's Hertz force (this law, hertz_damped, thornton's elastic branches) is this one,
+    inlined into each kernel."""
     if delta <= 0.0:
         return 0.0, 0.0
-    a = math.sqrt(p[P_RSTAR] * delta)
-    return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a
+    a = math.sqrt(R * delta)
+    return 4.0 / 3.0 * E * a * delta, a
+
+
+@njit(inline="always", cache=True)
+def hertz(p, delta):
+    """``hertz_vector`` with E* and R* of the planar parameter row."""
+    return hertz_vector(p[P_ESTAR], p[P_RSTAR], delta)
 
 
 @njit(inline="always", cache=True)
@@ -43,15 +51,6 @@ def planar(p, h, delta, vel):
 @njit(inline="always", cache=True)
 def gap(p, h, delta, vel):
     return delta
-
-
-@njit(inline="always", **JIT)
-def hertz_vector(E, R, delta):
-    """``hertz`` on scalars. Returns (N, a)."""
-    if delta <= 0.0:
-        return 0.0, 0.0
-    a = math.sqrt(R * delta)
-    return 4.0 / 3.0 * E * a * delta, a
 
 
 @njit(inline="always", **JIT)

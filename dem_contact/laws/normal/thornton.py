@@ -22,6 +22,7 @@ from ..slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR,
                      P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 from ..vector import JIT, V_STATE
 from .hertz import contact_time  # noqa: F401  (Hertz's elastic contact time sets the step)
+from .hertz import hertz_vector
 
 NAME, FAMILY = "thornton", "normal"
 SOURCE = "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p_y"
@@ -95,36 +96,16 @@ def describe(scene, p):
 
 @njit(cache=True)
 def thornton(p, h, delta):
-    """Thornton's law (module docstring) on the planar history row: reads and writes H_DSTAR, H_FSTAR,
+    """Thornton's law (module docstring) on the planar history row: ``thornton_state`` on H_DSTAR, H_FSTAR,
     H_RP, H_DP. With a traction-yield table in the row (P_TY_NODES > 0) loading follows
     ``_traction_loading``."""
     if delta <= 0.0:
         return 0.0, 0.0
-    E = p[P_ESTAR]
-    R = p[P_RSTAR]
     if delta >= h[H_DSTAR] and p[P_TY_NODES] > 0.0:
         return _traction_loading(p, h, delta)
-    if delta >= h[H_DSTAR]:
-        a = math.sqrt(R * delta)
-        if delta <= p[P_DELTA_Y]:
-            F = 4.0 / 3.0 * E * a * delta
-        else:
-            F = p[P_F_Y] + math.pi * p[P_PY] * R * (delta - p[P_DELTA_Y])
-        h[H_DSTAR] = delta
-        h[H_FSTAR] = F
-        if F > p[P_F_Y]:
-            Rp = 4.0 * E * a * a * a / (3.0 * F)
-            h[H_RP] = Rp
-            h[H_DP] = delta - (3.0 * F / (4.0 * E * math.sqrt(Rp))) ** (2.0 / 3.0)
-        return F, a
-    Rp = h[H_RP]
-    if Rp <= 0.0:
-        Rp = R
-    w = delta - h[H_DP]
-    if w <= 0.0:
-        return 0.0, 0.0
-    a = math.sqrt(Rp * w)
-    return 4.0 / 3.0 * E * a * w, a
+    F, a, h[H_DSTAR], h[H_FSTAR], h[H_RP], h[H_DP] = thornton_state(
+        p[P_ESTAR], p[P_RSTAR], p[P_DELTA_Y], p[P_F_Y], p[P_PY], h[H_DSTAR], h[H_FSTAR], h[H_RP], h[H_DP], delta)
+    return F, a
 
 
 @njit(inline="always", cache=True)
@@ -159,17 +140,17 @@ def traction_loading(E, R, py, dstar, fstar, Rp, dp, delta):
     stiffness at the current limit, never stiffer than a Hertz contact of R* carrying F*. The loading
     curve is then nowhere stiffer, at a given force, than the Hertz unloading curve of (R_p, delta_p), so a
     loading-unloading cycle cannot create energy. With g = 1 throughout it is Thornton's law (to rounding)."""
-    a = math.sqrt(R * delta)
+    F_hertz, a = hertz_vector(E, R, delta)
     if Rp <= 0.0:
         dy = R * (math.pi * py / (2.0 * E)) ** 2
         if delta <= dy:
-            F = 4.0 / 3.0 * E * a * delta
+            F = F_hertz
         else:
             F = math.pi * py * R * (delta - dy / 3.0)
     else:
         k = min(math.pi * py * R, 2.0 * E * (3.0 * fstar * R / (4.0 * E)) ** (1.0 / 3.0))
         F = fstar + k * (delta - dstar)
-    if F < 4.0 / 3.0 * E * a * delta or Rp > 0.0:
+    if F < F_hertz or Rp > 0.0:
         Rp = 4.0 * E * a * a * a / (3.0 * F)
         dp = delta - (3.0 * F / (4.0 * E * math.sqrt(Rp))) ** (2.0 / 3.0)
     return F, a, delta, F, Rp, dp
@@ -194,16 +175,17 @@ def gap(p, h, delta, vel):
     return delta - h[H_DP]
 
 
-@njit(**JIT)
-def thornton_vector(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
-    """``thornton`` on its four state values (no traction yield). Returns (N, a, delta*, F*, R_p, delta_p)."""
+@njit(inline="always", cache=True)
+def thornton_state(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
+    """Thornton's law (module docstring) on its four state values (no traction yield), the planar and the 3D
+    kernels alike. Returns (N, a, delta*, F*, R_p, delta_p)."""
     if delta <= 0.0:
         return 0.0, 0.0, dstar, fstar, Rp, dp
     if delta >= dstar:
-        a = math.sqrt(R * delta)
         if delta <= delta_y:
-            F = 4.0 / 3.0 * E * a * delta
+            F, a = hertz_vector(E, R, delta)
         else:
+            a = math.sqrt(R * delta)
             F = F_y + math.pi * p_y * R * (delta - delta_y)
         if F > F_y:
             Rp = 4.0 * E * a * a * a / (3.0 * F)
@@ -213,8 +195,14 @@ def thornton_vector(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
     w = delta - dp
     if w <= 0.0:
         return 0.0, 0.0, dstar, fstar, Rp, dp
-    a = math.sqrt(Ru * w)
-    return 4.0 / 3.0 * E * a * w, a, dstar, fstar, Rp, dp
+    F, a = hertz_vector(E, Ru, w)
+    return F, a, dstar, fstar, Rp, dp
+
+
+@njit(**JIT)
+def thornton_vector(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta):
+    """``thornton_state`` compiled with the 3D kernels' options. Returns (N, a, delta*, F*, R_p, delta_p)."""
+    return thornton_state(E, R, delta_y, F_y, p_y, dstar, fstar, Rp, dp, delta)
 
 
 @njit(inline="always", **JIT)
