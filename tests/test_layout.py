@@ -121,3 +121,52 @@ def test_no_import_cycle():
     for n in sorted(graph):
         if n not in state:
             visit(n, [])
+
+
+#: Where a law's name stands in code outside laws/ because a user or a published case names the law
+#: (the laws a study compares, a command's choices), as (module, name): the behaviour of the package never
+#: turns on a law's name there.
+NAMED_BY_USER = {
+    ("dem_contact.reference.impact", "hertz"),      # the BEM reference solves Hertz's contact
+    ("dem_contact.commands.path", "hertz"),         # --reference: the BEM reference solves Hertz's contact
+    ("dem_contact.studies.paths", "hertz"),         # the coupled twist-shear path law is written for Hertz
+}
+
+
+def _law_names():
+    from dem_contact.laws import table
+    return {m.NAME for laws in table.FAMILIES.values() for m in laws} - {"none"}
+
+
+def _law_comparisons(path: pathlib.Path, names):
+    """(line, name) of each comparison of a law attribute (``.normal``, ``.tangential``, ``.twist``,
+    ``.rolling``, ``args.normal``, ...) with a law's name: behaviour chosen by a law's name."""
+    tree = ast.parse(path.read_text())
+    attrs = {"normal", "tangential", "twist", "rolling"}
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Compare):
+            continue
+        sides = [node.left, *node.comparators]
+        if not any((isinstance(s, ast.Attribute) and s.attr in attrs) or (isinstance(s, ast.Name) and s.id in attrs)
+                   for s in sides):
+            continue
+        for s in sides:
+            for c in ast.walk(s):
+                if isinstance(c, ast.Constant) and isinstance(c.value, str) and c.value in names:
+                    yield node.lineno, c.value
+
+
+def test_no_law_chosen_by_name_outside_laws():
+    """Outside laws/, no code compares a scene's (or an option's) law with a law's name: a law's properties
+    (contact time, calibration target, hints, the grid it covers, whether e_n acts) are its declarations
+    and hooks (``laws.table``), so a new law gets the behaviour of its declarations."""
+    names = _law_names()
+    bad = []
+    for name in _modules():
+        if _room(name) == "laws":
+            continue
+        path = pathlib.Path(importlib.import_module(name).__file__)
+        for line, law in _law_comparisons(path, names):
+            if (name, law) not in NAMED_BY_USER:
+                bad.append(f"{name}:{line} compares with {law!r}")
+    assert not bad, "\n".join(bad)

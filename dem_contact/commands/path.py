@@ -96,13 +96,14 @@ def add_options(p):
 
 def _scene(args, delta_max: float):
     """The contact of the options; delta_max [m]: the path's largest overlap (places the mdr springs)."""
-    from ..laws.model import Scene
+    from ..laws.model import Scene, law_of
     from ..materials import Material, Sphere, Wall, pair_properties
 
-    if args.yield_stress is not None and args.normal != "thornton":
-        raise InputError("--yield-stress applies to --normal thornton only")
-    if args.normal == "thornton" and args.yield_stress is None:
-        raise InputError("--normal thornton needs --yield-stress (the sphere's yield stress Y [Pa])")
+    plastic = law_of("normal", args.normal).PLASTIC
+    if args.yield_stress is not None and not plastic:
+        raise InputError(f"--yield-stress applies to a plastic --normal law only, not {args.normal}")
+    if plastic and args.yield_stress is None:
+        raise InputError(f"--normal {args.normal} needs --yield-stress (the sphere's yield stress Y [Pa])")
     for rigid, flag, opts in ((args.rigid_sphere, "--rigid-sphere", (("--E", args.E), ("--nu", args.nu),
                                                                      ("--yield-stress", args.yield_stress))),
                               (args.rigid_wall, "--rigid-wall", (("--wall-E", args.wall_E),
@@ -121,7 +122,7 @@ def _scene(args, delta_max: float):
     if args.twist is not None:
         laws["twist"] = args.twist
     laws.update({k: getattr(args, k) for k in ("k_twist", "gamma_twist", "mu_twist") if getattr(args, k) is not None})
-    if args.tangential == "mdr":
+    if args.tangential is not None and "mdr_max_radius" in law_of("tangential", args.tangential).OPTIONS:
         # a path has no impact speed to place the springs by: they cover the contact radius of its largest
         # overlap (as studies.paths.path_scene does)
         R_star = pair_properties(sphere, wall).R_star

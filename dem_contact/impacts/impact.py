@@ -19,11 +19,10 @@ from .integrator import (N_OUT, N_SERIES, O_COULOMB, O_DMAX, O_FMAX, O_MINWT, O_
                          O_STATUS, O_STEPS, O_TC, O_VN, O_VT, O_W1, O_W2, O_WN, O_WT, S_A, S_DELTA, S_N,
                          S_T, S_TANG, S_VN, S_VSLIP, SLIDE_IMPULSE_TOL, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK,
                          B_INV_I1, B_INV_I2, B_INV_M, B_R1, B_R2, N_BODY, integrator_for)
-from ..laws.slots import H_A, P_GAMMA
+from ..laws.slots import H_A
 from ..laws import closed_forms as cf
-from ..laws.closed_forms import HERTZ_TC_FACTOR
 from ..materials import Sphere, check_finite
-from ..laws.model import HERTZ_DAMPED_EN_FLOOR, Scene, hertz_damped_time_ratio
+from ..laws.model import Scene
 
 #: Default time resolution: steps per elastic (Hertz) contact time at the impact's normal speed. With the
 #: default law (adaptive MDR) f/mu is then within 3.5e-4 of its converged value and 7e-4 of converged MDR
@@ -304,13 +303,14 @@ def check_series_budget(max_steps: int):
 
 def check_mdr_reach(scene: Scene, vn_max: float):
     """InputError when the springs of the mdr law cannot cover the contact at normal speed vn_max."""
-    if scene.tangential != "mdr":
+    reach = scene.tangential_law.max_radius(scene)
+    if reach is None:
         return
     a = scene.max_contact_radius(vn_max)
-    if a > scene.mdr_max_radius:
-        raise InputError(f"vn = {vn_max:g} m/s: the contact radius ({a:.4g} m) would exceed the extent of the mdr "
-                         f"springs ({scene.mdr_max_radius:.4g} m, placed for v_ref = {scene.v_ref} m/s): build the "
-                         f"scene with v_ref >= {vn_max:g} m/s or a larger mdr_max_radius")
+    if a > reach:
+        raise InputError(f"vn = {vn_max:g} m/s: the contact radius ({a:.4g} m) would exceed the extent of the "
+                         f"{scene.tangential} springs ({reach:.4g} m, placed for v_ref = {scene.v_ref} m/s): build "
+                         f"the scene with v_ref >= {vn_max:g} m/s or a larger mdr_max_radius")
 
 
 def body_inertia(scene: Scene):
@@ -361,14 +361,11 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     if steps_per_contact is None and dt is None and c.spc is not None:
         spc = c.spc
         n_max = c.max_steps
-        if c.tc_fixed is None:
-            dt = HERTZ_TC_FACTOR * (c.tc_c1 * vn * vn / c.tc_c2) ** 0.4 / vn * c.tc_ratio / spc
-        else:
-            dt = c.tc_fixed / spc
+        dt = scene.contact_time(vn) / spc
     else:
         dt, spc = time_step(scene, vn, steps_per_contact, dt)
         n_max = max_steps(spc)
-    if c.mdr:
+    if c.reach is not None:
         check_mdr_reach(scene, vn)
     if series:
         check_series_budget(n_max)
@@ -382,7 +379,7 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
     except Exception as e:     # a failure inside the compiled code (a division by zero in a law, ...): no result
         raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
                              f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
-    if c.mdr:
+    if c.reach is not None:
         check_mdr_grid(scene, h, vn)
     return _build_result(c, scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser, None)
 
@@ -390,9 +387,10 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
 def check_mdr_grid(scene: Scene, h, vn: float):
     """Raise NumericalError if the contact outgrew the springs of the mdr law (the kernel then stops the
     integration with a NaN force)."""
-    if scene.tangential == "mdr" and h[H_A] > scene.mdr_max_radius:
+    reach = scene.tangential_law.max_radius(scene)
+    if reach is not None and h[H_A] > reach:
         raise NumericalError(f"the contact radius {h[H_A]:.4g} m at vn = {vn:g} m/s exceeds the extent of the "
-                             f"mdr springs ({scene.mdr_max_radius:.4g} m): raise the scene's v_ref or "
+                             f"{scene.tangential} springs ({reach:.4g} m): raise the scene's v_ref or "
                              f"mdr_max_radius")
 
 
@@ -477,7 +475,7 @@ class SceneConstants:
         self.integrate = integrator_for(scene.normal_id, scene.tangential_id)
         self.history_size = scene.history_size
         self.sphere2 = isinstance(scene.body2, Sphere)
-        self.mdr = scene.tangential == "mdr"
+        self.reach = scene.tangential_law.max_radius(scene)      # None: the tangential law covers any radius
         # the bounds of check_scales (inf: no bound)
         self.v_lo, self.v_hi = speed_range(scene)
         self.vt_max = math.sqrt(2.0 * SCALE_RANGE[1] / scene.pair.m_star)
@@ -488,13 +486,6 @@ class SceneConstants:
             self.max_steps = max_steps(self.spc)
         except InputError:
             self.spc = None                         # time_step raises it at every impact
-        # Scene.contact_time(vn) = tc_fixed (linear law), else HERTZ_TC_FACTOR (c1 vn^2 / c2)^0.4 / vn tc_ratio:
-        # the same arithmetic (cf.hertz_contact_time, Scene.contact_time), without the calls
-        pr = scene.pair
-        self.tc_fixed = scene.contact_time(1.0) if scene.normal == "linear" else None
-        self.tc_c1, self.tc_c2 = cf.hertz_overlap_coefficients(pr.E_star, pr.R_star, pr.m_star)
-        self.tc_ratio = (hertz_damped_time_ratio(float(scene.params[P_GAMMA])) if scene.normal == "hertz_damped"
-                         else 1.0)
         self.model = scene.describe()
         # the e_n its calibration aims at (None: not calibrated), at speed e_target_vn (None: any speed)
         self.e_target, self.e_target_vn, self.e_target_what = calibration_target(scene)
@@ -515,14 +506,8 @@ def calibration_target(scene: Scene) -> tuple:
     """(e_n, speed, what): the restitution that the scene's normal law was calibrated for, the normal speed
     [m/s] at which it holds (None: every speed) and a description of the calibration; (None, None, None)
     for a law that is not calibrated to an e_n."""
-    if scene.normal in ("hertz_damped", "linear"):
-        e = 1.0 if scene.e_n is None else scene.e_n
-        if scene.normal == "hertz_damped":
-            e = max(e, HERTZ_DAMPED_EN_FLOOR)       # the dashpot of e_n = 0 is that of the floor
-        return e, None, f"the {scene.normal} dashpot's calibration"
-    if scene.normal == "thornton" and scene.e_n is not None and scene.v_ref is not None:
-        return scene.e_n, scene.v_ref, f"the thornton calibration of p_y at {scene.v_ref:g} m/s"
-    return None, None, None
+    target = scene.normal_law.calibration_target(scene)
+    return (None, None, None) if target is None else target
 
 
 _CONSTANTS = weakref.WeakKeyDictionary()
@@ -564,8 +549,7 @@ def impact_warnings(c, scene, *, e_n, f_abs, energy, minwt, coul, fmax, dmax, sp
     if coul > 1e-9 * max(mu * fmax, 1e-300):
         msgs.append(f"Coulomb limit exceeded by {coul:.3e} N")
     if mu > 0 and f_abs > mu * (1.0 + 1e-9):
-        why = (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
-               "smaller than the compressive force the Coulomb limit acts on") if scene.normal == "linear" else ""
+        why = scene.normal_law.hint(scene, "impulse_excess")
         msgs.append(f"impulse ratio |f| exceeds mu by {f_abs / mu - 1.0:.3g} of mu{why}")
     if abs(energy.error) > ENERGY_BALANCE_TOL * E0:
         msgs.append(f"energy balance error {energy.error / E0:.3g} of the initial kinetic energy (more than "
@@ -586,11 +570,7 @@ def impact_warnings(c, scene, *, e_n, f_abs, energy, minwt, coul, fmax, dmax, sp
 
 
 def _coarse_step_hint(scene) -> str:
-    if scene.normal in ("hertz_damped", "linear"):
-        e = 1.0 if scene.e_n is None else scene.e_n
-        return (f" (its dashpot, set for e_n = {e:g}, must change the normal velocity by a small fraction per "
-                f"step: the lower e_n, the more steps per contact it needs)")
-    return ""
+    return scene.normal_law.hint(scene, "coarse_step")
 
 
 def raise_if_no_impulse(scene, PN, tc, vn, dt, spc):
@@ -621,13 +601,7 @@ def raise_if_restitution_impossible(scene, e_n, vn, dt, spc):
 def _raise_failed(scene, status, steps, vn, dt):
     """NumericalError for an integration that ended with ``status`` (STATUS_MAX_STEPS, STATUS_NONFINITE)."""
     if status == STATUS_MAX_STEPS:
-        hint = ""
-        if scene.normal == "thornton":
-            hint = (f"; a thornton contact with a limiting pressure p_y = {scene.p_y:g} Pa far below the Hertz "
-                    f"pressure of the impact deforms plastically for much longer than the Hertz contact: check "
-                    f"p_y, or give a larger dt")
-        elif scene.normal == "linear":
-            hint = "; the linear law's stiffness is matched at v_ref: check v_ref against the impact speed"
+        hint = scene.normal_law.hint(scene, "long_contact")
         raise NumericalError(f"the contact did not end within {int(steps)} steps "
                              f"({MAX_CONTACT_TIMES:g} elastic Hertz contact times at vn = {vn:g} m/s){hint}")
     if status == STATUS_NONFINITE:

@@ -49,10 +49,10 @@ from ..dem.contact3d import contact_force_torque, history_size, new_histories
 from ..errors import InputError, NumericalError, kernel_failed
 from ..laws.model import Scene
 from ..laws.normal_impact import drift, eval_overlap, normal_close, normal_start, step_status
-from ..laws.slots import H_A, P_MU
+from ..laws.slots import P_MU
 from ..materials import Wall, check_finite
 from .impact import (ENERGY_CREATION_TOL, KE_ROUNDING_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget,
-                     ImpactResult, _raise_failed, body_inertia, check_scales, impact_warnings, raise_if_no_impulse,
+                     ImpactResult, _raise_failed, body_inertia, check_mdr_grid, check_scales, impact_warnings, raise_if_no_impulse,
                      raise_if_restitution_impossible, scene_constants, time_step, with_outcome)
 from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_OK, put
 
@@ -329,10 +329,7 @@ def impact3d(scene: Scene, vn: float, vt=(0.0, 0.0), spin=(0.0, 0.0, 0.0), *, sp
                            out, ser)
     except Exception as e:      # a failure inside the compiled code: no result
         raise kernel_failed(e, f"the {scene.normal}/{scene.tangential} kernels at vn = {vn:g} m/s") from None
-    if scene.tangential == "mdr" and H[0, H_A] > scene.mdr_max_radius:
-        raise NumericalError(f"the contact radius {H[0, H_A]:.4g} m at vn = {vn:g} m/s exceeds the extent of "
-                             f"the mdr springs ({scene.mdr_max_radius:.4g} m): raise the scene's v_ref or "
-                             f"mdr_max_radius")
+    check_mdr_grid(scene, H[0], vn)
     return build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser)
 
 

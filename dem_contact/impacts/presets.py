@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import inspect
 
-from ..laws.model import Scene
+from ..laws.model import NORMAL_LAWS, Scene, law_of
 from ..materials import STEEL, Material, Sphere, Wall, check_finite
 
 CASES = ("RE", "EE", "PE")
@@ -51,10 +51,11 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
             given.append("nu (the wall's Poisson ratio for case RE)")
         if given:
             raise InputError(f"{', '.join(given)} cannot act on a rigid wall")
-    if (yield_pressure is not None or yield_stress is not None) and (normal or (
-            "thornton" if case == "PE" else "hertz")) != "thornton":
-        raise InputError(f"yield_pressure and yield_stress act on the thornton normal law only, not on "
-                         f"{normal or 'hertz'!r}")
+    case_normal = normal or ("thornton" if case == "PE" else "hertz")
+    if (yield_pressure is not None or yield_stress is not None) and not law_of("normal", case_normal).PLASTIC:
+        raise InputError(f"yield_pressure and yield_stress act on the plastic normal laws only "
+                         f"({', '.join(n for n in NORMAL_LAWS if law_of('normal', n).PLASTIC)}), not on "
+                         f"{case_normal!r}")
     sphere_E = STEEL.E if E is None else E
     sphere_nu = STEEL.nu if nu is None else nu
     wall_E = STEEL.E if wall_E is None else wall_E
@@ -65,7 +66,7 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
             wall_nu_used, sphere_nu = nu, STEEL.nu
     elif case == "PE":
         normal = normal or "thornton"
-        if normal == "thornton" and yield_pressure is None and yield_stress is None and e_n is None:
+        if law_of("normal", normal).PLASTIC and yield_pressure is None and yield_stress is None and e_n is None:
             yield_stress = PE_YIELD_STRESS
     normal = normal or "hertz"
     if rigid_sphere:

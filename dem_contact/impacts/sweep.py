@@ -281,8 +281,9 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
             bar.close()
     derived = derived_arrays(scene, out, vn, vt, spin, 0.0, spcs)
     failed = derived["failed"]
-    if scene.tangential == "mdr":
-        failed = failed | (hist[:, H_A] > scene.mdr_max_radius)
+    reach = scene.tangential_law.max_radius(scene)
+    if reach is not None:
+        failed = failed | (hist[:, H_A] > reach)
     bad = np.flatnonzero(failed)
     if bad.size:
         i = bad[0]

@@ -69,6 +69,12 @@ def _law(name: str, family: str):
     return table.law(family, name)
 
 
+def law_of(family: str, name: str):
+    """The module of the ``family`` law ``name`` (``laws.table``: its declarations and hooks), InputError
+    naming the valid ones for an unknown name."""
+    return _law(name, family)
+
+
 class Scene:
     """A sphere against a wall or a second sphere, with a normal and a tangential law.
 

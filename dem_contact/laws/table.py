@@ -22,6 +22,13 @@ plus one row here. The file declares:
   relative to its base, that change sign when the bodies are swapped; default none) and ``VECTORS`` (the
   first slots, relative to its base, of the 3-vectors in global axes that ``rotate_history`` turns;
   default none);
+- optional hooks that the integrators and checks ask instead of naming laws (defaults: none):
+  ``TAKES_E_N`` (True: a target restitution e_n acts on the law, a dashpot or a calibration);
+  ``calibration_target(scene)``: ``(e_n, speed, what)``, the restitution the scene's law was calibrated for,
+  the normal speed at which it holds (None: every speed) and a description, or None;
+  ``hint(scene, situation)``: the law's own reason, appended to the message of a failed or suspicious
+  impact, for ``situation`` in ``HINT_SITUATIONS`` ("" for none); ``max_radius(scene)``: the largest
+  contact radius [m] that the law's state covers (None: any);
 - family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
   predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* the tangential laws may
   read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
@@ -141,9 +148,25 @@ def _nothing(scene, p):
     return {}
 
 
+def _no_target(scene):
+    return None
+
+
+def _no_hint(scene, situation):
+    return ""
+
+
+def _unbounded(scene):
+    return None
+
+
 #: the optional declarations and their defaults (set here on the law files that leave them out)
 OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing,
-                             "SWAP_NEGATE": (), "VECTORS": ()})
+                             "SWAP_NEGATE": (), "VECTORS": (), "TAKES_E_N": False,
+                             "calibration_target": _no_target, "hint": _no_hint, "max_radius": _unbounded})
+
+#: the situations a law's ``hint`` may explain (an impact's failure or warning, by the law's own reasons)
+HINT_SITUATIONS = ("long_contact", "coarse_step", "impulse_excess")
 
 
 def _check():

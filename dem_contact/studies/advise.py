@@ -32,7 +32,7 @@ from ..rebound.fit import fit_wu
 from ..impacts.impact import check_steps_per_contact
 from ..impacts.sweep import scene_with
 from ..materials import Wall, check_finite
-from ..laws.model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene
+from ..laws.model import MDR_RADIUS_MARGIN, MDR_SPRINGS, MDR_STEPS_PER_CONTACT, Scene, law_of
 from ..rebound.models import wu_curve
 
 #: Laws at coarse steps tried as candidates: (tangential law, steps per contact).
@@ -88,7 +88,7 @@ class Advice:
 def _with_law(scene: Scene, tangential: str, vmax: float, **kw) -> Scene:
     """The scene with another tangential law, every other setting kept (``impacts.sweep.scene_with``: the
     normal law and its calibration, e_n, mdr_profile, traction_yield, ...); mdr springs cover vmax."""
-    if tangential == "mdr":
+    if "mdr_max_radius" in law_of("tangential", tangential).OPTIONS:
         kw["mdr_max_radius"] = MDR_RADIUS_MARGIN * scene.max_contact_radius(vmax)
     return scene_with(scene, tangential=tangential, **kw)
 

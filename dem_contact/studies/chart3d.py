@@ -36,7 +36,7 @@ import numpy as np
 
 from ..dem.contact3d import history_size, new_histories
 from ..errors import InputError
-from ..laws.model import TANGENTIAL_LAWS, Scene
+from ..laws.model import TANGENTIAL_LAWS, Scene, law_of
 from ..materials import STEEL, Sphere, Wall
 from ..reference.bem import bem_path_scene
 from ..reference.paths import COMPARISON_SET, TWIST_SET, scene_path, twist_modulus
@@ -192,7 +192,7 @@ def sds_hertz_values(scene: Scene, delta: float) -> dict:
 def twist_scene(twist: str, delta: float = DELTA, tangential: str = "mdr_adaptive") -> Scene:
     """The chart's scene with a twist law (``sds`` with ``sds_hertz_values`` at ``delta``)."""
     sc = chart_scene(tangential)
-    opts = sds_hertz_values(sc, delta) if twist == "sds" else {}
+    opts = sds_hertz_values(sc, delta) if "k_twist" in law_of("twist", twist).OPTIONS else {}
     return chart_scene(tangential, twist=twist, **opts)
 
 

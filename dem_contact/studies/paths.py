@@ -95,9 +95,10 @@ def check_path(delta, ux, uy, scene: Scene | None = None, *, twist=None):
 
 
 def path_scene(scene: Scene, delta_max: float) -> Scene:
-    """The scene itself, or for the ``mdr`` law the same scene with springs covering the contact radius
-    sqrt(R* delta_max) of the path (a path has no impact speed to place them)."""
-    if scene.tangential != "mdr":
+    """The scene itself, or for a law whose springs are placed (``mdr``: it takes ``mdr_max_radius``) the same
+    scene with springs covering the contact radius sqrt(R* delta_max) of the path (a path has no impact speed
+    to place them)."""
+    if "mdr_max_radius" not in scene.tangential_law.OPTIONS:
         return scene
     a = math.sqrt(scene.pair.R_star * max(delta_max, 0.0))
     if a <= 0.0:

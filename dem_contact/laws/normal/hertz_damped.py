@@ -18,6 +18,7 @@ NAME, FAMILY = "hertz_damped", "normal"
 SOURCE = "Hertz + dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, force clamped at 0, gamma calibrated for e_n"
 PARAMETERS, STATE = ("E_star", "R_star", "m_star", "gamma"), ()
 USES_RATE, PLASTIC = True, False
+TAKES_E_N = True
 
 #: Steps per Hertz contact time used to calibrate the dashpot.
 CALIBRATION_STEPS = 4000
@@ -33,6 +34,20 @@ def configure(scene, p):
     # reached at no finite gamma: the dashpot of e_n = EN_FLOOR stands for it.
     e_used = 1.0 if scene.e_n is None else max(scene.e_n, EN_FLOOR)
     p[P_GAMMA] = damping_for_restitution(e_used)
+
+
+def calibration_target(scene):
+    """The dashpot's e_n at every speed (that of EN_FLOOR for any e_n below it)."""
+    e = 1.0 if scene.e_n is None else scene.e_n
+    return max(e, EN_FLOOR), None, f"the {NAME} dashpot's calibration"
+
+
+def hint(scene, situation):
+    if situation == "coarse_step":
+        e = 1.0 if scene.e_n is None else scene.e_n
+        return (f" (its dashpot, set for e_n = {e:g}, must change the normal velocity by a small fraction per "
+                f"step: the lower e_n, the more steps per contact it needs)")
+    return ""
 
 
 def describe(scene, p):

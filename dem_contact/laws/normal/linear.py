@@ -15,6 +15,7 @@ NAME, FAMILY = "linear", "normal"
 SOURCE = "linear spring-dashpot, stiffness matched to the Hertz contact time at v_ref, closed-form e_n"
 PARAMETERS, STATE = ("k_n", "gamma", "m_star", "R_star"), ()
 USES_RATE, PLASTIC = True, False
+TAKES_E_N = True
 
 
 def linear_stiffness(scene, p, what):
@@ -30,6 +31,24 @@ def configure(scene, p):
     if p[P_GAMMA] >= 1.0:
         raise InputError("e_n = 0 cannot be reached by the linear law: valid range (0, 1]")
     linear_stiffness(scene, p, "the linear normal law")
+
+
+def calibration_target(scene):
+    """The closed-form e_n of the dashpot, at every speed."""
+    return 1.0 if scene.e_n is None else scene.e_n, None, f"the {NAME} dashpot's calibration"
+
+
+def hint(scene, situation):
+    if situation == "coarse_step":
+        e = 1.0 if scene.e_n is None else scene.e_n
+        return (f" (its dashpot, set for e_n = {e:g}, must change the normal velocity by a small fraction per "
+                f"step: the lower e_n, the more steps per contact it needs)")
+    if situation == "long_contact":
+        return "; the linear law's stiffness is matched at v_ref: check v_ref against the impact speed"
+    if situation == "impulse_excess":
+        return (": the linear law's unclamped dashpot pulls at the end of the contact, so the normal impulse is "
+                "smaller than the compressive force the Coulomb limit acts on")
+    return ""
 
 
 def describe(scene, p):

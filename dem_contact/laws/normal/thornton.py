@@ -31,6 +31,7 @@ PARAMETERS = ("E_star", "R_star", "p_y", "delta_y", "F_y", "traction-yield table
 STATE = ("delta_star", "F_star", "R_p", "delta_p", "|T| / N of the last step (traction_yield; -1: N = 0)")
 OPTIONS = ("traction_yield",)
 USES_RATE, PLASTIC = False, True
+TAKES_E_N = True
 
 
 def configure(scene, p):
@@ -66,6 +67,21 @@ def configure(scene, p):
     p[P_F_Y] = cf.thornton_yield_force(pr.E_star, pr.R_star, p_y)
     if scene.traction_yield:
         _set_traction_yield(scene, p)
+
+
+def calibration_target(scene):
+    """e_n at v_ref where p_y was calibrated for it (it holds at that speed only); None for a material yield."""
+    if scene.e_n is None or scene.v_ref is None:
+        return None
+    return scene.e_n, scene.v_ref, f"the thornton calibration of p_y at {scene.v_ref:g} m/s"
+
+
+def hint(scene, situation):
+    if situation == "long_contact":
+        return (f"; a thornton contact with a limiting pressure p_y = {scene.p_y:g} Pa far below the Hertz "
+                f"pressure of the impact deforms plastically for much longer than the Hertz contact: check "
+                f"p_y, or give a larger dt")
+    return ""
 
 
 def _set_traction_yield(scene, p):

@@ -127,6 +127,11 @@ def configure(scene, p):
     p[P_DX] = r / n
 
 
+def max_radius(scene):
+    """The extent of the springs: a contact that grows past it has no cells to slip in."""
+    return scene.mdr_max_radius
+
+
 def describe(scene, p):
     return dict(mdr_profile=scene.mdr_profile, mdr_springs=scene.mdr_springs, mdr_max_radius=scene.mdr_max_radius,
                 mdr_dx=p[P_DX])
