@@ -89,6 +89,45 @@ def test_imports_point_down():
     assert not bad, "imports against the layering:\n" + "\n".join(bad)
 
 
+#: The rooms inside laws/, lowest first: a module may import from its own room and the rooms below it,
+#: function-level imports included. "parts": the law files and what they share (slots, the 3D layout, closed
+#: forms); "table": the table of laws and what is generated or composed from it (the dispatch, the planar
+#: contact step); "integration": what integrates a contact in time to calibrate a law (the head-on impact)
+#: and the Scene that calls the calibrations.
+LAW_ROOMS = (
+    ("parts", {"normal", "tangential", "twist", "rolling", "slots", "vector", "closed_forms", "traction_yield",
+               "twist_shear"}),
+    ("table", {"table", "generate", "dispatch", "dispatch3d", "compose", "contact"}),
+    ("integration", {"normal_impact", "model", "__init__"}),
+)
+
+
+def _law_room(module: str) -> int:
+    """Index in LAW_ROOMS of a module of dem_contact.laws (dem_contact.laws.normal.hertz -> parts)."""
+    parts = module.split(".")
+    part = parts[2] if len(parts) > 2 else "__init__"
+    for k, (_, members) in enumerate(LAW_ROOMS):
+        if part in members:
+            return k
+    raise AssertionError(f"{module} has no room in LAW_ROOMS")
+
+
+def test_laws_rooms_point_down():
+    """Inside laws/, imports point down the rooms of LAW_ROOMS (function-level ones too): a law file imports
+    nothing that integrates an impact or reads the table, so no import circle is broken by a late import."""
+    bad = []
+    for name in _modules():
+        if _room(name) != "laws":
+            continue
+        here = _law_room(name)
+        path = pathlib.Path(importlib.import_module(name).__file__)
+        for target, line in _package_imports(path, name):
+            if _room(target) == "laws" and target != "dem_contact.laws" and _law_room(target) > here:
+                bad.append(f"{name}:{line} imports {target} ({LAW_ROOMS[here][0]} -> "
+                           f"{LAW_ROOMS[_law_room(target)][0]})")
+    assert not bad, "imports up the rooms of laws/:\n" + "\n".join(bad)
+
+
 def test_rebound_never_integrates():
     for path in (PKG / "rebound").glob("*.py"):
         text = path.read_text()

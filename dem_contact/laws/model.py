@@ -17,8 +17,6 @@ from ..materials import Sphere, Wall, check_finite, pair_properties
 from . import closed_forms as cf
 from . import table
 from .normal.hertz_damped import EN_FLOOR as HERTZ_DAMPED_EN_FLOOR
-from .normal.hertz_damped import damping_for_restitution as hertz_damping_for_restitution  # noqa: F401
-from .normal.hertz_damped import time_ratio as hertz_damped_time_ratio  # noqa: F401
 from .normal_impact import normal_impact
 from .slots import (N_HIST_BASE, N_PARAMS, P_ESTAR, P_GSTAR, P_MSTAR, P_MU, P_NORMAL_LAW, P_ROLLING_LAW, P_RSTAR,
                     P_TANGENTIAL_LAW, P_TWIST_LAW)
@@ -123,6 +121,9 @@ class Scene:
     a copy of the parameter row (float64[N_PARAMS], ``laws.slots``), for the kernels; writing to it changes
     no Scene.
     """
+
+    #: the head-on impact under a normal law alone (``laws.normal_impact``), for the laws' calibrations
+    integrate_normal = staticmethod(normal_impact)
 
     #: the constructor's arguments, which ``replace`` accepts
     ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "e_n", "v_ref", "mdr_springs", "mdr_max_radius",

@@ -33,7 +33,7 @@ def configure(scene, p):
     # e_n = 0 is the gamma -> inf limit of the dashpot (rebound speed ~ gamma^-2, contact time -> 0),
     # reached at no finite gamma: the dashpot of e_n = EN_FLOOR stands for it.
     e_used = 1.0 if scene.e_n is None else max(scene.e_n, EN_FLOOR)
-    p[P_GAMMA] = damping_for_restitution(e_used)
+    p[P_GAMMA] = damping_for_restitution(e_used, scene.integrate_normal, scene.normal_id)
 
 
 def calibration_target(scene):
@@ -60,33 +60,32 @@ def describe(scene, p):
 def contact_time(scene, vn):
     """Hertz's contact time times the ratio of the damped law (gamma alone)."""
     pr = scene.pair
-    return cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn) * time_ratio(float(scene.params[P_GAMMA]))
+    ratio = time_ratio(float(scene.params[P_GAMMA]), scene.integrate_normal, scene.normal_id)
+    return cf.hertz_contact_time(pr.E_star, pr.R_star, pr.m_star, vn) * ratio
 
 
-def _unit_impact(gamma: float):
+def _unit_impact(gamma: float, integrate, nid: int):
     """(final normal velocity, contact time, max overlap, status) of a normal impact of the unit problem
-    (E* = R* = m* = V = 1) at CALIBRATION_STEPS steps per Hertz contact time."""
-    from ..normal_impact import normal_impact
-    from ..table import law_id
-
+    (E* = R* = m* = V = 1) at CALIBRATION_STEPS steps per Hertz contact time, integrated by ``integrate``
+    (``Scene.integrate_normal``: the head-on impact of the normal law ``nid``, this law's id)."""
     p = np.zeros(N_PARAMS)
     p[P_ESTAR] = p[P_RSTAR] = p[P_MSTAR] = 1.0
     p[P_GAMMA] = gamma
-    return normal_impact(law_id("normal", NAME), p, np.zeros(N_HIST_BASE), 1.0, 1.0,
-                         UNIT_HERTZ_TC / CALIBRATION_STEPS, 100 * CALIBRATION_STEPS)
+    return integrate(nid, p, np.zeros(N_HIST_BASE), 1.0, 1.0, UNIT_HERTZ_TC / CALIBRATION_STEPS,
+                     100 * CALIBRATION_STEPS)
 
 
 @functools.lru_cache(maxsize=256)
-def damping_for_restitution(e_n: float) -> float:
+def damping_for_restitution(e_n: float, integrate, nid: int) -> float:
     """Dashpot ratio gamma that gives restitution ``e_n`` (0 < e_n <= 1), found once by root finding on
-    simulated normal impacts of the unit problem."""
+    simulated normal impacts of the unit problem (``_unit_impact``)."""
     from scipy.optimize import brentq
 
     if e_n >= 1.0:
         return 0.0
 
     def restitution(gamma):
-        vn, _, _, status = _unit_impact(gamma)
+        vn, _, _, status = _unit_impact(gamma, integrate, nid)
         if status != 0:
             raise InputError(f"e_n = {e_n:g} is too low to be reached by the hertz_damped law")
         return -vn
@@ -102,11 +101,11 @@ def damping_for_restitution(e_n: float) -> float:
 
 
 @functools.lru_cache(maxsize=256)
-def time_ratio(gamma: float) -> float:
-    """Contact time of the damped law over the elastic Hertz contact time (gamma alone)."""
+def time_ratio(gamma: float, integrate, nid: int) -> float:
+    """Contact time of the damped law over the elastic Hertz contact time (gamma alone; ``_unit_impact``)."""
     if gamma == 0.0:
         return 1.0
-    return min(1.0, _unit_impact(gamma)[1] / UNIT_HERTZ_TC)
+    return min(1.0, _unit_impact(gamma, integrate, nid)[1] / UNIT_HERTZ_TC)
 
 
 @njit(cache=True)
