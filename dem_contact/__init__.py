@@ -4,12 +4,12 @@ from . import kernel_cache  # noqa: F401  (first: numba's cache locators for the
 from .errors import InputError, NumericalError
 from .impacts.impact import DEFAULT_STEPS_PER_CONTACT, EnergyBudget, ImpactResult, impact
 from .materials import STEEL, Material, PairProperties, Sphere, Wall, pair_properties
-from .laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+from .laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene, reference_speed
 
 __version__ = "0.1.0"
 
 __all__ = [
     "DEFAULT_STEPS_PER_CONTACT", "EnergyBudget", "ImpactResult", "InputError", "Material",
     "NORMAL_LAWS", "NumericalError", "PairProperties", "STEEL", "Scene", "Sphere", "TANGENTIAL_LAWS",
-    "Wall", "impact", "pair_properties",
+    "Wall", "impact", "pair_properties", "reference_speed",
 ]

@@ -7,7 +7,7 @@ import argparse
 import math
 import warnings
 
-from dem_contact import NORMAL_LAWS, TANGENTIAL_LAWS, Material, Scene, Sphere, Wall, impact
+from dem_contact import NORMAL_LAWS, TANGENTIAL_LAWS, Material, Scene, Sphere, Wall, impact, reference_speed
 from dem_contact.materials import STEEL
 
 # a steel sphere that yields (p_y = 1.6 Y, Y = 1.85 GPa, the PE scene) so that thornton can be composed too
@@ -31,7 +31,7 @@ def main(argv=None):
             for mu in a.mu:
                 # e_n sets the dashpots; thornton takes p_y from the sphere's yield stress, hertz is elastic
                 scene = Scene(SPHERE, Wall(STEEL), mu=mu, normal=normal, tangential=tangential,
-                              e_n=0.8 if normal in ("hertz_damped", "linear") else None, v_ref=a.vn)
+                              e_n=0.8 if normal in ("hertz_damped", "linear") else None, v_ref=reference_speed(a.vn))
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")          # reported in the last column
                     r = impact(scene, a.vn, vt, steps_per_contact=a.steps)

@@ -38,6 +38,7 @@ import numpy as np
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.errors import InputError, NumericalError
+from dem_contact.laws.model import reference_speed
 from dem_contact.materials import Material, Sphere, Wall
 
 GLASS = Material(E=1e7, nu=0.25, rho=2500.0)      # soft grains: a time step of about 10 microseconds
@@ -206,7 +207,7 @@ def run(a):
     def table_of(radius):
         return pair_table([Sphere(radius, m) for m in mats],
                           [Wall(STEEL_WALL, curvature=drum.curvature_for_rstar), Wall(STEEL_WALL)],
-                          mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
+                          mu=a.mu, normal=a.normal, v_ref=reference_speed(a.v_max), **laws)
 
     table = table_of(a.r50)
     # the stiffest pair: the smallest spheres (a Hertzian contact time grows with the radius)

@@ -33,6 +33,7 @@ import numpy as np
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.errors import InputError, NumericalError
+from dem_contact.laws.model import reference_speed
 from dem_contact.materials import Material, Sphere, Wall
 
 GLASS = Material(E=1e7, nu=0.25, rho=2500.0)
@@ -150,7 +151,7 @@ def run(a):
 
     def table_of(radius):
         return pair_table([Sphere(radius, m) for m in mats], [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal,
-                          v_ref=a.v_max, **tangential)
+                          v_ref=reference_speed(a.v_max), **tangential)
 
     table = table_of(a.r50)
     dt = min(sc.contact_time(a.v_max) for sc in table_of(float(r.min())).scenes) / a.steps_per_contact

@@ -34,7 +34,7 @@ def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=Non
 
     dt, spc = time_step(scene, vn, steps_per_contact, dt)
     table = pair_table([scene.sphere], [scene.body2], mu=scene.mu, normal=scene.normal,
-                       tangential=scene.tangential, v_ref=scene.v_ref)
+                       tangential=scene.tangential, v_ref=scene.arguments["v_ref"])
     if not np.array_equal(table.params[table.wall_row[0, 0]], scene.params):
         raise InputError("the scene's parameters cannot be rebuilt as a pair table")
     R = scene.sphere.radius

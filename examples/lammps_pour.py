@@ -36,6 +36,7 @@ import numpy as np
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.errors import InputError, NumericalError
+from dem_contact.laws.model import reference_speed
 from dem_contact.materials import Material, Sphere, Wall
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)      # soft grains: a time step of microseconds
@@ -145,7 +146,7 @@ def run(a):
         laws.update(k_roll=a.k_roll, gamma_roll=a.gamma_roll, mu_roll=a.mu_roll)
     radii = (RADII[1], RADII[1]) if a.same_size else RADII
     spheres = [Sphere(radii[0], GLASS), Sphere(radii[1], POLYMER)]
-    table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=a.v_max, **laws)
+    table = pair_table(spheres, [Wall(STEEL_WALL)], mu=a.mu, normal=a.normal, v_ref=reference_speed(a.v_max), **laws)
     # (the contact time of equal spheres of one material is proportional to their radius: the smallest)
     dt = min(sc.contact_time(a.v_max) for sc in table.scenes) * (1.0 - a.spread) / a.steps_per_contact
     rmax = max(radii) * (1.0 + a.spread)

@@ -6,7 +6,7 @@ Prints the rebound quantities and checks the momentum identity Omega_r = Omega_i
 import argparse
 import math
 
-from dem_contact import STEEL, Scene, Sphere, Wall, impact
+from dem_contact import STEEL, Scene, Sphere, Wall, impact, reference_speed
 
 
 def main(argv=None):
@@ -17,7 +17,7 @@ def main(argv=None):
     ap.add_argument("--steps", type=float, default=None, help="steps per contact time")
     a = ap.parse_args(argv)
     laws = {} if a.tangential is None else {"tangential": a.tangential}
-    scene = Scene(Sphere(0.01, STEEL), Wall(STEEL), mu=0.3, v_ref=a.vn, **laws)
+    scene = Scene(Sphere(0.01, STEEL), Wall(STEEL), mu=0.3, v_ref=reference_speed(a.vn), **laws)
     r = impact(scene, a.vn, a.vn * math.tan(math.radians(a.angle)), steps_per_contact=a.steps)
     print(f"laws: {scene.normal} x {scene.tangential}, vn = {a.vn} m/s, angle = {a.angle} deg")
     for k in ("e_n", "e_t", "f_over_mu", "Theta", "Psi_r", "Omega_r", "contact_time", "max_force"):

@@ -6,7 +6,7 @@ import argparse
 
 import numpy as np
 
-from dem_contact import STEEL, Scene, Sphere, Wall
+from dem_contact import STEEL, Scene, Sphere, Wall, reference_speed
 from dem_contact.impacts.sweep import sweep_theta
 
 
@@ -19,7 +19,7 @@ def main(argv=None):
     ap.add_argument("--png", default=None, help="write the sweep figure here")
     a = ap.parse_args(argv)
     laws = {} if a.tangential is None else {"tangential": a.tangential}
-    scene = Scene(Sphere(0.01, STEEL), Wall(STEEL), mu=0.3, v_ref=a.vn, **laws)
+    scene = Scene(Sphere(0.01, STEEL), Wall(STEEL), mu=0.3, v_ref=reference_speed(a.vn), **laws)
     Theta = np.linspace(0.2, 8.0, a.n)
     res = sweep_theta(scene, Theta, vn=a.vn, steps_per_contact=a.steps)
     print(f"laws: {scene.normal} x {scene.tangential}")

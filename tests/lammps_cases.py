@@ -29,6 +29,7 @@ from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import LammpsContacts, new_lammps
 from dem_contact.lammps.bridge import FixOrderError, StaleHistoryError
 from dem_contact.materials import Material, Sphere
+from dem_contact.laws.model import reference_speed
 
 R = 1e-3
 MAT = Material(E=5e7, nu=0.3, rho=2500.0)
@@ -37,7 +38,7 @@ OUT = sys.argv[1]
 
 
 def table(normal="hertz", **kw):
-    return pair_table([Sphere(R, MAT)], [], mu=MU, normal=normal, tangential="mindlin_total", v_ref=1.0, **kw)
+    return pair_table([Sphere(R, MAT)], [], mu=MU, normal=normal, tangential="mindlin_total", v_ref=reference_speed(1.0), **kw)
 
 
 def box(lmp, lo, hi, periodic="f f f", dt=1e-6):

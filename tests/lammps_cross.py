@@ -10,6 +10,7 @@ from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import LammpsContacts, new_lammps
 from dem_contact.laws.slots import P_GSTAR, P_RSTAR
 from dem_contact.materials import Material, Sphere
+from dem_contact.laws.model import reference_speed
 
 p = argparse.ArgumentParser()
 p.add_argument("--steps", type=int, default=3000)
@@ -19,7 +20,7 @@ a = p.parse_args()
 
 R = 1e-3
 mat = Material(E=5e7, nu=0.3, rho=2500.0)
-table = pair_table([Sphere(R, mat)], [], mu=0.5, normal="hertz", tangential=a.tangential, v_ref=1.0)
+table = pair_table([Sphere(R, mat)], [], mu=0.5, normal="hertz", tangential=a.tangential, v_ref=reference_speed(1.0))
 dt = 1e-6
 V, s = 1.0, 2e-3          # drift across the subdomain boundary; sliding speed (along y)
 delta0 = 2e-5

@@ -59,7 +59,7 @@ def test_coulomb_excess_is_flagged(steel_sphere, steel_wall):
 def test_advise_recommends_sliding_above_critical_angle(steel_sphere, steel_wall):
     """Above the critical angle (Theta > Theta_c, Wu, Thornton & Li 2009, section 4) the rigid-body sliding formulas are
     exact: advise measures ~0 error for them and recommends them; below it sliding is wrong by f/mu."""
-    sc = dc.Scene(steel_sphere, steel_wall, mu=0.1, v_ref=5.0)
+    sc = dc.Scene(steel_sphere, steel_wall, mu=0.1)
     # Theta = 2 tan(angle) / (2 mu) > 10 for angles above 45 deg at mu = 0.1
     a = adv.advise(sc, (2.0, 5.0), (50.0, 80.0), tol=1e-3, n_speeds=2, n_angles=4, verify=True)
     assert a.recommended.name == "sliding"

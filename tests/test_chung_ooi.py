@@ -10,6 +10,7 @@ from dem_contact.cli import main
 from dem_contact.impacts.impact import impact
 from dem_contact.materials import Sphere, Wall
 from dem_contact.laws.model import Scene
+from dem_contact.laws.model import reference_speed
 
 DEFAULT = [co.default_tangential_law()]
 
@@ -72,7 +73,7 @@ def test_damped_hertz_misses_the_sliding_branch_independently_of_dt():
     """With hertz_damped the dashpot outruns the tangential spring at first touch: f/mu < 1 near chi = 1,
     the same at 1000 and 4000 steps per contact (a model property, not a time-step error)."""
     scene = Scene(Sphere(0.1, co.AL_ALLOY), Wall.rigid(), mu=0.4, normal="hertz_damped", e_n=0.5,
-                  tangential=DEFAULT[0], v_ref=0.2)
+                  tangential=DEFAULT[0], v_ref=reference_speed(0.2))
     f = [impact(scene, 0.2, 0.0, 4.2 / 0.9, steps_per_contact=spc).f_over_mu for spc in (1000, 4000)]
     assert f[0] == pytest.approx(f[1], abs=1e-3)
     assert f[0] < 0.99
@@ -81,7 +82,7 @@ def test_damped_hertz_misses_the_sliding_branch_independently_of_dt():
 def test_sphere_pair_impulse_relations_use_both_inertias():
     """1/m* + R1^2/I1 + R2^2/I2 = 3.5/m*: v_tr = v_ti - 3.5 P_t/m*, w2_r = w2_i - R2 P_t/I2."""
     s1, s2 = Sphere(0.1, co.AL_ALLOY), Sphere(0.5, co.AL_ALLOY)
-    scene = Scene(s1, s2, mu=0.4, normal="hertz_damped", e_n=0.5, tangential=DEFAULT[0], v_ref=0.2)
+    scene = Scene(s1, s2, mu=0.4, normal="hertz_damped", e_n=0.5, tangential=DEFAULT[0], v_ref=reference_speed(0.2))
     w1, w2 = 10.0, -1.0
     r = impact(scene, 0.2, 0.05, w1, spin2=w2, steps_per_contact=co.STEPS_PER_CONTACT)
     Pt, m = r.tangential_impulse, scene.pair.m_star
@@ -101,7 +102,7 @@ def test_equal_and_opposite_spins_do_not_slip():
     assert np.all(np.abs(d["vt_r"]) <= 1e-6 * 0.1 * w)
     # the same sense of spin makes the patch slip at 2 R w: spins change
     scene = Scene(Sphere(0.1, co.AL_ALLOY), Sphere(0.1, co.AL_ALLOY), mu=0.4, normal="hertz_damped", e_n=0.5,
-                  tangential=DEFAULT[0], v_ref=0.4)
+                  tangential=DEFAULT[0], v_ref=reference_speed(0.4))
     r = impact(scene, 0.4, 0.0, 5.0, spin2=5.0)
     assert abs(r.omega_r - 5.0) > 1e-2
 

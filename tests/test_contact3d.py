@@ -33,6 +33,7 @@ from dem_contact.laws.vector import V_N
 from dem_contact.materials import STEEL, Material, Sphere, Wall
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene
 from dem_contact.dem.pairs import pair_table
+from dem_contact.laws.model import reference_speed
 
 
 @njit(cache=True)
@@ -84,7 +85,7 @@ def scene_history(sc, n=1):
 
 def _scene(normal, tangential, vn):
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
-    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, v_ref=vn)
+    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, v_ref=reference_speed(vn))
 
 
 def _frame(rotated):
@@ -133,7 +134,7 @@ def _random_contacts(n, hist_size, seed=0):
 @pytest.mark.parametrize("tangential", ["md", "mindlin_total", "mdr_adaptive"])
 def test_batch_equals_per_contact(tangential):
     spheres = [Sphere(2e-3, STEEL), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))]
-    tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, tangential=tangential, v_ref=1.0)
+    tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, tangential=tangential, v_ref=reference_speed(1.0))
     n = 300
     nrm, delta, vel, wn, H = _random_contacts(n, tab.history_size)
     pair = np.random.default_rng(1).integers(0, tab.params.shape[0], size=n)
@@ -305,7 +306,7 @@ def test_law_ids_come_in_one_order_everywhere_without_defaults():
 @pytest.mark.parametrize("tangential", list(TANGENTIAL_LAWS))
 def test_tangential_force_carried_into_rotated_plane(tangential):
     """Rotating the normal with no slip keeps |T| and keeps F_t in the tangent plane."""
-    sc = Scene(Sphere(1e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0)
+    sc = Scene(Sphere(1e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=reference_speed(1.0))
     nid, tid, P = sc.normal_id, sc.tangential_id, sc.params[None, :]
     H = scene_history(sc)
     out = contact_force(nid, tid, P, 0, H, 0, 0.0, 0.0, -1.0, 2e-6, 1e-2, 0.0, 0.0, 0.0, 1e-7)
@@ -323,7 +324,7 @@ def test_tangential_force_carried_into_rotated_plane(tangential):
 def test_slip_across_the_force_turns_it_to_oppose_sliding(tangential):
     """Sliding perpendicular to an existing tangential force: the force turns until it opposes the
     sliding direction, with |F_t| = mu N (Coulomb)."""
-    sc = Scene(Sphere(1e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0)
+    sc = Scene(Sphere(1e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=reference_speed(1.0))
     nid, tid, P = sc.normal_id, sc.tangential_id, sc.params[None, :]
     H = scene_history(sc)
     out = contact_force(nid, tid, P, 0, H, 0, 0.0, 0.0, -1.0, 2e-6, 0.05, 0.0, 0.0, 0.0, 1e-7)
@@ -530,7 +531,7 @@ def test_user_loop_caches_and_calls_the_kernel(tmp_path):
 
 
 def _checked_setup(tangential="md", n=3):
-    tab = pair_table([Sphere(1e-3, STEEL)], [Wall(STEEL)], mu=0.3, tangential=tangential, v_ref=1.0)
+    tab = pair_table([Sphere(1e-3, STEEL)], [Wall(STEEL)], mu=0.3, tangential=tangential, v_ref=reference_speed(1.0))
     rng = np.random.default_rng(5)
     nrm = rng.normal(size=(n, 3))
     nrm /= np.linalg.norm(nrm, axis=1)[:, None]
@@ -606,7 +607,7 @@ def test_history_rows_advance_a_larger_table_in_place(tangential):
     the contiguous layout's forces and histories bit for bit, and leave every other row untouched;
     ``batch_loop`` refuses an unknown law id."""
     spheres = [Sphere(2e-3, STEEL), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))]
-    tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, tangential=tangential, v_ref=1.0)
+    tab = pair_table(spheres, [Wall(STEEL)], mu=0.4, tangential=tangential, v_ref=reference_speed(1.0))
     n = 200
     nrm, delta, vel, wn, H = _random_contacts(n, tab.history_size, seed=3)
     rng = np.random.default_rng(4)
@@ -739,7 +740,7 @@ def test_a_table_refuses_other_law_ids():
         for tangential in ("md", "mdr_adaptive"):
             sc = _law_scene(tangential, normal)
             t = pair_table([sc.sphere], [sc.body2], mu=0.35, normal=normal, tangential=tangential,
-                           e_n=sc.e_n, v_ref=1.5)
+                           e_n=sc.e_n, v_ref=reference_speed(1.5))
             assert np.all(t.params[:, P_NORMAL_LAW] == NORMAL_LAWS[normal] + 1)
             assert np.all(t.params[:, P_TANGENTIAL_LAW] == TANGENTIAL_LAWS[tangential] + 1)
             assert np.array_equal(sc.params[[P_NORMAL_LAW, P_TANGENTIAL_LAW]],
@@ -809,7 +810,7 @@ def _law_scene(tangential, normal="hertz"):
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
     e_n = 0.8 if normal in ("hertz_damped", "linear") else None
     return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, e_n=e_n,
-                 v_ref=1.5)
+                 v_ref=reference_speed(1.5))
 
 
 def test_checked_entry_refuses_an_overlap_beyond_the_laws_and_reports_a_non_finite_force():

@@ -19,6 +19,7 @@ import dem_contact as dc
 from dem_contact.errors import InputError, NumericalError
 from dem_contact.laws import closed_forms as cf
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
+from dem_contact.laws.model import reference_speed
 
 PAIRS = [(n, t) for n in NORMAL_LAWS for t in TANGENTIAL_LAWS]
 
@@ -62,7 +63,7 @@ def build(c):
         p_y = cf.thornton_yield_pressure_for_velocity(pr.E_star, pr.R_star, pr.m_star, c["vn"] / c["yield_ratio"])
         sphere = dc.Sphere(c["R"], dc.Material(E=c["E"], nu=c["nu"], rho=c["rho"], yield_pressure=p_y))
     return dc.Scene(sphere, body2, mu=c["mu"], normal=c["normal"], tangential=c["tangential"], e_n=c["e_n"],
-                    v_ref=c["vn"])
+                    v_ref=reference_speed(c["vn"]))
 
 
 def check(c):

@@ -13,7 +13,7 @@ NORMALS = [("hertz", {}), ("thornton", {"e_n": 0.7}), ("hertz_damped", {"e_n": 0
 
 
 def scene(sphere, wall, **kw):
-    kw.setdefault("v_ref", 5.0)
+    kw.setdefault("v_ref", dc.reference_speed(5.0))
     return dc.Scene(sphere, wall, **kw)
 
 

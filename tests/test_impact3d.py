@@ -9,6 +9,7 @@ import dem_contact as dc
 from dem_contact.errors import InputError
 from dem_contact.impacts.impact3d import impact3d, sweep3d
 from dem_contact.laws.slots import P_TY_NODES
+from dem_contact.laws.model import reference_speed
 
 LAWS = ["mdr_adaptive", "md", "mindlin_incremental"]
 R = 0.01
@@ -21,7 +22,7 @@ def rot(phi, v):
 
 @pytest.fixture(scope="module")
 def scenes(steel_sphere, steel_wall):
-    return {t: dc.Scene(steel_sphere, steel_wall, mu=0.3, tangential=t, v_ref=5.0) for t in LAWS}
+    return {t: dc.Scene(steel_sphere, steel_wall, mu=0.3, tangential=t, v_ref=reference_speed(5.0)) for t in LAWS}
 
 
 @pytest.mark.parametrize("tangential", LAWS)
@@ -44,7 +45,7 @@ def test_planar_reduction(scenes, tangential, scheme):
 
 def test_planar_reduction_two_spheres(steel_sphere):
     other = dc.Sphere(0.015, dc.STEEL)
-    sc = dc.Scene(steel_sphere, other, mu=0.3, v_ref=3.0)
+    sc = dc.Scene(steel_sphere, other, mu=0.3)
     r = dc.impact(sc, 3.0, 1.0, 40.0, spin2=-90.0)
     q = impact3d(sc, 3.0, (1.0, 0.0), (0.0, 40.0, 0.0), spin2=(0.0, -90.0, 0.0))
     assert q.vt_r[0] == pytest.approx(r.vt_r, rel=1e-10)
@@ -79,7 +80,7 @@ def test_two_spheres_out_of_plane_spins(steel_sphere):
     """Two spheres: ds/dt = (1/m* + R1^2/I1 + R2^2/I2) F_t, again the same in every direction: spins of both
     bodies about any in-plane axes give the planar impact at the incident slip speed, along the slip."""
     other = dc.Sphere(0.02, dc.STEEL)
-    sc = dc.Scene(steel_sphere, other, mu=0.3, v_ref=3.0)
+    sc = dc.Scene(steel_sphere, other, mu=0.3)
     V, w1, w2 = (0.8, 0.3), (150.0, -40.0, 0.0), (-60.0, 90.0, 0.0)
     q = impact3d(sc, 3.0, V, w1, spin2=w2)
     s = np.array([V[0] + R * w1[1] + 0.02 * w2[1], V[1] - R * w1[0] - 0.02 * w2[0]])
@@ -183,7 +184,7 @@ def test_command(tmp_path, capsys):
 
     assert main(["impact3d", "--vt", "1", "0", "--spin-vector", "0", "30", "0", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    r = dc.impact(dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, v_ref=5.0), 5.0, 1.0, 30.0)
+    r = dc.impact(dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3), 5.0, 1.0, 30.0)
     assert d["f_over_mu"] == pytest.approx(r.f_over_mu, rel=1e-12) and d["spin_r"][1] == pytest.approx(r.omega_r)
     assert main(["impact3d", "--angles", "10:30:10", "--spin-vector", "100", "0", "0", "--direction", "90",
                  "--csv", str(tmp_path / "s.csv")]) == 0

@@ -477,7 +477,7 @@ def test_too_few_history_slots_stop_the_run_and_say_how_many():
 def _periodic_pair(shift):
     """Two spheres colliding obliquely with spin, their midpoint at x = shift in a box periodic in x and y
     ([0, 0.01)): forces and torques on both atoms every step."""
-    table = pair_table([Sphere(1e-3, GLASS)], [], mu=0.5, tangential="mindlin_total", v_ref=1.0)
+    table = pair_table([Sphere(1e-3, GLASS)], [], mu=0.5, tangential="mindlin_total")
     lmp = new_lammps()
     for c in ("units si", "atom_style sphere", "boundary p p f", "atom_modify map array",
               "region box block 0 0.01 0 0.01 -0.005 0.005", "create_box 1 box",

@@ -21,6 +21,7 @@ from dem_contact.laws import generate, table
 from dem_contact.laws.contact import contact_step, normal_force
 from dem_contact.laws.dispatch import uses_rate
 from test_contact3d import _frame, _law_scene, scene_history
+from dem_contact.laws.model import reference_speed
 
 NORMAL = [m.NAME for m in table.FAMILIES["normal"]]
 TANGENTIAL = [m.NAME for m in table.FAMILIES["tangential"]]
@@ -385,10 +386,10 @@ def test_the_batch_loop_is_the_single_contact_step(tangential):
     al = Material(E=70e9, nu=0.33, rho=2700.0, yield_pressure=1e9)
     sds = dict(twist="sds", k_twist=1e-3, gamma_twist=1e-9, mu_twist=1e-4, rolling="sds", k_roll=1e4,
                gamma_roll=1e-3, mu_roll=0.1)
-    for sc in (Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0),
+    for sc in (Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=reference_speed(1.0)),
                Scene(Sphere(2e-3, al), Wall(al), mu=0.3, normal="thornton", tangential=tangential, v_ref=1.0,
                      traction_yield=True, **sds),
-               Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=1.0, twist="marshall",
+               Scene(Sphere(2e-3, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=reference_speed(1.0), twist="marshall",
                      rolling="sds", k_roll=1e4, gamma_roll=1e-3, mu_roll=0.1)):
         P = sc.params[None, :]
         n = 6

@@ -12,6 +12,7 @@ from dem_contact.errors import InputError
 from dem_contact.laws.contact import contact_step
 from dem_contact.reference.paths import SHAPES, named_path, scene_path, slip_displacement
 from dem_contact.studies.paths import path_scene, read_path_csv, reference_path, run_path, write_path_csv
+from dem_contact.laws.model import reference_speed
 
 DELTA = 1e-5
 LAWS = ["mdr", "mdr_adaptive", "md", "mindlin_incremental", "mindlin_total"]
@@ -19,7 +20,7 @@ LAWS = ["mdr", "mdr_adaptive", "md", "mindlin_incremental", "mindlin_total"]
 
 @pytest.fixture(scope="module")
 def scenes(steel_sphere, steel_wall):
-    return {t: dc.Scene(steel_sphere, steel_wall, mu=0.3, tangential=t, v_ref=5.0) for t in LAWS}
+    return {t: dc.Scene(steel_sphere, steel_wall, mu=0.3, tangential=t, v_ref=reference_speed(5.0)) for t in LAWS}
 
 
 def test_cattaneo_mindlin_loop(scenes):

@@ -11,6 +11,7 @@ from dem_contact.commands import common
 from dem_contact.impacts import presets
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import scene_with
+import dem_contact as dc
 from dem_contact.laws.model import Scene
 from dem_contact.studies import advise as advise_mod
 from dem_contact.studies import chart3d, spin
@@ -133,3 +134,20 @@ def test_spin_chart_keeps_the_scene_settings(monkeypatch):
         assert isinstance(sc, Scene) and sc.tangential == law and sc.v_ref == 4.0
         _assert_kept(base, sc)
         assert all(getattr(sc, k) == v for k, v in options.items())
+
+
+def test_v_ref_refused_where_no_law_takes_it():
+    """v_ref acts on the linear laws, the thornton calibration and the mdr grid only: given to other laws it
+    is refused, naming the laws that take it; reference_speed(vn) is the run's speed for any laws (used where
+    taken, kept through replace for a later law that takes it)."""
+    from dem_contact.laws.model import reference_speed
+    sphere, wall = dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL)
+    with pytest.raises(dc.InputError, match="v_ref applies to the laws .*linear"):
+        dc.Scene(sphere, wall, v_ref=5.0)
+    with pytest.raises(dc.InputError, match="v_ref"):
+        dc.Scene(sphere, wall, tangential="md").replace(v_ref=5.0)
+    s = dc.Scene(sphere, wall, v_ref=reference_speed(5.0))
+    assert s.v_ref == 5.0
+    mdr = s.replace(tangential="mdr")
+    assert mdr.mdr_max_radius > 0 and mdr.v_ref == 5.0
+    assert dc.Scene(sphere, wall, tangential="mdr", v_ref=5.0).with_tangential("md").v_ref is None

@@ -12,6 +12,7 @@ from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import critical_angle, sweep_theta
 from dem_contact.laws.tangential.mdr import _split, _wbar
 from dem_contact.rebound import models as rm
+from dem_contact.laws.model import reference_speed
 
 
 @pytest.mark.parametrize("law", ["mdr_adaptive", "mdr", "md"])
@@ -94,7 +95,7 @@ def _scaled_scene(sL, st, sm, tangential, normal="hertz"):
     mat = dc.Material(E=E, nu=0.3, rho=rho, **extra)
     wall = dc.Material(E=E, nu=0.3, rho=rho)
     return dc.Scene(dc.Sphere(0.01 * sL, mat), dc.Wall(wall), mu=0.3, normal=normal, tangential=tangential,
-                    v_ref=5.0 * sL / st)
+                    v_ref=reference_speed(5.0 * sL / st))
 
 
 @pytest.mark.parametrize("tangential,normal", [("mdr_adaptive", "hertz"), ("mdr_adaptive", "thornton"),

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import inspect
 
-from ..laws.model import NORMAL_LAWS, Scene, law_of
+from ..laws.model import NORMAL_LAWS, Scene, law_of, reference_speed
 from ..materials import STEEL, Material, Sphere, Wall, check_finite
 
 CASES = ("RE", "EE", "PE")
@@ -76,5 +76,5 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
                               yield_stress=yield_stress)
     wall = Wall.rigid() if rigid_wall else Wall(Material(E=wall_E, nu=wall_nu_used, rho=STEEL.rho))
     laws = {} if tangential is None else {"tangential": tangential}
-    return Scene(Sphere(radius, sphere_mat), wall, mu=mu, normal=normal, e_n=e_n, v_ref=vn, model=model,
+    return Scene(Sphere(radius, sphere_mat), wall, mu=mu, normal=normal, e_n=e_n, v_ref=reference_speed(vn), model=model,
                  traction_yield=traction_yield, mdr_profile=mdr_profile, **laws)

@@ -67,6 +67,18 @@ def _law(name: str, family: str):
     return table.law(family, name)
 
 
+class _ReferenceSpeed(float):
+    """A v_ref given by ``reference_speed``: used by the laws that take one, refused by none."""
+
+
+def reference_speed(vn: float) -> float:
+    """The speed ``vn`` [m/s] as the ``v_ref`` of a Scene whose laws may or may not take one, for code that
+    builds scenes of any laws at the speed of its run (presets, studies, the command line): the laws that
+    take a v_ref use it, ``replace`` keeps it (a later change to such a law finds it), and a Scene whose laws
+    take none does not refuse it. A plain number given as v_ref to laws that take none is refused."""
+    return _ReferenceSpeed(vn)
+
+
 def law_of(family: str, name: str):
     """The module of the ``family`` law ``name`` (``laws.table``: its declarations and hooks), InputError
     naming the valid ones for an unknown name."""
@@ -88,7 +100,8 @@ class Scene:
         any e_n below HERTZ_DAMPED_EN_FLOOR uses the dashpot of e_n = HERTZ_DAMPED_EN_FLOOR
     v_ref : reference normal speed [m/s], needed by ``linear`` laws (stiffness matched to the Hertz
         contact time at v_ref) and by the thornton calibration from e_n; for ``mdr`` the largest normal
-        speed expected (sets the extent of the springs)
+        speed expected (sets the extent of the springs). Refused by a scene none of whose laws takes it,
+        unless given as ``reference_speed(vn)`` (the run's speed, for laws that may or may not use one)
     mdr_springs : number of MDR springs (cells on the half-line), ``mdr`` only (default MDR_SPRINGS)
     mdr_max_radius : largest contact radius the MDR springs must cover [m] (``mdr`` only; default: the
         maximum contact radius of a normal impact at v_ref, times MDR_RADIUS_MARGIN)
@@ -205,6 +218,8 @@ class Scene:
         defaults = inspect.signature(Scene).parameters
         taken = sum((law.OPTIONS for law in self.laws), ())
         for option in table.options():
+            if option == "v_ref" and isinstance(self._args["v_ref"], _ReferenceSpeed):
+                continue
             if option not in taken and self._args[option] != defaults[option].default:
                 takers = [f"{m.NAME} ({m.FAMILY})" for laws in table.FAMILIES.values() for m in laws
                           if option in m.OPTIONS]
@@ -237,8 +252,10 @@ class Scene:
         not take them (a cell count of one law is not one of another); every other setting is kept."""
         defaults = inspect.signature(Scene).parameters
         new = _law(tangential, "tangential")
+        others = sum((law.OPTIONS for law in self.laws if law is not self.tangential_law), new.OPTIONS)
         drop = [] if tangential == self.tangential else [
-            k for k in self.tangential_law.OPTIONS if k not in new.OPTIONS or k in ("mdr_springs", "mdr_max_radius")]
+            k for k in self.tangential_law.OPTIONS if k not in others or k in ("mdr_springs", "mdr_max_radius")
+            if not (k == "v_ref" and isinstance(self._args["v_ref"], _ReferenceSpeed))]
         reset = {k: defaults[k].default for k in drop if k not in changes}
         return self.replace(tangential=tangential, **{**reset, **changes})
 

@@ -25,7 +25,7 @@ from ..errors import InputError, kernel_failed
 from ..impacts.impact import E_N_EXCESS_TOL, MAX_CONTACT_TIMES, body_inertia
 from ..impacts.integrator import N_OUT, N_SERIES, O_PN, O_PT, O_SLID, O_STATUS, O_VN, O_VT, O_W1, integrate_impact, is_sliding
 from ..materials import STEEL, Material, Sphere, Wall
-from ..laws.model import TANGENTIAL_LAWS, Scene, law_of
+from ..laws.model import TANGENTIAL_LAWS, Scene, law_of, reference_speed
 
 #: Settings of the converged MDR reference.
 REFERENCE_SPRINGS = 400
@@ -123,7 +123,7 @@ def chart_scene(normal: str, tangential: str, vn: float, mu: float = 0.3, nu: fl
     """The EE steel scene (R = 10 mm, steel on steel) with the given laws; thornton calibrated to e_n at vn."""
     mat = Material(STEEL.E, nu, STEEL.rho)
     extra = {"e_n": e_n} if law_of("normal", normal).TAKES_E_N else {}
-    return Scene(Sphere(0.01, mat), Wall(mat), mu=mu, normal=normal, tangential=tangential, v_ref=vn,
+    return Scene(Sphere(0.01, mat), Wall(mat), mu=mu, normal=normal, tangential=tangential, v_ref=reference_speed(vn),
                  **extra, **kw)
 
 

@@ -36,7 +36,7 @@ import numpy as np
 
 from ..dem.contact3d import history_size, new_histories
 from ..errors import InputError
-from ..laws.model import TANGENTIAL_LAWS, Scene, law_of
+from ..laws.model import TANGENTIAL_LAWS, Scene, law_of, reference_speed
 from ..materials import STEEL, Sphere, Wall
 from ..reference.bem import bem_path_scene
 from ..reference.paths import COMPARISON_SET, TWIST_SET, scene_path, twist_modulus
@@ -57,7 +57,7 @@ LAWS = tuple((t, t, {}) for t in TANGENTIAL_LAWS if t != "mdr") + (
 
 def chart_scene(tangential: str = "mdr_adaptive", **options) -> Scene:
     """The chart's scene (steel on steel, R = 10 mm, mu = 0.3) with a tangential law."""
-    return Scene(Sphere(0.01, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=5.0, **options)
+    return Scene(Sphere(0.01, STEEL), Wall(STEEL), mu=0.3, tangential=tangential, v_ref=reference_speed(5.0), **options)
 
 
 def path_label(shape: str, size: float) -> str:
@@ -263,7 +263,7 @@ def spin_impact_chart(reference, laws=LAWS, vn: float = 5.0, repeats: int = 20, 
     base = preset_scene("EE", vn) if scene is None else scene
     out = []
     for label, tangential, options in laws:
-        sc = scene_with(base, tangential=tangential, v_ref=vn, **options)
+        sc = scene_with(base, tangential=tangential, v_ref=reference_speed(vn), **options)
         err = max(r.error for r in compare_spin_cases({label: sc}, reference, vn))
         b = reference[0]
         t = time_per_impact(sc, vn, (b.vt, 0.0), (b.spin_x, 0.0, 0.0), b.steps, repeats)

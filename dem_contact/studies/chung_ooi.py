@@ -53,7 +53,7 @@ from ..laws import closed_forms as cf
 from ..errors import InputError
 from ..impacts.impact import impact
 from ..materials import Material, Sphere, Wall
-from ..laws.model import HERTZ_DAMPED_EN_FLOOR, TANGENTIAL_LAWS, Scene
+from ..laws.model import HERTZ_DAMPED_EN_FLOOR, TANGENTIAL_LAWS, Scene, reference_speed
 
 TESTS = tuple(range(1, 9))
 
@@ -333,7 +333,7 @@ def benchmark_test4(spc=None, laws=None) -> BenchmarkResult:
         d["rigid_body"] = {"angle_deg": ang_fine, **rb}
         for law in laws:
             scene = Scene(Sphere(R, m), Wall.rigid(), mu=mu, normal="hertz_damped", e_n=e_n, tangential=law,
-                          v_ref=speed)
+                          v_ref=reference_speed(speed))
             rows = {"angle_deg": [], "e_t": [], "omega_r": [], "patch_angle_deg": [], "e_n": [], "f_over_mu": []}
             err = {"e_t": 0.0, "omega_r": 0.0, "v_tr": 0.0}
             for ang in TEST4_ANGLES:
@@ -380,7 +380,7 @@ def benchmark_test5(spc=None, laws=None) -> BenchmarkResult:
                       "rigid_f_over_mu": np.minimum(1.0, Tf / 7.0)}
     kappa = None
     for law in laws:
-        scene = Scene(Sphere(R, STEEL), Wall(STEEL), mu=mu, normal="hertz", tangential=law, v_ref=vn)
+        scene = Scene(Sphere(R, STEEL), Wall(STEEL), mu=mu, normal="hertz", tangential=law, v_ref=reference_speed(vn))
         kappa = scene.pair.kappa
         rows = {"Theta": [], "Psi_r": [], "Omega_r": [], "f_over_mu": [], "e_t": [], "psi_1": [], "psi_2": []}
         err = {"f": 0.0, "Psi": 0.0}
@@ -423,7 +423,7 @@ def _spin_test(test, title, body2, R1, spins, spc, laws, spin2_of=None):
     data["rigid_body"] = {"chi": chi_f, **rigid_spin(chi_f, mu, e_n)}
     is_sphere = isinstance(body2, Sphere)
     for law in laws:
-        scene = Scene(s1, body2, mu=mu, normal="thornton", e_n=e_n, tangential=law, v_ref=vn)
+        scene = Scene(s1, body2, mu=mu, normal="thornton", e_n=e_n, tangential=law, v_ref=reference_speed(vn))
         rows = {"spin": [], "chi": [], "beta": [], "recoil_angle_deg": [], "omega_r": [], "omega2_r": [],
                 "e_n": []}
         err = {"beta": 0.0, "angle": 0.0, "w1": 0.0, "w2": 0.0}
@@ -493,7 +493,7 @@ def benchmark_test7(spc=None, laws=None) -> BenchmarkResult:
     data, checks = {}, []
     for law in laws:
         scene = Scene(Sphere(R, AL_ALLOY), Sphere(R, AL_ALLOY), mu=mu, normal="thornton", e_n=e_n,
-                      tangential=law, v_ref=vn)
+                      tangential=law, v_ref=reference_speed(vn))
         rows = {"spin": [], "omega1_r": [], "omega2_r": [], "vt_r": [], "e_n": []}
         err = 0.0
         for w in TEST7_SPINS:

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..impacts.impact import impact
 from ..impacts.impact3d import impact3d
-from ..laws.model import Scene
+from ..laws.model import Scene, reference_speed
 
 
 @dataclass
@@ -125,7 +125,7 @@ def law_scenes(scene: Scene, laws, vn: float) -> dict:
     """law -> the scene with that tangential law and every other setting of ``scene``
     (``Scene.with_tangential``), its reference speed (the placement of the mdr springs, the calibrations) at
     the study's ``vn``."""
-    return {law: scene.with_tangential(law, v_ref=vn) for law in laws}
+    return {law: scene.with_tangential(law, v_ref=reference_speed(vn)) for law in laws}
 
 
 def compare_spin_cases(scenes: dict, reference, vn: float = 5.0, *, steps_per_contact: float | None = None) -> list:

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from ..errors import InputError, NumericalError
 from ..impacts.impact import impact
 from ..materials import STEEL, Material, Sphere, Wall, pair_properties
-from ..laws.model import TANGENTIAL_LAWS, Scene
+from ..laws.model import TANGENTIAL_LAWS, Scene, reference_speed
 
 ACCURACY_TOL = 0.02
 OUTCOMES = ("ok", "inaccurate", "coulomb", "energy", "blow-up", "rejected")
@@ -90,7 +90,7 @@ def case_scene(case: Case, tangential: str) -> Scene:
         sphere_mat = Material(STEEL.E, case.nu, STEEL.rho, yield_pressure=p_y)
         normal = "thornton"
     return Scene(Sphere(0.01, sphere_mat), Wall(mat), mu=case.mu, normal=normal, tangential=tangential,
-                 v_ref=case.vn)
+                 v_ref=reference_speed(case.vn))
 
 
 def _run(case: Case, tangential: str, scheme: str, steps: float):

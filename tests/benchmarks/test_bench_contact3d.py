@@ -20,6 +20,7 @@ from dem_contact.dem.contact3d import batch_loop, contact_forces_serial, new_his
 from dem_contact.materials import STEEL, Material, Sphere, Wall
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
 from dem_contact.dem.pairs import pair_table
+from dem_contact.laws.model import reference_speed
 
 N_CONTACTS = 100_000
 DT = 2e-7
@@ -30,7 +31,7 @@ def _workload(tangential, normal="hertz", n=N_CONTACTS):
     steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho, yield_pressure=2.5e9)    # (thornton yields at p_y)
     spheres = [Sphere(2e-3, steel), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0, yield_pressure=1e9))]
     e_n = 0.8 if normal in ("hertz_damped", "linear") else None
-    tab = pair_table(spheres, [Wall(steel)], mu=0.4, normal=normal, tangential=tangential, e_n=e_n, v_ref=1.0)
+    tab = pair_table(spheres, [Wall(steel)], mu=0.4, normal=normal, tangential=tangential, e_n=e_n, v_ref=reference_speed(1.0))
     rng = np.random.default_rng(0)
     nrm = rng.normal(size=(n, 3))
     nrm /= np.linalg.norm(nrm, axis=1)[:, None]
@@ -512,7 +513,7 @@ TORQUE_MODELS = {
 def test_bench_batch_twist_rolling(benchmark, tangential, models):
     steel = Material(E=STEEL.E, nu=STEEL.nu, rho=STEEL.rho)
     tab = pair_table([Sphere(2e-3, steel), Sphere(3e-3, Material(E=70e9, nu=0.33, rho=2700.0))], [Wall(steel)],
-                     mu=0.4, tangential=tangential, v_ref=1.0, **TORQUE_MODELS[models])
+                     mu=0.4, tangential=tangential, v_ref=reference_speed(1.0), **TORQUE_MODELS[models])
     rng = np.random.default_rng(0)
     n = N_CONTACTS
     nrm = rng.normal(size=(n, 3))

@@ -7,11 +7,12 @@ import dem_contact as dc
 from dem_contact.impacts.impact import body_inertia, time_step
 from dem_contact.impacts.impact3d import N_OUT3, N_SERIES3, integrate_impact3d, new_contact_state
 from dem_contact.impacts.integrator import N_OUT, N_SERIES, integrate_impact
+from dem_contact.laws.model import reference_speed
 
 
 def _setup(tangential):
     """The scene, time step, steps per contact and inertia of both benchmarks (5 m/s)."""
-    sc = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, tangential=tangential, v_ref=5.0)
+    sc = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, tangential=tangential, v_ref=reference_speed(5.0))
     return (sc, *time_step(sc, 5.0), body_inertia(sc))
 
 

@@ -52,7 +52,7 @@ def load(name):
 
 
 def ee_scene(tangential="mdr"):
-    return dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=MU, tangential=tangential, v_ref=5.0)
+    return dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=MU, tangential=tangential, v_ref=dc.reference_speed(5.0))
 
 
 # -- Cattaneo-Mindlin ----------------------------------------------------------------------------------

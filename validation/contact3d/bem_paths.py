@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from dem_contact.dem.contact3d import contact_force, history_size, new_histories
-from dem_contact.laws.model import TANGENTIAL_LAWS, Scene
+from dem_contact.laws.model import TANGENTIAL_LAWS, Scene, reference_speed
 from dem_contact.laws.slots import P_NSPRING
 from dem_contact.materials import STEEL, Sphere, Wall
 from dem_contact.reference.bem import bem_path
@@ -44,7 +44,7 @@ def path(name, steps, s_slip):
 
 
 def law_forces(law, u, a):
-    sc = Scene(Sphere(R, STEEL), Wall(STEEL), mu=MU, tangential=law, v_ref=1.0,
+    sc = Scene(Sphere(R, STEEL), Wall(STEEL), mu=MU, tangential=law, v_ref=reference_speed(1.0),
                **({"mdr_max_radius": 1.5 * a} if law == "mdr" else {}))
     P = sc.params[None, :]
     H = new_histories(1, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING])))

@@ -14,6 +14,7 @@ from ..vector import JIT
 NAME, FAMILY = "linear", "normal"
 SOURCE = "linear spring-dashpot, stiffness matched to the Hertz contact time at v_ref, closed-form e_n"
 PARAMETERS, STATE = ("k_n", "gamma", "m_star", "R_star"), ()
+OPTIONS = ("v_ref",)
 USES_RATE, PLASTIC = True, False
 TAKES_E_N = True
 

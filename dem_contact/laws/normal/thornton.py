@@ -29,7 +29,7 @@ SOURCE = "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p
 PARAMETERS = ("E_star", "R_star", "p_y", "delta_y", "F_y", "traction-yield table")
 #: 3D history slots (the planar row has the first four, and reads |T| / N from its header)
 STATE = ("delta_star", "F_star", "R_p", "delta_p", "|T| / N of the last step (traction_yield; -1: N = 0)")
-OPTIONS = ("traction_yield",)
+OPTIONS = ("traction_yield", "v_ref")
 USES_RATE, PLASTIC = False, True
 TAKES_E_N = True
 

@@ -8,6 +8,7 @@ from .mindlin_incremental import SWAP_NEGATE, VECTOR_SLOTS  # noqa: F401
 NAME, FAMILY = "linear", "tangential"
 SOURCE = "Cundall-Strack linear spring, k_t = kappa k_n(linear, matched at v_ref)"
 PARAMETERS, STATE = ("k_t", "mu"), ("T",)
+OPTIONS = ("v_ref",)
 planar, vector = mindlin_incremental.forms("linear_tangential", False, True)
 
 

@@ -51,7 +51,7 @@ from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, carry_unit, renamed
 NAME, FAMILY = "mdr", "tangential"
 SOURCE = "exact reference: method of dimensionality reduction (Popov & Hess), springs on a half-line"
 PARAMETERS, STATE = ("E_star", "G_star", "R_star", "mu", "p_y", "n", "dx", "profile"), ("T", "cells")
-OPTIONS = ("mdr_springs", "mdr_max_radius", "mdr_profile")
+OPTIONS = ("mdr_springs", "mdr_max_radius", "mdr_profile", "v_ref")
 #: the state has a cell part sized by the cell count (the parameter n): one slot per cell in the plane,
 #: two in 3D (a displacement in the frame e1, e2)
 CELLS = True
