@@ -582,8 +582,10 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 used[i, r] = False
     nt = 0              # atoms listed in touched
     n = 0
-    late = 0            # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
-    ended = 0           # candidates whose contact ended (work[:ended, 2])
+    # (typed int64 from the start: a literal 0 would compile _rows_of_late_contacts a second time, for
+    # Literal[int](0) arguments, on the first pass of type inference)
+    late = np.int64(0)  # contacts whose rows are not cached (work[:late, :2]: contact, candidate)
+    ended = np.int64(0)  # candidates whose contact ended (work[:ended, 2])
     for c in range(npc + nwc):
         dx = dy = dz = r2 = rs = delta = nx = ny = nz = gap = 0.0
         w = -1
