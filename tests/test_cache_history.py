@@ -118,7 +118,11 @@ def users_own_loop(p, deltas):
 
 
 scene = preset_scene("EE", 5.0, tangential="linear")
-print(impact(scene, vn=5.0).max_force, users_own_loop(scene.params, np.array([1e-6, 2e-6])))
+from dem_contact.dem.contact3d import contact_force, history_size, new_histories
+H = new_histories(1, history_size(scene.normal_id, scene.tangential_id))
+out = contact_force(scene.normal_id, scene.tangential_id, scene.params[None, :], 0, H, 0, 0.0, 0.0, 1.0, 1e-6,
+                    0.0, 0.0, 0.0, 0.0, 1e-7)
+print(impact(scene, vn=5.0).max_force, users_own_loop(scene.params, np.array([1e-6, 2e-6])), -out[2])
 """
 
 
@@ -146,10 +150,11 @@ def test_compiled_code_follows_the_law_sources_it_inlines(tmp_path):
     assert run() == before                               # loaded from the cache: the same numbers
     law = pkg / "dem_contact" / "laws" / "normal" / "hertz.py"
     text = law.read_text()
-    assert text.count("return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a") == 1
-    law.write_text(text.replace("return 4.0 / 3.0 * p[P_ESTAR] * a * delta, a",
-                                "return 8.0 / 3.0 * p[P_ESTAR] * a * delta, a"))
+    # Hertz's force is written once (hertz_vector): the edit reaches the planar impact and the 3D loop alike
+    assert text.count("return 4.0 / 3.0 * E * a * delta, a") == 1
+    law.write_text(text.replace("return 4.0 / 3.0 * E * a * delta, a", "return 8.0 / 3.0 * E * a * delta, a"))
     after = run()
     assert after[1] == pytest.approx(2.0 * before[1], rel=1e-14)    # the user's loop: Hertz's force doubled
+    assert after[2] == pytest.approx(2.0 * before[2], rel=1e-14)    # the 3D kernel's too
     # the impact: twice the stiffness, so F_max = (2 E*)^(2/5) times the same factor: 2^(2/5) times larger
     assert after[0] == pytest.approx(2.0 ** 0.4 * before[0], rel=2e-3)

@@ -18,7 +18,7 @@ MU = 0.3
 
 def mdr_scene(nu=0.3, tangential="mdr", normal="hertz", **kw):
     mat = dc.Material(208e9, nu, 7850)
-    kw.setdefault("v_ref", 5.0)
+    kw.setdefault("v_ref", dc.reference_speed(5.0))
     return dc.Scene(dc.Sphere(0.01, mat), dc.Wall(mat), mu=MU, normal=normal, tangential=tangential, **kw)
 
 
