@@ -30,7 +30,7 @@ from ..errors import InputError
 from ..laws.contact import contact_step
 from ..laws.normal_impact import (STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK, drift, eval_overlap,  # noqa: F401
                                   normal_close, normal_start, step_status)
-from ..laws.slots import P_MU
+from ..laws.slots import P_MU, P_NORMAL_LAW
 from ..laws.dispatch import NORMAL_IDS, TANGENTIAL_IDS
 
 # slots of the output row, in the order of the values that ``integrate_inlined`` writes
@@ -190,31 +190,32 @@ _INTEGRATORS = {}
 
 def integrator_for(nid: int, tid: int):
     """The integrator of the law pair (nid, tid): ``integrate_impact`` without the law ids (signature
-    INTEGRATOR), from a clean history (it zeroes h first), compiled for that pair alone (its law ids are
-    constants, so the other laws are never compiled; each pair has its own entry in numba's cache). Callable
-    from Python and, as a first-class function, from other kernels (``sweep.sweep_kernel``). The kernel does
-    not check its arguments: ``impact.impact`` is the checked entry."""
+    INTEGRATOR), from a clean history (it zeroes h first), compiled per tangential law (its id a constant, so
+    the other tangential laws are never compiled into it; the normal law is that of the parameter row,
+    ``P_NORMAL_LAW``, chosen at run time among the normal laws compiled into it: one integrator per tangential
+    law rather than per pair, each with its own entry in numba's cache). Callable from Python and, as a
+    first-class function, from other kernels (``sweep.sweep_kernel``). The kernel does not check its
+    arguments: ``impact.impact`` is the checked entry (its rows record their normal law)."""
     if isinstance(nid, bool) or nid not in NORMAL_IDS or isinstance(tid, bool) or tid not in TANGENTIAL_IDS:
         raise InputError(f"(nid, tid) = ({nid!r}, {tid!r}) are not law ids (laws.model.NORMAL_LAWS, TANGENTIAL_LAWS)")
-    key = (int(nid), int(tid))
-    integ = _INTEGRATORS.get(key)
+    integ = _INTEGRATORS.get(int(tid))
     if integ is None:
-        integ = _INTEGRATORS[key] = _integrator(*key)
+        integ = _INTEGRATORS[int(tid)] = _integrator(int(tid))
     return integ
 
 
-def integrator_name(nid: int, tid: int) -> str:
-    """The qualified name under which the integrator of (nid, tid) is compiled and cached: one per law pair.
-    numba names a compiled function by its qualified name and a counter of the process that compiles it, and
-    a kernel calling a first-class function finds it by that name: two law pairs under one name, compiled first
-    in two processes and loaded from the cache into a third, would run one pair's code for both."""
-    return f"integrate_normal{nid}_tangential{tid}"
+def integrator_name(tid: int) -> str:
+    """The qualified name under which the integrator of the tangential law tid is compiled and cached. numba
+    names a compiled function by its qualified name and a counter of the process that compiles it, and a
+    kernel calling a first-class function finds it by that name: two laws under one name, compiled first in
+    two processes and loaded from the cache into a third, would run one law's code for both."""
+    return f"integrate_tangential{tid}"
 
 
-def _integrator(nid, tid):
+def _integrator(tid):
     def integrate(p, h, body, vn0, vt0, w10, w20, dt, max_steps, locate, out, series):
         h[:] = 0.0
-        integrate_inlined(nid, tid, p, h, vn0, vt0, w10, w20, body[B_INV_M], body[B_R1], body[B_R2], body[B_INV_I1],
-                          body[B_INV_I2], dt, max_steps, locate, out, series)
-    integrate.__name__ = integrate.__qualname__ = integrator_name(nid, tid)
+        integrate_inlined(int(p[P_NORMAL_LAW]) - 1, tid, p, h, vn0, vt0, w10, w20, body[B_INV_M], body[B_R1],
+                          body[B_R2], body[B_INV_I1], body[B_INV_I2], dt, max_steps, locate, out, series)
+    integrate.__name__ = integrate.__qualname__ = integrator_name(tid)
     return njit(INTEGRATOR, cache=True)(integrate)
