@@ -271,7 +271,9 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
     displacements (ux, uy) [m] and twists beta [rad] (relative, body 1 against body 2; arrays, the first row
     the state before the path, from rest) under the normal force N [N] and contact radius a [m]: numbers
     (constant along the path) or one value per row (N <= 0 or a <= 0: no contact, every cell released)
-    (module docstring). T and M resist the motion (T . du > 0 and M d(beta) > 0 while sticking). G_star,
+    (module docstring). T and M are the force and the moment about the normal on body 1, as
+    ``studies.paths.run_path`` returns them: they resist the motion (T . du < 0 and M d(beta) < 0 while
+    sticking); the work absorbed is -int (T . du + M d(beta)). G_star,
     G_c: the tangential and twist moduli [Pa] (1/G* = sum (2 - nu)/G, 1/G_c = sum 1/G); R_star [m]: the
     grid's scale; cells (even), sectors (points per ring), slip_lever (``limits`` or ``rings``) and
     residual (``scaled``, ``kept`` or ``dropped``: the ring's residual on a change of N) as in the module
@@ -381,4 +383,6 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
             energy[t] = GM * ((u * u).sum(axis=1) * l1).sum() + 8.0 * G_c * (theta * theta * w1).sum()
         work[t] = work[t - 1] + 0.5 * ((Tx[t - 1] + Tx[t]) * du[0] + (Ty[t - 1] + Ty[t]) * du[1]
                                        + (M[t - 1] + M[t]) * db)
+    for v in (Tx, Ty, M):        # the cells' resistance: the force and moment on body 1 are its opposite
+        np.negative(v, out=v)
     return out
