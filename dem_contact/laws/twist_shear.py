@@ -206,7 +206,7 @@ def _per_row(name, x, rows):
 def _cut_factors(a, a_old, ds, n):
     """Before a step in which the contact shrinks from a_old to a: the cell that the new edge cuts keeps its
     part inside a, its displacement scaled with the profile a_old^2 - s^2 (``mdr.shrink_edge``) and its
-    rotation with the twist limit profile of a_old (``deresiewicz.advance``). Returns (i, f_u, f_theta);
+    rotation kept (``deresiewicz.advance``: the twist springs' energy does not rise). Returns (i, f_u);
     i = -1: no cell is cut."""
     i = int(a / ds)
     if i < n:
@@ -215,11 +215,8 @@ def _cut_factors(a, a_old, ds, n):
         if a > x0 and x1 > a:
             def wbar(y):
                 return a_old * a_old - (x0 * x0 + x0 * y + y * y) / 3.0
-
-            def tmean(y):
-                return float(_jtab(y / a_old) - _jtab(x0 / a_old)) / (y**3 - x0**3)
-            return i, wbar(a) / wbar(x1), tmean(a) / tmean(x1)
-    return -1, 1.0, 1.0
+            return i, wbar(a) / wbar(x1)
+    return -1, 1.0
 
 
 def _renew(v, old, new, e, x0, ds, residual):
@@ -242,10 +239,9 @@ def _renew(v, old, new, e, x0, ds, residual):
     elif residual == "scaled":      # the residual keeps its fraction of the cell's limit
         r *= np.where(on0 & on1, umax1 / np.where(on0, umax0, 1.0), 0.0)[:, None, None]
     if 0.0 < a1 < a0:
-        i, fu, ft = _cut_factors(a1, a0, ds, u.shape[0])
+        i, fu = _cut_factors(a1, a0, ds, u.shape[0])
         if i >= 0:
             u[i] *= fu
-            theta[i] *= ft
             if residual == "kept":
                 r[i] *= fu
     # a cell that grows: its mean over the part in contact, the new part unstrained, which took the part of the
