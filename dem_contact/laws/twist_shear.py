@@ -74,7 +74,7 @@ with its rings: on a change of N and a it splits each cell's points into the for
 moment mode theta = mean_k (v_k . e_k) / lambda_old and the residual r_k = v_k - u - lambda_old theta e_k
 (which carries neither force nor moment: the memory of where the ring slipped); it keeps u and theta
 physical (the cut cell and a growing cell carry them as the MDR and twist cells do: u with the length and
-the profile a_old^2 - s^2, theta with the weight s^2 and the twist limit profile), rebuilds
+the profile a_old^2 - s^2, theta with the weight s^2, the cut cell's kept), rebuilds
 v_k = u + lambda_new theta e_k + r_k', then adds the step's increment and returns each point to its new
 circle |v_k| <= u_max_new. The residual rule (``residual``): ``scaled`` (default), r_k' = (u_max_new /
 u_max_old) r_k, the residual keeps its fraction of the limit (the pattern of slip around a ring, which

@@ -51,11 +51,12 @@ The cells here are over s.
 
 Discretisation (as ``laws.tangential.mdr_adaptive``): n cells of width ds on 0 <= s < n ds, the width a
 power of 2 times R* chosen at first contact and halved or doubled as the contact shrinks or grows (cells
-merged with the weight s^2, split into halves at the cell's rotation, and a cell cut by a shrinking edge
-keeps its rotation on the part inside: M is kept, and the springs' energy 8 G_c sum theta_i^2 w_i never
-rises without work; a part whose limit is lower then slides). The cells never give back more work than
-they stored: a loop of twist and overlap absorbs work less the change of that energy >= 0. The state of a cell is the s^2-weighted mean theta_i of the spring rotation over its
-part inside the contact, its limit the s^2-weighted mean of mu L / k, computed exactly from
+merged with the weight s^2 and split into halves at the cell's rotation, M kept; a cell cut by a shrinking
+edge keeps its rotation on its part inside). Neither raises the springs' energy 8 G_c sum theta_i^2 w_i (a
+half or a part above its lower limit then slides), so the cells never give back more work than they
+stored: over any loop of twist and overlap, the work absorbed less the change of that energy is >= 0.
+The state of a cell is the s^2-weighted mean theta_i of the spring rotation over its part inside the
+contact, its limit the s^2-weighted mean of mu L / k, computed exactly from
 J(u) = int_0^u t^2 (K - E)(1 - t^2) dt (a table of ``TABLE_NODES`` values with Hermite interpolation,
 built at import from the arithmetic-geometric mean): theta_i max = 3 mu N a (J(u1) - J(u0)) / (4 pi G_c w_i),
 w_i = int s^2 ds over the cell's part in contact. M = 16 G_c sum theta_i w_i. A contact stuck everywhere and
