@@ -665,7 +665,8 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
     ``contact_force`` call that uses the same arrays): law ids, a table built for them, dtypes, shapes,
     C-contiguity, writeable H (and forces, tforces), row indices in range (``history_rows`` distinct rows
-    of H), history rows long enough for the laws, unit normals (within 1e-6), dt > 0, finite inputs and
+    of H), history rows long enough for the laws, spins and torques given for the table's twist and
+    rolling laws, unit normals (within 1e-6), dt > 0, finite inputs and
     overlaps below the pair's R*.
     Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
     again when they are reallocated); the jitted kernels themselves do not check."""
