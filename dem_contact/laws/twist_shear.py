@@ -104,10 +104,10 @@ associated), but the physical work per cell is the sum over the points' works on
 energy at the two limits is equal (G_M u_max^2 ds = 8 G_c s^2 theta_max^2 ds, true at no s in general),
 so the absence of energy creation on closed loops is checked (random loops, in the tests and the
 validation), not proven. Under a varying N a closed loop in (delta, u, beta) may give back work that the
-history stored (6 of 200 random loops; the separate exact laws on the same cells: 7); the loop's work less the change of the
+history stored (7 of 200 random loops; the separate exact laws on the same cells: 8); the loop's work less the change of the
 stored energy of the force and moment modes (``stored``) was positive in all 200, for every residual rule
 and lever. Single steps that unload can show a small negative one, at the cell cut by the receding edge
-(the exact laws' cells too; it falls as the cells refine) (``validation/twist/report.md``).
+(its force mode, as the MDR cells'; it falls as the cells refine) (``validation/twist/report.md``).
 
 Scope: a path function in numpy, not a kernel of the 3D step (``laws.compose``): the step gives the slip
 to the tangential law and the spin to the twist law, while this law needs both in one place. The grid is
