@@ -178,12 +178,12 @@ def test_history_helpers(tangential, normal):
     out = contact_force(nid, tid, P, 0, H, 0, *n, 1.3e-6, *v, 50.0, 1e-7)
     assert out == peek and np.linalg.norm(out[3:]) > 0.0
     H = H0.copy()
-    swap_bodies(nid, tid, H, 0)
+    swap_bodies(nid, tid, P, 0, H, 0)
     assert not np.array_equal(H, H0)
     Hs = H.copy()
     b = tangential_base(nid, 0, 0)
     assert np.array_equal(Hs[:, :b], H0[:, :b])       # the normal state (thornton's F*, R_p, delta_p) is kept
-    swap_bodies(nid, tid, H, 0)
+    swap_bodies(nid, tid, P, 0, H, 0)
     assert np.array_equal(H, H0)
     # swapped geometry: n, v and wn = 0.5 (w1 + w2) . n change sign
     out2 = contact_force(nid, tid, P, 0, Hs, 0, *(-n), 1.3e-6, *(-v), -50.0, 1e-7)
@@ -196,9 +196,9 @@ def test_history_helpers(tangential, normal):
 def _user_helpers(nid, tid, params, H, Q):
     """A user's jitted code calling the contact helpers (their unchecked kernels)."""
     f = peek_force(nid, tid, params, 0, H, 1, 0.0, 0.6, -0.8, 1.2e-6, 0.1, 0.0, 0.0, 0.0, 1e-7)
-    swap_bodies(nid, tid, H, 1)
-    rotate_history(nid, tid, H, 1, Q)
-    w = tangential_work(nid, tid, H, 1)
+    swap_bodies(nid, tid, params, 0, H, 1)
+    rotate_history(nid, tid, params, 0, H, 1, Q)
+    w = tangential_work(nid, tid, params, 0, H, 1)
     reset_contact(H, 0)
     return f[0], w
 
@@ -227,26 +227,30 @@ def test_contact_helpers_check_their_arguments_from_python():
     Q = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
     Hp, Hj = H.copy(), H.copy()
     fp = peek_force(nid, tid, P, 0, Hp, 1, 0.0, 0.6, -0.8, 1.2e-6, 0.1, 0.0, 0.0, 0.0, 1e-7)
-    swap_bodies(nid, tid, Hp, 1)
-    rotate_history(nid, tid, Hp, 1, Q)
-    wp = tangential_work(nid, tid, Hp, 1)
+    swap_bodies(nid, tid, P, 0, Hp, 1)
+    rotate_history(nid, tid, P, 0, Hp, 1, Q)
+    wp = tangential_work(nid, tid, P, 0, Hp, 1)
     reset_contact(Hp, 0)
     assert _user_helpers(nid, tid, P, Hj, Q) == (fp[0], wp) and np.array_equal(Hp, Hj) and wp != 0.0
     ro = H.copy()
     ro.flags.writeable = False
     other = _law_scene("md", "hertz").params[None, :]
     cases = [
-        (lambda: swap_bodies(tid, H, 1, nid), r"^tid \(tangential law id\) = a ndarray is not a law id"),
-        (lambda: swap_bodies(TANGENTIAL_LAWS["mdr_adaptive"], tid, H, 1), r"^nid \(normal law id\) = 8 is not"),
-        (lambda: swap_bodies(nid, tid, H, 2), r"^c = 2 is not a row of H \(valid: integers 0 to 1\)"),
-        (lambda: swap_bodies(nid, tid, H, -1), r"^c = -1 is not a row of H"),
-        (lambda: swap_bodies(nid, tid, ro, 1), r"^H must be writeable"),
-        (lambda: swap_bodies(nid, tid, H[:, :8].copy(), 1), r"^H has rows of length 8; these laws need at least"),
+        (lambda: swap_bodies(tid, P, 0, H, 1, nid), r"^tid \(tangential law id\) = a ndarray is not a law id"),
+        (lambda: swap_bodies(TANGENTIAL_LAWS["mdr_adaptive"], tid, P, 0, H, 1),
+         r"^nid \(normal law id\) = 8 is not"),
+        (lambda: swap_bodies(nid, tid, P, 0, H, 2), r"^c = 2 is not a row of H \(valid: integers 0 to 1\)"),
+        (lambda: swap_bodies(nid, tid, P, 0, H, -1), r"^c = -1 is not a row of H"),
+        (lambda: swap_bodies(nid, tid, P, 1, H, 1), r"^row = 1 is not a row of params"),
+        (lambda: swap_bodies(nid, tid, other, 0, H, 1), r"^params\[0\] was built for the laws nid = 0, tid = 0"),
+        (lambda: swap_bodies(nid, tid, P, 0, ro, 1), r"^H must be writeable"),
+        (lambda: swap_bodies(nid, tid, P, 0, H[:, :8].copy(), 1),
+         r"^H has rows of length 8; these laws need at least"),
         (lambda: reset_contact(H.astype(np.float32), 0), r"^H must have dtype float64"),
         (lambda: reset_contact(H, 1.0), r"^c = 1.0 is not a row of H"),
-        (lambda: rotate_history(nid, tid, H, 1, 2.0 * Q), r"^Q must be a rotation matrix"),
-        (lambda: rotate_history(nid, tid, H, 1, -Q), r"^Q must be a rotation matrix"),
-        (lambda: tangential_work(nid, tid, H, 5), r"^c = 5 is not a row of H"),
+        (lambda: rotate_history(nid, tid, P, 0, H, 1, 2.0 * Q), r"^Q must be a rotation matrix"),
+        (lambda: rotate_history(nid, tid, P, 0, H, 1, -Q), r"^Q must be a rotation matrix"),
+        (lambda: tangential_work(nid, tid, P, 0, H, 5), r"^c = 5 is not a row of H"),
         (lambda: peek_force(nid, tid, P, 1, H, 0, 0.0, 0.6, -0.8, 1e-6, 0.1, 0.0, 0.0, 0.0, 1e-7),
          r"^row = 1 is not a row of params"),
         (lambda: peek_force(nid, tid, other, 0, H, 0, 0.0, 0.6, -0.8, 1e-6, 0.1, 0.0, 0.0, 0.0, 1e-7),
@@ -259,7 +263,9 @@ def test_contact_helpers_check_their_arguments_from_python():
         assert "\n" not in str(e.value)
     assert np.array_equal(H, before)
     with pytest.raises(TypeError, match="missing 1 required positional argument"):
-        swap_bodies(tid, H, 1)                                   # the old call with the normal law defaulted
+        swap_bodies(tid, P, 0, H, 1)                             # the normal law left out
+    with pytest.raises(TypeError, match="missing 2 required positional arguments"):
+        swap_bodies(nid, tid, H, 1)                              # the old call without the parameter row
 
 
 def _functions_of_the_package():

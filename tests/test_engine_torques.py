@@ -8,7 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from dem_contact.dem.contact3d import contact_forces_serial, new_histories, rotate_history, swap_bodies
+from dem_contact.dem.contact3d import (check_contacts, contact_forces, contact_forces_batch, contact_forces_serial,
+                                      new_histories, rotate_history, swap_bodies, tangential_work)
 from dem_contact.dem.pairs import pair_table
 from dem_contact.errors import InputError
 from dem_contact.laws import table
@@ -86,13 +87,15 @@ def test_sds_springs_and_sliders():
 
 
 MARSHALL = {k: v for k, v in SDS.items() if not k.endswith("_twist")} | {"twist": "marshall"}
+DERESIEWICZ = {"twist": "deresiewicz"}
+ROLLING = {k: v for k, v in SDS.items() if k.endswith("_roll")} | {"rolling": "sds"}
 
 
-@pytest.mark.parametrize("laws", [SDS, MARSHALL])
+@pytest.mark.parametrize("laws", [SDS, MARSHALL, DERESIEWICZ, ROLLING])
 def test_swapped_bodies_feel_the_opposite_torque(laws):
-    """Contact stepped, then bodies swapped (swap_bodies with the row's twist and rolling laws: their slots
-    keep their sign) and stepped with n, v and w = w1 - w2 reversed: exactly the opposite force and torque
-    of the same step unswapped (Newton's third law)."""
+    """Contact stepped, then bodies swapped (swap_bodies reads the row's twist and rolling laws: their
+    slots keep their sign) and stepped with n, v and w = w1 - w2 reversed: exactly the opposite force and
+    torque of the same step unswapped (Newton's third law)."""
     tab = _table(**laws)
     sc = tab.scenes[0]
     n = np.array([0.6, 0.0, 0.8])
@@ -102,28 +105,47 @@ def test_swapped_bodies_feel_the_opposite_torque(laws):
     _steps(tab, H, n, w, 20, v=v)
     Hs = H.copy()
     f, m = _steps(tab, H, n, 0.5 * w, 1, v=v)
-    swap_bodies(tab.normal_id, tab.tangential_id, Hs, 0, sc.twist_id, sc.rolling_id)
+    swap_bodies(tab.normal_id, tab.tangential_id, tab.params, 0, Hs, 0)
     fs, ms = _steps(tab, Hs, -n, -0.5 * w, 1, v=-v)
     assert np.array_equal(fs, -f) and np.array_equal(ms, -m) and np.abs(m).max() > 0.0
 
 
-def test_a_rotated_contact_has_rotated_torques():
-    """The contact and its history turned rigidly by Q (rotate_history turns the rolling displacement):
-    the next step's torque is Q times the unturned one (objectivity)."""
-    tab = _table(**SDS)
-    sc = tab.scenes[0]
+@pytest.mark.parametrize("laws", [SDS, DERESIEWICZ, ROLLING])
+def test_a_rotated_contact_has_rotated_torques(laws):
+    """The contact and its history turned rigidly by Q (rotate_history turns the tangential force and the
+    rolling displacement, wherever the row's twist and rolling laws put them): the next step's force and
+    torque are Q times the unturned ones (objectivity)."""
+    tab = _table(**laws)
     n = np.array([0.0, 0.6, 0.8])
+    v = np.array([0.8, 0.1, -0.6]) * 1e-3
     w = np.array([2.0, 1.0, -4.0])
     H = new_histories(1, tab.history_size)
-    _steps(tab, H, n, w, 10)
+    _steps(tab, H, n, w, 10, v=v)
     th = 0.7
     Q = np.array([[math.cos(th), -math.sin(th), 0.0], [math.sin(th), math.cos(th), 0.0], [0.0, 0.0, 1.0]])
     HQ = H.copy()
-    rotate_history(tab.normal_id, tab.tangential_id, HQ, 0, Q, sc.twist_id, sc.rolling_id)
-    _, m = _steps(tab, H, n, 0.3 * w, 1)
-    _, mq = _steps(tab, HQ, Q @ n, Q @ (0.3 * w), 1)
+    rotate_history(tab.normal_id, tab.tangential_id, tab.params, 0, HQ, 0, Q)
+    f, m = _steps(tab, H, n, 0.3 * w, 1, v=v)
+    fq, mq = _steps(tab, HQ, Q @ n, Q @ (0.3 * w), 1, v=Q @ v)
     assert np.abs(m).max() > 0.0
     assert np.allclose(mq, Q @ m, rtol=0.0, atol=1e-12 * np.abs(m).max())
+    assert np.allclose(fq, Q @ f, rtol=0.0, atol=1e-12 * np.abs(f).max())
+
+
+@pytest.mark.parametrize("laws", [DERESIEWICZ, ROLLING])
+def test_tangential_work_is_that_of_the_tangential_law(laws):
+    """The twist and rolling laws do not act on the tangential force: along the same path, the tangential
+    work that tangential_work reads (after the row's twist and rolling states) is that of the table without
+    them, bit for bit, and positive."""
+    n = np.array([0.0, 0.6, 0.8])
+    w = np.array([2.0, 1.0, -4.0])
+    works = []
+    for tab in (_table(**laws), _table()):
+        H = new_histories(1, tab.history_size)
+        for k in range(12):
+            _steps(tab, H, n, w, 1, v=np.array([0.8, 0.1, -0.6]) * 1e-3 * math.cos(0.5 * k))
+        works.append(tangential_work(tab.normal_id, tab.tangential_id, tab.params, 0, H, 0))
+    assert works[0] == works[1] and works[1] > 0.0
 
 
 def test_engine_model_settings_are_checked():
@@ -139,3 +161,21 @@ def test_engine_model_settings_are_checked():
         Scene(body, body, k_roll=1.0)
     marshall = Scene(body, body, twist="marshall")
     assert marshall.describe()["twist_k_t"] == pytest.approx(8.0 * marshall.pair.G_star)
+
+
+@pytest.mark.parametrize("laws, law", [(DERESIEWICZ, "twist law deresiewicz"), (ROLLING, "rolling law sds")])
+def test_a_torque_law_needs_spins_and_torques(laws, law):
+    """Without spins a twist or rolling law never acts, without torques its moment is lost: every checked
+    batch entry refuses the table (InputError naming the argument and the law) and writes nothing."""
+    tab = _table(**laws)
+    one = lambda x: np.ascontiguousarray(np.asarray(x, dtype=float).reshape(1, 3))
+    H = new_histories(1, tab.history_size)
+    f, ft = np.zeros((1, 3)), np.zeros((1, 3))
+    args = (tab.normal_id, tab.tangential_id, tab.params, np.array([0]), H, one([0.0, 0.6, 0.8]), np.array([1e-6]),
+            one([1e-3, 0.0, 0.0]), np.zeros(1), 1e-7, f, ft)
+    for entry in (contact_forces, contact_forces_batch, contact_forces_serial, check_contacts):
+        for kw, name in (({}, "spins"), ({"torques": np.zeros((1, 3))}, "spins"), ({"spins": one([0.0, 0.0, 5.0])},
+                                                                                   "torques")):
+            with pytest.raises(InputError, match=rf"^{name} is required: params\[0\] has the {law}"):
+                entry(*args, **kw)
+    assert not H.any() and not f.any()

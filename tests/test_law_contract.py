@@ -161,7 +161,7 @@ def test_objectivity_under_rigid_rotations(tangential):
                 Qnew = _rotation(rng, 0.05) @ Q
             else:
                 Qnew = Q
-            rotate_history(nid, tid, HB, 0, np.ascontiguousarray(Qnew @ Q.T))
+            rotate_history(nid, tid, P, 0, HB, 0, np.ascontiguousarray(Qnew @ Q.T))
             Q = Qnew
             n, a1, a2 = R_n @ n, R_n @ a1, R_n @ a2
             vel = delta0 * (dn[k] - dn[k - 1]) / dt
@@ -255,7 +255,7 @@ def closed_loop_work(nid, tid, P, H, n, e1, e2, ux, uy, dn, delta0, dt):
         tx0 = f[3]
         ty0 = f[4]
         tz0 = f[5]
-    return tangential_work(nid, tid, H, 0), W
+    return tangential_work(nid, tid, P, 0, H, 0), W
 
 
 @pytest.mark.parametrize("tangential", TANGENTIAL)
@@ -323,9 +323,9 @@ def test_swapping_twice_is_the_identity_and_a_saved_history_carries_on(tangentia
         H = scene_history(sc)
         _drive(sc, H, 30, 1)
         before = H.copy()
-        swap_bodies(sc.normal_id, sc.tangential_id, H, 0)
+        swap_bodies(sc.normal_id, sc.tangential_id, sc.params[None, :], 0, H, 0)
         assert not np.array_equal(H, before) or not np.any(before[0, 2:])
-        swap_bodies(sc.normal_id, sc.tangential_id, H, 0)
+        swap_bodies(sc.normal_id, sc.tangential_id, sc.params[None, :], 0, H, 0)
         assert np.array_equal(H, before)
         buf = io.BytesIO()
         np.save(buf, H)

@@ -147,6 +147,32 @@ def test_varying_normal_force():
         assert W.min() > -1e-12 * MU * N0 * a0 * b1
 
 
+def test_the_springs_energy_never_rises_at_a_fixed_twist():
+    """A small twist (0.01 beta_1, every spring stuck) held while the overlap cycles twice between 1 and 0.15
+    times its value (the grid split and merged, cells cut by the receding edge): no work is done, so the
+    springs' energy 8 G_c sum theta_i^2 w_i may fall (released, slid) but never rise, in any step."""
+    Gc = d.twist_modulus(Sphere(R, STEEL), Sphere(R, STEEL))
+    Es = e_star(STEEL, STEEL)
+    n = d.TWIST_CELLS
+    N0, a0 = hertz(Es, 1e-6)
+    dl = 1e-6 * (0.575 + 0.425 * np.cos(np.linspace(0.0, 4.0 * np.pi, 81)))
+    Nd, ad = hertz(Es, dl)
+
+    def energy(h, a):
+        x0 = np.arange(n) * h[d.Q_DS]
+        x1 = np.minimum(x0 + h[d.Q_DS], a)
+        return 8.0 * Gc * np.sum(h[d.Q_CELLS:] ** 2 * np.where(x1 > x0, x1**3 - x0**3, 0.0) / 3.0)
+
+    H = np.zeros((1, d.Q_CELLS + n))
+    d.advance(H, 0, 0, n, Gc, MU, R, N0, a0, 0.0, 0.01 * unit(Gc, N0, a0))
+    U = [energy(H[0], a0)]
+    for t in range(1, dl.size):
+        d.advance(H, 0, 0, n, Gc, MU, R, Nd[t], ad[t], ad[t - 1], 0.0)
+        U.append(energy(H[0], ad[t]))
+    assert U[-1] > 0.1 * U[0]
+    assert np.max(np.diff(U) / U[0]) <= 1e-12
+
+
 def test_3d_kernel_twist_objective_and_batch():
     """In the 3D step (Scene(twist="deresiewicz")): the torque on body 1 is -M n with M on Lubkin's curve
     for any normal direction; swapping the bodies (n -> -n, w1 - w2 -> its negative) gives body 2 the

@@ -32,7 +32,22 @@ LEVERS = ("limits", "rings")
 
 
 def law(ux, uy, beta, **kw):
-    return twist_shear_path(G_STAR, G_C, MU, R, N, A, ux, uy, beta, **kw)
+    """The law's resistance along the path: minus the force and moment on body 1, and the work absorbed."""
+    Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, N, A, ux, uy, beta, **kw)
+    return -Tx, -Ty, -M, W
+
+
+def test_the_path_law_has_the_signs_of_run_path():
+    """twist_shear_path returns the force and the moment on body 1, as run_path (and dem-contact path): on one
+    path of shear and twist at constant N below slip, 1e-3 slip lengths, where both are the no-slip
+    closed forms, the same to rounding."""
+    k = np.linspace(0.0, 1.0, 5)
+    ux, uy, tw = 1e-3 * SLIP * k, -2e-3 * SLIP * k, 1e-3 * BETA1 * k
+    _, Tx, Ty, Mz = run_path(chart_scene(twist="deresiewicz"), np.full(k.size, DELTA), ux, uy, tw)
+    lx, ly, M, _ = twist_shear_path(G_STAR, G_C, MU, R, N, A, np.r_[0.0, ux], np.r_[0.0, uy], np.r_[0.0, tw])
+    assert Tx[-1] < 0.0 and Ty[-1] > 0.0 and Mz[-1] < 0.0          # resisting the motion of body 1
+    assert np.abs(lx[1:] - Tx).max() < 1e-9 * abs(Ty[-1]) and np.abs(ly[1:] - Ty).max() < 1e-9 * abs(Ty[-1])
+    assert np.abs(M[1:] - Mz).max() < 1e-9 * abs(Mz[-1])
 
 
 @pytest.mark.parametrize("lever", LEVERS)
@@ -241,7 +256,7 @@ def test_pure_shear_under_a_varying_force_is_the_vector_mdr_law(lever):
     for rule in ("scaled", "dropped"):
         lx, ly, M, _ = twist_shear_path(G_STAR, G_C, MU, R, np.r_[z, Nh], np.r_[z, ah], np.r_[z, ux], np.r_[z, uy],
                                         np.zeros(ux.size + 1), cells=16, slip_lever=lever, residual=rule)
-        assert np.abs(lx[1:] + Tx).max() < 1e-9 * MU * N and np.abs(ly[1:] + Ty).max() < 1e-9 * MU * N
+        assert np.abs(lx[1:] - Tx).max() < 1e-9 * MU * N and np.abs(ly[1:] - Ty).max() < 1e-9 * MU * N
         assert np.abs(M).max() < 1e-12 * MU * N * A
     assert np.abs(Tx).max() > 0.5 * MU * N             # (the path slides)
 
@@ -258,7 +273,7 @@ def test_pure_twist_under_a_varying_force_is_deresiewicz(lever):
     for rule in ("scaled", "kept"):
         Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, np.r_[0.0, Nh], np.r_[0.0, ah], 0 * b, 0 * b, b,
                                         slip_lever=lever, residual=rule)
-        assert np.abs(M - M_ref).max() < 1e-9 * MU * N * A
+        assert np.abs(M + M_ref).max() < 1e-9 * MU * N * A         # (twist_path: the resisting moment)
         assert np.abs(W - W_ref).max() < 1e-9 * MU * N * A * BETA1
         assert np.abs(Tx).max() < 1e-12 * MU * N and np.abs(Ty).max() < 1e-12 * MU * N
     assert np.abs(M_ref).max() > MU * N * A           # (the path slips)
@@ -325,7 +340,7 @@ def test_pure_twist_under_a_varying_force_in_coarse_steps_is_deresiewicz(lever):
         Nh, ah = hertz(DELTA * dl)
         M_ref, _ = d.twist_path(G_C, MU, R, Nh, ah, BETA1 * b, 32)
         _, _, M, _ = twist_shear_path(G_STAR, G_C, MU, R, Nh, ah, 0 * b, 0 * b, BETA1 * b, slip_lever=lever)
-        assert np.abs(M - M_ref).max() < 1e-9 * MU * N * A
+        assert np.abs(M + M_ref).max() < 1e-9 * MU * N * A
 
 
 def test_sliding_with_spin_while_unloading_against_the_boundary_element_reference():

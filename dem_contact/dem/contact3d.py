@@ -172,8 +172,15 @@ def _turn_vector(H, c, j, Q):
         H[c, j + i] = Q[i, 0] * x + Q[i, 1] * y + Q[i, 2] * z
 
 
+@njit(inline="always", **JIT)
+def _torque_laws_of(params, row):
+    """The twist and rolling law ids the parameter row records (0, none, where it records none)."""
+    return max(int(params[row, P_TWIST_LAW]) - 1, 0), max(int(params[row, P_ROLLING_LAW]) - 1, 0)
+
+
 @njit(**JIT)
-def _swap_bodies(nid, tid, H, c, qid, rid):
+def _swap_bodies(nid, tid, params, row, H, c):
+    qid, rid = _torque_laws_of(params, row)
     b = tangential_base(nid, qid, rid)
     _negate_slots(H, c, b, _NEGATE[tid])
     if _CELL_NEGATE[tid] >= 0:
@@ -184,7 +191,8 @@ def _swap_bodies(nid, tid, H, c, qid, rid):
 
 
 @njit(**JIT)
-def _rotate_history(nid, tid, H, c, Q, qid, rid):
+def _rotate_history(nid, tid, params, row, H, c, Q):
+    qid, rid = _torque_laws_of(params, row)
     _turn_vector(H, c, tangential_base(nid, qid, rid) + W_X, Q)
     for k in _Q_VECTORS[qid]:
         if k >= 0:
@@ -195,7 +203,8 @@ def _rotate_history(nid, tid, H, c, Q, qid, rid):
 
 
 @njit(**JIT)
-def _tangential_work(nid, tid, H, c, qid, rid):
+def _tangential_work(nid, tid, params, row, H, c):
+    qid, rid = _torque_laws_of(params, row)
     return H[c, tangential_base(nid, qid, rid) + W_WORK]
 
 
@@ -211,21 +220,20 @@ def _check_row(H, c, writes, need=0):
                          f"(PairTable.history_size, contact3d.history_size)")
 
 
-def _check_ids_and_row(nid, tid, H, c, writes, qid, rid):
+def _check_helper(nid, tid, params, row, H, c, writes):
+    """The law ids, the table (built for them), ``row`` one of its rows, H and ``c`` (``InputError``)."""
     nid, tid = _valid_ids(nid, tid)
-    qid, rid = _torque_ids(qid, rid)
-    _check_row(H, c, writes, history_size(nid, tid, 2 if table.FAMILIES["tangential"][tid].CELLS else 0, qid, rid))
-    return nid, tid, qid, rid
+    need = _check_table(nid, tid, params)
+    if isinstance(row, (bool, np.bool_)) or not isinstance(row, (int, np.integer)) or not 0 <= row < len(params):
+        raise InputError(f"row = {row!r} is not a row of params (valid: 0 to {len(params) - 1})")
+    _check_row(H, c, writes, need)
+    return nid, tid
 
 
 def peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt):
     """``contact_force`` on a copy of the contact's history: H is left unchanged. Called from Python, the
     law ids, the table (built for them), ``row``, H and ``c`` are checked first (``InputError``)."""
-    nid, tid = _valid_ids(nid, tid)
-    need = _check_table(nid, tid, params)
-    if isinstance(row, (bool, np.bool_)) or not isinstance(row, (int, np.integer)) or not 0 <= row < len(params):
-        raise InputError(f"row = {row!r} is not a row of params (valid: 0 to {len(params) - 1})")
-    _check_row(H, c, False, need)
+    nid, tid = _check_helper(nid, tid, params, row, H, c, False)
     return _peek_force(nid, tid, params, row, H, c, nx, ny, nz, delta, vx, vy, vz, wn, dt)
 
 
@@ -235,37 +243,37 @@ def reset_contact(H, c):
     _reset_contact(H, c)
 
 
-def swap_bodies(nid, tid, H, c, qid=0, rid=0):
-    """Exchange bodies 1 and 2 of contact c: the normal, the relative velocity, the displacement and the
-    tangential force change sign. Swapping twice is the identity. The law ids come first, (nid, tid), as in
-    every kernel: where the tangential slots start depends on the normal law (``thornton`` has a longer
-    normal state), and the MDR laws hold a frame and cells. ``qid``, ``rid``: the twist and rolling laws of
-    the contact's parameter row (default 0, none): their states come before the tangential one, and
-    change sign only where the law says so (``SWAP_NEGATE``: a twist angle and a rolling displacement look
-    the same from either body)."""
-    nid, tid, qid, rid = _check_ids_and_row(nid, tid, H, c, True, qid, rid)
-    _swap_bodies(nid, tid, H, c, qid, rid)
+def swap_bodies(nid, tid, params, row, H, c):
+    """Exchange bodies 1 and 2 of contact c, whose parameter row is params[row]: the normal, the relative
+    velocity, the displacement and the tangential force change sign. Swapping twice is the identity. The
+    arguments are those of ``contact_force``: where the tangential slots start depends on the normal law
+    (``thornton`` has a longer normal state) and on the twist and rolling laws that params[row] records
+    (their states come before the tangential one, and change sign only where the law says so,
+    ``SWAP_NEGATE``: a twist angle and a rolling displacement look the same from either body); the MDR laws
+    hold a frame and cells."""
+    nid, tid = _check_helper(nid, tid, params, row, H, c, True)
+    _swap_bodies(nid, tid, params, row, H, c)
 
 
-def rotate_history(nid, tid, H, c, Q, qid=0, rid=0):
-    """Turn the history vectors of contact c (the tangential law's, and those of its twist and rolling
-    laws ``qid``, ``rid``, default none) rigidly by the rotation matrix Q (float64[3, 3], proper
-    orthogonal), e.g. for a pair whose frame is rotated by the caller. Its next step must get Q n.
-    The law ids (nid, tid) come first, as in every kernel (the turned slots do not depend on tid)."""
-    nid, tid, qid, rid = _check_ids_and_row(nid, tid, H, c, True, qid, rid)
+def rotate_history(nid, tid, params, row, H, c, Q):
+    """Turn the history vectors of contact c (the tangential law's, and those of the twist and rolling laws
+    that params[row] records) rigidly by the rotation matrix Q (float64[3, 3], proper orthogonal), e.g.
+    for a pair whose frame is rotated by the caller. Its next step must get Q n. The arguments are those of
+    ``contact_force`` (the turned slots do not depend on tid)."""
+    nid, tid = _check_helper(nid, tid, params, row, H, c, True)
     _array("Q", Q, 2, np.float64, (3, 3))
     if not (np.allclose(Q @ Q.T, np.eye(3), rtol=0.0, atol=1e-9) and np.linalg.det(Q) > 0.0):
         raise InputError("Q must be a rotation matrix (Q Q^T = I within 1e-9, det Q = +1)")
-    _rotate_history(nid, tid, H, c, Q, qid, rid)
+    _rotate_history(nid, tid, params, row, H, c, Q)
 
 
-def tangential_work(nid, tid, H, c, qid=0, rid=0):
+def tangential_work(nid, tid, params, row, H, c):
     """Work absorbed by the tangential force of contact c since its history was zeroed [J]: the sum over
     steps of 0.5 (T_old + T) . dd. A passive contact keeps it >= 0; a negative value is energy created.
-    The law ids (nid, tid) come first, as in every kernel (the slot does not depend on tid); ``qid``,
-    ``rid``: the twist and rolling laws of the contact's row (default none), whose states come first."""
-    nid, tid, qid, rid = _check_ids_and_row(nid, tid, H, c, False, qid, rid)
-    return _tangential_work(nid, tid, H, c, qid, rid)
+    The arguments are those of ``contact_force``: the slot depends on the normal law and on the twist and
+    rolling laws that params[row] records, whose states come first."""
+    nid, tid = _check_helper(nid, tid, params, row, H, c, False)
+    return _tangential_work(nid, tid, params, row, H, c)
 
 
 @overload(peek_force)
@@ -280,20 +288,18 @@ def _reset_contact_jit(H, c):
 
 
 @overload(swap_bodies)
-def _swap_bodies_jit(nid, tid, H, c, qid=0, rid=0):
-    return lambda nid, tid, H, c, qid=0, rid=0: _swap_bodies(nid, tid, H, np.int64(c), np.int64(qid), np.int64(rid))
+def _swap_bodies_jit(nid, tid, params, row, H, c):
+    return lambda nid, tid, params, row, H, c: _swap_bodies(nid, tid, params, np.int64(row), H, np.int64(c))
 
 
 @overload(rotate_history)
-def _rotate_history_jit(nid, tid, H, c, Q, qid=0, rid=0):
-    return lambda nid, tid, H, c, Q, qid=0, rid=0: _rotate_history(nid, tid, H, np.int64(c), Q, np.int64(qid),
-                                                                   np.int64(rid))
+def _rotate_history_jit(nid, tid, params, row, H, c, Q):
+    return lambda nid, tid, params, row, H, c, Q: _rotate_history(nid, tid, params, np.int64(row), H, np.int64(c), Q)
 
 
 @overload(tangential_work)
-def _tangential_work_jit(nid, tid, H, c, qid=0, rid=0):
-    return lambda nid, tid, H, c, qid=0, rid=0: _tangential_work(nid, tid, H, np.int64(c), np.int64(qid),
-                                                                 np.int64(rid))
+def _tangential_work_jit(nid, tid, params, row, H, c):
+    return lambda nid, tid, params, row, H, c: _tangential_work(nid, tid, params, np.int64(row), H, np.int64(c))
 
 
 @intrinsic
@@ -477,13 +483,15 @@ def contact_forces_batch(nid, tid, params, pair_rows, H, normals, overlaps, velo
     tangential part. history_rows: int64[n], distinct, the row of H that holds each contact's history (H
     then has any number of rows: a DEM code's own per-particle storage, advanced in place); default: row c
     for contact c. spins: float64[n, 3], the relative spin w1 - w2 of the bodies of each contact [rad/s],
-    for the twist and rolling laws (default: none); torques: float64[n, 3] receives their torque on body 1
-    [N m] (the moment of the tangential force is the caller's; default: not kept).
+    for the twist and rolling laws; torques: float64[n, 3] receives their torque on body 1 [N m] (the moment
+    of the tangential force is the caller's). Both are required when a row of the table has a twist or
+    rolling law, and may be left out (None) otherwise.
 
     Checked here (``InputError``), in O(1) per array and O(n) over the row indices: everything that could
     make the loop read or write outside the arrays, race, or compute in float32 (law ids, dtypes,
     shapes, C order, writeable H, forces and tforces, rows in range, distinct history rows, history rows
-    long enough, a table built for these laws, dt > 0). The values of the contacts (finite inputs, unit
+    long enough, a table built for these laws, spins and torques given for its twist and rolling laws,
+    dt > 0). The values of the contacts (finite inputs, unit
     normals) are checked by ``check_contacts`` / ``contact_forces``."""
     _run(True, nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
          history_rows, spins, torques)
@@ -590,6 +598,23 @@ def _torque_slots(params):
     return int((slots_q[q] + slots_r[r]).max())
 
 
+def _check_torque_arrays(params, spins, torques):
+    """A table with a twist or rolling law needs spins (without them the contact never turns) and torques
+    (without them its moment is dropped)."""
+    for family, slot in (("twist", P_TWIST_LAW), ("rolling", P_ROLLING_LAW)):
+        used = params[:, slot] >= 2.0                       # id + 1; id 0 is none
+        if not np.any(used):
+            continue
+        r = int(np.argmax(used))
+        law = f"params[{r}] has the {family} law {table.FAMILIES[family][int(params[r, slot]) - 1].NAME}"
+        if spins is None:
+            raise InputError(f"spins is required: {law}, which acts on the relative spin w1 - w2 of the bodies "
+                             f"(spins=float64[n, 3]); without it the contact never turns")
+        if torques is None:
+            raise InputError(f"torques is required: {law}, whose torque on body 1 it receives "
+                             f"(torques=float64[n, 3]); without it the moment is dropped")
+
+
 def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
                   history_rows, spins=None, torques=None):
     """What the loops need not to read or write outside the arrays, race or compute in float32:
@@ -615,6 +640,7 @@ def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
             _array(name, a, 2, np.float64, (n, 3), writeable=True)
     if spins is not None:
         _array("spins", spins, 2, np.float64, (n, 3))
+    _check_torque_arrays(params, spins, torques)
     if not (isinstance(dt, (float, int, np.floating, np.integer)) and not isinstance(dt, (bool, np.bool_))
             and math.isfinite(dt) and dt > 0.0):
         raise InputError(f"dt = {dt!r} must be a finite time step > 0 [s]")
@@ -639,7 +665,8 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
     """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
     ``contact_force`` call that uses the same arrays): law ids, a table built for them, dtypes, shapes,
     C-contiguity, writeable H (and forces, tforces), row indices in range (``history_rows`` distinct rows
-    of H), history rows long enough for the laws, unit normals (within 1e-6), dt > 0, finite inputs and
+    of H), history rows long enough for the laws, spins and torques given for the table's twist and
+    rolling laws, unit normals (within 1e-6), dt > 0, finite inputs and
     overlaps below the pair's R*.
     Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
     again when they are reallocated); the jitted kernels themselves do not check."""

@@ -74,7 +74,7 @@ with its rings: on a change of N and a it splits each cell's points into the for
 moment mode theta = mean_k (v_k . e_k) / lambda_old and the residual r_k = v_k - u - lambda_old theta e_k
 (which carries neither force nor moment: the memory of where the ring slipped); it keeps u and theta
 physical (the cut cell and a growing cell carry them as the MDR and twist cells do: u with the length and
-the profile a_old^2 - s^2, theta with the weight s^2 and the twist limit profile), rebuilds
+the profile a_old^2 - s^2, theta with the weight s^2, the cut cell's kept), rebuilds
 v_k = u + lambda_new theta e_k + r_k', then adds the step's increment and returns each point to its new
 circle |v_k| <= u_max_new. The residual rule (``residual``): ``scaled`` (default), r_k' = (u_max_new /
 u_max_old) r_k, the residual keeps its fraction of the limit (the pattern of slip around a ring, which
@@ -104,10 +104,10 @@ associated), but the physical work per cell is the sum over the points' works on
 energy at the two limits is equal (G_M u_max^2 ds = 8 G_c s^2 theta_max^2 ds, true at no s in general),
 so the absence of energy creation on closed loops is checked (random loops, in the tests and the
 validation), not proven. Under a varying N a closed loop in (delta, u, beta) may give back work that the
-history stored (6 of 200 random loops; the separate exact laws on the same cells: 7); the loop's work less the change of the
+history stored (7 of 200 random loops; the separate exact laws on the same cells: 8); the loop's work less the change of the
 stored energy of the force and moment modes (``stored``) was positive in all 200, for every residual rule
 and lever. Single steps that unload can show a small negative one, at the cell cut by the receding edge
-(the exact laws' cells too; it falls as the cells refine) (``validation/twist/report.md``).
+(its force mode, as the MDR cells'; it falls as the cells refine) (``validation/twist/report.md``).
 
 Scope: a path function in numpy, not a kernel of the 3D step (``laws.compose``): the step gives the slip
 to the tangential law and the spin to the twist law, while this law needs both in one place. The grid is
@@ -206,7 +206,7 @@ def _per_row(name, x, rows):
 def _cut_factors(a, a_old, ds, n):
     """Before a step in which the contact shrinks from a_old to a: the cell that the new edge cuts keeps its
     part inside a, its displacement scaled with the profile a_old^2 - s^2 (``mdr.shrink_edge``) and its
-    rotation with the twist limit profile of a_old (``deresiewicz.advance``). Returns (i, f_u, f_theta);
+    rotation kept (``deresiewicz.advance``: the twist springs' energy does not rise). Returns (i, f_u);
     i = -1: no cell is cut."""
     i = int(a / ds)
     if i < n:
@@ -215,11 +215,8 @@ def _cut_factors(a, a_old, ds, n):
         if a > x0 and x1 > a:
             def wbar(y):
                 return a_old * a_old - (x0 * x0 + x0 * y + y * y) / 3.0
-
-            def tmean(y):
-                return float(_jtab(y / a_old) - _jtab(x0 / a_old)) / (y**3 - x0**3)
-            return i, wbar(a) / wbar(x1), tmean(a) / tmean(x1)
-    return -1, 1.0, 1.0
+            return i, wbar(a) / wbar(x1)
+    return -1, 1.0
 
 
 def _renew(v, old, new, e, x0, ds, residual):
@@ -242,10 +239,9 @@ def _renew(v, old, new, e, x0, ds, residual):
     elif residual == "scaled":      # the residual keeps its fraction of the cell's limit
         r *= np.where(on0 & on1, umax1 / np.where(on0, umax0, 1.0), 0.0)[:, None, None]
     if 0.0 < a1 < a0:
-        i, fu, ft = _cut_factors(a1, a0, ds, u.shape[0])
+        i, fu = _cut_factors(a1, a0, ds, u.shape[0])
         if i >= 0:
             u[i] *= fu
-            theta[i] *= ft
             if residual == "kept":
                 r[i] *= fu
     # a cell that grows: its mean over the part in contact, the new part unstrained, which took the part of the
@@ -271,7 +267,9 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
     displacements (ux, uy) [m] and twists beta [rad] (relative, body 1 against body 2; arrays, the first row
     the state before the path, from rest) under the normal force N [N] and contact radius a [m]: numbers
     (constant along the path) or one value per row (N <= 0 or a <= 0: no contact, every cell released)
-    (module docstring). T and M resist the motion (T . du > 0 and M d(beta) > 0 while sticking). G_star,
+    (module docstring). T and M are the force and the moment about the normal on body 1, as
+    ``studies.paths.run_path`` returns them: they resist the motion (T . du < 0 and M d(beta) < 0 while
+    sticking); the work absorbed is -int (T . du + M d(beta)). G_star,
     G_c: the tangential and twist moduli [Pa] (1/G* = sum (2 - nu)/G, 1/G_c = sum 1/G); R_star [m]: the
     grid's scale; cells (even), sectors (points per ring), slip_lever (``limits`` or ``rings``) and
     residual (``scaled``, ``kept`` or ``dropped``: the ring's residual on a change of N) as in the module
@@ -381,4 +379,6 @@ def twist_shear_path(G_star, G_c, mu, R_star, N, a, ux, uy, beta, *, cells: int 
             energy[t] = GM * ((u * u).sum(axis=1) * l1).sum() + 8.0 * G_c * (theta * theta * w1).sum()
         work[t] = work[t - 1] + 0.5 * ((Tx[t - 1] + Tx[t]) * du[0] + (Ty[t - 1] + Ty[t]) * du[1]
                                        + (M[t - 1] + M[t]) * db)
+    for v in (Tx, Ty, M):        # the cells' resistance: the force and moment on body 1 are its opposite
+        np.negative(v, out=v)
     return out

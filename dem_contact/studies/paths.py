@@ -131,8 +131,7 @@ def coupled_path(scene: Scene, delta, ux, uy, twist=None):
     Tx, Ty, M, _ = twist_shear_path(pr.G_star, twist_modulus(scene.sphere, scene.body2), scene.mu, pr.R_star,
                                     np.concatenate([z, N]), np.concatenate([z, a]), np.concatenate([z, ux]),
                                     np.concatenate([z, uy]), np.concatenate([z, tw]))
-    # (the law's force and moment resist the motion of body 1: the path's are those on body 1, as run_path's)
-    return N, -Tx[1:], -Ty[1:], -M[1:]
+    return N, Tx[1:], Ty[1:], M[1:]
 
 
 def run_path(scene: Scene, delta, ux, uy, twist=None, *, dt: float = 1.0):

@@ -54,11 +54,12 @@ N = 4 / 3 * E_STAR * math.sqrt(R) * DELTA**1.5
 
 
 def law(ux, uy, tw, cells, sectors, psi=0.0, lever="limits"):
-    """The law along the path turned by psi; forces turned back."""
+    """The law's resistance (minus the force and moment on body 1) along the path turned by psi; forces turned
+    back."""
     c, s = math.cos(psi), math.sin(psi)
     Tx, Ty, M, W = twist_shear_path(G_STAR, G_C, MU, R, N, A, c * ux - s * uy, s * ux + c * uy, tw,
                                     cells=cells, sectors=sectors, slip_lever=lever)
-    return c * Tx + s * Ty, -s * Tx + c * Ty, M, W
+    return -(c * Tx + s * Ty), s * Tx - c * Ty, -M, W
 
 
 def bem_errors(lever="limits"):
@@ -127,7 +128,7 @@ def law_limit_surface(angles, cells=32, sectors=8, steps=400, lever="limits"):
         L = 40 * max(s, b1 * A)
         Tx, Ty, M, _ = twist_shear_path(G_STAR, G_C, MU, R, N, A, L * math.cos(t) * k, 0 * k, L * math.sin(t) * k / A,
                                         cells=cells, sectors=sectors, slip_lever=lever)
-        out.append((Tx[-1] / (MU * N), M[-1] / (MU * N * A)))
+        out.append((-Tx[-1] / (MU * N), -M[-1] / (MU * N * A)))     # the resistance
     return np.array(out)
 
 

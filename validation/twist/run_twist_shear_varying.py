@@ -143,7 +143,7 @@ def coupled(d, ux, uy, tw, lever="rings", residual="scaled", cells=32, sectors=8
     z = np.zeros(1)
     Tx, Ty, M, _ = twist_shear_path(G_STAR, G_C, MU, R, np.r_[z, N], np.r_[z, a], np.r_[z, ux], np.r_[z, uy],
                                     np.r_[z, tw], cells=cells, sectors=sectors, slip_lever=lever, residual=residual)
-    return -Tx[1:], -Ty[1:], -M[1:]
+    return Tx[1:], Ty[1:], M[1:]
 
 
 def separate(d, ux, uy, tw):

@@ -51,9 +51,12 @@ The cells here are over s.
 
 Discretisation (as ``laws.tangential.mdr_adaptive``): n cells of width ds on 0 <= s < n ds, the width a
 power of 2 times R* chosen at first contact and halved or doubled as the contact shrinks or grows (cells
-merged with the weight s^2, split in proportion to the limit profile, so that M is kept and a cell at its
-limit stays at it). The state of a cell is the s^2-weighted mean theta_i of the spring rotation over its
-part inside the contact, its limit the s^2-weighted mean of mu L / k, computed exactly from
+merged with the weight s^2 and split into halves at the cell's rotation, M kept; a cell cut by a shrinking
+edge keeps its rotation on its part inside). Neither raises the springs' energy 8 G_c sum theta_i^2 w_i (a
+half or a part above its lower limit then slides), so the cells never give back more work than they
+stored: over any loop of twist and overlap, the work absorbed less the change of that energy is >= 0.
+The state of a cell is the s^2-weighted mean theta_i of the spring rotation over its part inside the
+contact, its limit the s^2-weighted mean of mu L / k, computed exactly from
 J(u) = int_0^u t^2 (K - E)(1 - t^2) dt (a table of ``TABLE_NODES`` values with Hermite interpolation,
 built at import from the arithmetic-geometric mean): theta_i max = 3 mu N a (J(u1) - J(u0)) / (4 pi G_c w_i),
 w_i = int s^2 ds over the cell's part in contact. M = 16 G_c sum theta_i w_i. A contact stuck everywhere and
@@ -147,16 +150,6 @@ def jtab(u):
 
 
 @njit(inline="always", **JIT)
-def limit_mean(s0, s1, r):
-    """s^2-weighted mean of the limit profile (K - E)(1 - s^2/r^2) over [s0, s1] (s1 <= r), per r:
-    (J(s1/r) - J(s0/r)) r^3 / int s^2 ds."""
-    w = (s1 * s1 * s1 - s0 * s0 * s0) / 3.0
-    if w <= 0.0:
-        return 0.0
-    return (jtab(s1 / r) - jtab(s0 / r)) * r * r * r / w
-
-
-@njit(inline="always", **JIT)
 def weight(s0, ds, r):
     """int s^2 ds over the part of the cell [s0, s0 + ds] inside the radius r."""
     s1 = min(s0 + ds, r)
@@ -195,37 +188,17 @@ def advance(H, c, b, n, Gc, mu, R, N, a, a_old, dbeta):
                 H[c, k0 + j] = 0.0
             ds *= 2.0
         while 4.0 * a < n * ds and 4.0 * a_old < n * ds:   # much smaller: the lower half split
+            # both halves at the cell's rotation (M and the springs' energy kept: an uneven split would
+            # raise the energy); a half above its limit slides in the step below
             hd = 0.5 * ds
             for j in range(n // 2 - 1, -1, -1):
-                x0 = j * ds
                 v = H[c, k0 + j]
-                v0 = 0.0
-                v1 = 0.0
-                x1 = min(x0 + ds, a_old)
-                if v != 0.0 and x1 > x0:
-                    mc = limit_mean(x0, x1, a_old)
-                    if mc > 0.0:
-                        v0 = v * limit_mean(x0, min(x0 + hd, x1), a_old) / mc
-                        if x1 > x0 + hd:
-                            v1 = v * limit_mean(x0 + hd, x1, a_old) / mc
-                    else:
-                        v0 = v
-                        v1 = v
-                H[c, k0 + 2 * j] = v0
-                H[c, k0 + 2 * j + 1] = v1
+                H[c, k0 + 2 * j] = v
+                H[c, k0 + 2 * j + 1] = v if min((j + 1) * ds, a_old) > j * ds + hd else 0.0
             ds = hd
         H[c, b + Q_DS] = ds
-        if a < a_old:
-            # the cell cut by the new edge keeps its part inside a, in proportion to the limit profile of
-            # a_old (the released part, nearest the old edge, has the smallest limit)
-            i = int(a / ds)
-            if i < n:
-                x0 = i * ds
-                x1 = min(x0 + ds, a_old)
-                if a > x0 and x1 > a:
-                    mc = limit_mean(x0, x1, a_old)
-                    if mc > 0.0:
-                        H[c, k0 + i] *= limit_mean(x0, a, a_old) / mc
+        # the cell cut by a shrinking edge keeps its rotation on its part inside a (the released part takes
+        # its energy with it; the part kept slides below if its limit is lower)
         # the springs: + dbeta, entering parts with the part of the increment after their entry, then the
         # limit theta_max = C (J(u1) - J(u0)) / w, C = 3 mu N a / (4 pi G_c) (module docstring)
         C = 3.0 * mu * N * a / (4.0 * math.pi * Gc)
