@@ -112,13 +112,16 @@ def test_per_atom_writes_in_proportion_to_the_contacts_match_a_pass_over_every_a
     x[:, 2] += 0.5e-3
     v = rng.normal(0.0, 1.0, (n, 3))
     g = dict(table=table, n=n, x=x, v=v, omega=rng.normal(0.0, 50.0, (n, 3)), radius=np.full(n, 1e-3),
-             rmass=np.full(n, mat.rho * 4.0 / 3.0 * np.pi * 1e-9), tag=np.arange(1, n + 1, dtype=np.int64),
-             typ=np.ones(n, dtype=np.int64), walls=pack([PlaneWall.axis("z", 0.0, "lo")])[0],
+             rmass=np.full(n, mat.rho * 4.0 / 3.0 * np.pi * 1e-9), tag=np.arange(1, n + 1, dtype=np.int32),
+             typ=np.ones(n, dtype=np.int32), walls=pack([PlaneWall.axis("z", 0.0, "lo")])[0],
              wall_mat=np.zeros(1, dtype=np.int64), dt=2e-6, near=np.zeros(n, dtype=np.bool_))
 
     def state():
-        return dict(keys=np.zeros((n, slots)), sep=np.zeros((n, 4 * slots)), H=np.zeros((n * slots, table.history_size)),
-                    stat=np.zeros((n, K.N_STAT)), saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
+        # (LAMMPS's types: int32 ids and types, keys, separations and statistics in columns of one per-atom
+        # array, as the bridge passes them: the kernels compiled once for the bridge and this test)
+        cols = np.zeros((n, 5 * slots + K.N_STAT + 1))
+        return dict(keys=cols[:, :slots], sep=cols[:, slots:5 * slots], H=np.zeros((n * slots, table.history_size)),
+                    stat=cols[:, 5 * slots:5 * slots + K.N_STAT], saved=np.zeros((n, K.N_SAVED)), used=np.zeros((n, slots), bool),
                     acc=np.zeros((n, 7)), prev=np.zeros(n, dtype=np.int64),
                     touched=np.zeros(n, dtype=np.int64), n_prev=0, f=np.zeros((n, 3)), torque=np.zeros((n, 3)),
                     rebuilt=True, buf=None, cand_rows=None)
