@@ -199,3 +199,47 @@ def test_built_site_lists_every_public_name(tmp_path):
             if f"{module}.{name}" not in primary and f"{where}.{defined}" not in primary:
                 missing.append(f"{module}.{name}")
     assert not missing, "not in the built API reference:\n" + "\n".join(missing)
+
+
+# ------------------------------------------------------------------------- figures the pages state
+
+MARKED = [p for p in PAGES if "<!-- value " in p.read_text() or "<!-- figure " in p.read_text()]
+
+
+def test_pages_state_stored_results():
+    """Every ``value`` and ``figure`` marker of the pages resolves to a stored result (the build fails
+    otherwise too): the file, the key, the one CSV row, the PNG."""
+    hooks = _hooks()
+    assert MARKED, "no page reads a stored result"
+    for page in MARKED:
+        text = page.read_text()
+        assert "<!-- value" not in hooks.fill_values(text), page
+        assert "<!-- figure" not in hooks.fill_figures(text, page.relative_to(DOCS).as_posix()), page
+
+
+def test_missing_result_fails():
+    hooks = _hooks()
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_values("<!-- value validation/chart/speed_accuracy.csv err_f_over_mu normal=nothing -->")
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_values("<!-- value validation/no_such_result.json a.b -->")
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_figures("<!-- figure validation/no_such_figure.png a caption -->", "index.md")
+
+
+def test_equations_render_as_math():
+    """The equations of the pages are LaTeX for KaTeX (pymdownx.arithmatex), not plain text."""
+    laws = (DOCS / "laws.md").read_text()
+    assert r"\(N = \tfrac{4}{3} E^* \sqrt{R^*}" in laws and "N = (4/3) E* sqrt(R*)" not in laws
+    config = (ROOT / "mkdocs.yml").read_text()
+    assert "pymdownx.arithmatex" in config and (DOCS / "javascripts" / "katex" / "katex.min.js").is_file()
+
+
+def test_hertz_damped_full_damping_rebound():
+    """impacts.md: hertz_damped with e_n = 0 leaves a rebound of about 1e-4 of the impact speed: 1.09e-4 at
+    the default 50 steps per contact, 1.01e-4 at 200."""
+    import dem_contact as dc
+    scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, normal="hertz_damped", e_n=0.0)
+    coarse = dc.impact(scene, vn=5.0).e_n
+    fine = dc.impact(scene, vn=5.0, steps_per_contact=200).e_n
+    assert round(coarse, 6) == 1.09e-4 and round(fine, 6) == 1.01e-4, (coarse, fine)
