@@ -203,7 +203,7 @@ def test_built_site_lists_every_public_name(tmp_path):
 
 # ------------------------------------------------------------------------- figures the pages state
 
-MARKED = [p for p in PAGES if "<!-- value " in p.read_text() or "<!-- figure " in p.read_text()]
+MARKED = [p for p in PAGES if re.search(r"<!--\s*(value|figure)\s", p.read_text())]
 
 
 def test_pages_state_stored_results():
@@ -213,8 +213,8 @@ def test_pages_state_stored_results():
     assert MARKED, "no page reads a stored result"
     for page in MARKED:
         text = page.read_text()
-        assert "<!-- value" not in hooks.fill_values(text), page
-        assert "<!-- figure" not in hooks.fill_figures(text, page.relative_to(DOCS).as_posix()), page
+        assert not hooks.VALUE_MARKER.search(hooks.fill_values(text)), page
+        assert not hooks.FIGURE_MARKER.search(hooks.fill_figures(text, page.relative_to(DOCS).as_posix())), page
 
 
 def test_missing_result_fails():
