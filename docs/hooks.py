@@ -10,7 +10,8 @@
   ``ALLOWED`` in ``tests/test_layout.py``.
 - ``<!-- value FILE KEY [COLUMN=VALUE ...] [fmt=SPEC] -->`` becomes a number of a stored result: FILE (a path
   from the repository root) is a JSON file (KEY: a dotted path, list indices as numbers) or a CSV file (KEY: a
-  column, of the one row that the COLUMN=VALUE filters select), formatted with SPEC (default ``.2g``). A file,
+  column, of the one row that the COLUMN=VALUE filters select), formatted with SPEC (default ``.2g``) after
+  multiplying by ``scale=`` (default 1: ``scale=1e3`` writes seconds as ms). A file,
   key or row that is not there fails the build (``ResultMissing``): every figure that a page states this way
   comes from a result that a named command writes (the page names it next to the marker).
 - ``<!-- figure PATH caption text -->`` becomes the figure PATH (a PNG under the repository, where the command
@@ -174,15 +175,17 @@ class ResultMissing(LookupError):
     """A figure or number that a page states is not in the stored result it names."""
 
 
-def _filters(text: str) -> tuple[dict, str]:
-    filters, fmt = {}, ".2g"
+def _filters(text: str) -> tuple[dict, str, float]:
+    filters, fmt, scale = {}, ".2g", 1.0
     for item in text.split():
         k, v = item.split("=", 1)
         if k == "fmt":
             fmt = v
+        elif k == "scale":
+            scale = float(v)
         else:
             filters[k] = v
-    return filters, fmt
+    return filters, fmt, scale
 
 
 def stored_value(path: str, key: str, filters: dict | None = None):
@@ -218,9 +221,9 @@ def stored_value(path: str, key: str, filters: dict | None = None):
 
 def fill_values(markdown: str) -> str:
     def replace(match):
-        filters, fmt = _filters(match.group(3))
+        filters, fmt, scale = _filters(match.group(3))
         value = stored_value(match.group(1), match.group(2), filters)
-        return format(value, fmt) if isinstance(value, (int, float)) else str(value)
+        return format(value * scale, fmt) if isinstance(value, (int, float)) else str(value)
     return VALUE_MARKER.sub(replace, markdown)
 
 
