@@ -243,3 +243,30 @@ def test_hertz_damped_full_damping_rebound():
     coarse = dc.impact(scene, vn=5.0).e_n
     fine = dc.impact(scene, vn=5.0, steps_per_contact=200).e_n
     assert round(coarse, 6) == 1.09e-4 and round(fine, 6) == 1.01e-4, (coarse, fine)
+
+
+def test_twist_shear_pure_shear_with_default_cells():
+    """laws.md: pure shear is mdr_adaptive on the same cells (tests/test_twist_shear.py); with the defaults
+    (twist_shear_path 32 cells, mdr_adaptive 16) they differ by 9.1e-3 mu N on this loading, reversal and
+    turn (the path of test_twist_shear.test_pure_shear_is_the_vector_mdr_law)."""
+    import math
+
+    import numpy as np
+
+    from dem_contact.laws.twist_shear import twist_shear_path
+    from dem_contact.materials import STEEL
+    from dem_contact.studies.chart3d import chart_scene
+    from dem_contact.studies.paths import run_path
+
+    mu, radius, delta = 0.3, 0.01, 1e-5
+    g = STEEL.E / (2 * (1 + STEEL.nu))
+    g_star, g_c = g / (2 * (2 - STEEL.nu)), g / 2
+    a = math.sqrt(radius * delta)
+    n = 4 / 3 * STEEL.E / (2 * (1 - STEEL.nu**2)) * math.sqrt(radius) * delta**1.5
+    slip = 3 * mu * n / (16 * g_star * a)
+    k = np.linspace(0.0, 1.0, 61)
+    ux = slip * np.concatenate([0.8 * k, 0.8 - 1.3 * k[1:], -0.5 + 0.3 * k[1:]])
+    uy = slip * np.concatenate([0 * k, 0 * k[1:], 0.7 * k[1:]])
+    _, tx, ty = run_path(chart_scene(), np.full(ux.size, delta), ux, uy)
+    lx, ly, _, _ = twist_shear_path(g_star, g_c, mu, radius, n, a, ux, uy, 0 * ux)
+    assert round(float(np.hypot(lx + tx, ly + ty).max() / (mu * n)), 4) == 9.1e-3
