@@ -9,7 +9,8 @@
 - ``<!-- layout-rules -->`` becomes the table of what each room of the package may import, read from
   ``ALLOWED`` in ``tests/test_layout.py``.
 - ``<!-- value FILE KEY [COLUMN=VALUE ...] [fmt=SPEC] -->`` becomes a number of a stored result: FILE (a path
-  from the repository root) is a JSON file (KEY: a dotted path, list indices as numbers) or a CSV file (KEY: a
+  from the repository root) is a JSON file (KEY: a dotted path, list indices as numbers; with filters, of the
+  one record of a top-level list that they select) or a CSV file (KEY: a
   column, of the one row that the COLUMN=VALUE filters select), formatted with SPEC (default ``.2g``) after
   multiplying by ``scale=`` (default 1: ``scale=1e3`` writes seconds as ms). A file,
   key or row that is not there fails the build (``ResultMissing``): every figure that a page states this way
@@ -188,6 +189,15 @@ def _filters(text: str) -> tuple[dict, str, float]:
     return filters, fmt, scale
 
 
+def _same(cell: str, want: str) -> bool:
+    if cell == want:
+        return True
+    try:
+        return float(cell) == float(want)
+    except ValueError:
+        return False
+
+
 def stored_value(path: str, key: str, filters: dict | None = None):
     """The value of KEY in the stored result PATH (JSON: dotted path; CSV: the column of the one row that the
     filters select; a filter's value matches the cell as text or as a number)."""
@@ -197,6 +207,13 @@ def stored_value(path: str, key: str, filters: dict | None = None):
         raise ResultMissing(f"{path}: no such stored result")
     if file.suffix == ".json":
         value = json.loads(file.read_text())
+        if filters:                          # a list of records: the one that the filters select
+            rows = [r for r in value if isinstance(r, dict)
+                    and all(k in r and _same(str(r[k]), v) for k, v in filters.items())] \
+                if isinstance(value, list) else []
+            if len(rows) != 1:
+                raise ResultMissing(f"{path}: {len(rows)} records match {filters} (one wanted)")
+            value = rows[0]
         for part in key.split("."):
             try:
                 value = value[int(part)] if isinstance(value, list) else value[part]
@@ -204,15 +221,8 @@ def stored_value(path: str, key: str, filters: dict | None = None):
                 raise ResultMissing(f"{path}: no {key!r}") from None
         return value
     if file.suffix == ".csv":
-        def same(cell, want):
-            if cell == want:
-                return True
-            try:
-                return float(cell) == float(want)
-            except ValueError:
-                return False
         with open(file, newline="") as f:
-            rows = [r for r in csv.DictReader(f) if all(same(r.get(k, ""), v) for k, v in filters.items())]
+            rows = [r for r in csv.DictReader(f) if all(_same(r.get(k, ""), v) for k, v in filters.items())]
         if len(rows) != 1 or key not in rows[0]:
             raise ResultMissing(f"{path}: {len(rows)} rows match {filters} (one wanted) with a column {key!r}")
         return float(rows[0][key])
