@@ -8,6 +8,16 @@
   of the page (``api_directives`` is what ``tests/test_docs.py`` reads too).
 - ``<!-- layout-rules -->`` becomes the table of what each room of the package may import, read from
   ``ALLOWED`` in ``tests/test_layout.py``.
+- ``<!-- value FILE KEY [COLUMN=VALUE ...] [fmt=SPEC] -->`` becomes a number of a stored result: FILE (a path
+  from the repository root) is a JSON file (KEY: a dotted path, list indices as numbers; with filters, of the
+  one record of a top-level list that they select) or a CSV file (KEY: a
+  column, of the one row that the COLUMN=VALUE filters select), formatted with SPEC (default ``.2g``) after
+  multiplying by ``scale=`` (default 1: ``scale=1e3`` writes seconds as ms). A file,
+  key or row that is not there fails the build (``ResultMissing``): every figure that a page states this way
+  comes from a result that a named command writes (the page names it next to the marker).
+- ``<!-- figure PATH caption text -->`` becomes the figure PATH (a PNG under the repository, where the command
+  that makes it writes it) with its caption; the PNG is copied into the site at build time (``figures/...``),
+  not into docs/. A missing PNG fails the build.
 - A docstring's bracketed unit after a shape or an index (``float64[n, 3] [m]``, ``vt[i] [m/s]``) reads as a
   Markdown reference link; the cross-reference plugin's warning about a target that a docstring wrote is
   dropped (the docstrings are plain text and link nothing). An unresolved cross-reference of a page stays a
@@ -16,7 +26,9 @@
 from __future__ import annotations
 
 import ast
+import csv
 import importlib
+import json
 import logging
 import pathlib
 import pkgutil
@@ -25,6 +37,10 @@ import re
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 LAW_MARKER = re.compile(r"<!--\s*law-table\s+([\w-]+)\s*-->")
 LAYOUT_MARKER = "<!-- layout-rules -->"
+VALUE_MARKER = re.compile(r"<!--\s*value\s+(\S+)\s+(\S+)((?:\s+[\w.]+=\S+)*)\s*-->")
+FIGURE_MARKER = re.compile(r"<!--\s*figure\s+(\S+\.png)\s+(.*?)\s*-->", re.S)
+#: where the figures are copied to in the site
+FIGURE_DIR = "figures"
 API_MARKER = re.compile(r"<!--\s*api-modules\s+([\w. ]+?)\s*-->")
 #: columns of the law tables, in this order, each shown when a row has it (options: the Scene settings the law takes)
 COLUMNS = ("name", "id", "family", "source", "parameters", "state", "options")
@@ -156,6 +172,108 @@ def layout_rules() -> str:
     return "\n".join(lines)
 
 
+class ResultMissing(LookupError):
+    """A figure or number that a page states is not in the stored result it names."""
+
+
+def _filters(text: str) -> tuple[dict, str, float]:
+    filters, fmt, scale = {}, ".2g", 1.0
+    for item in text.split():
+        k, v = item.split("=", 1)
+        if k == "fmt":
+            fmt = v
+        elif k == "scale":
+            scale = float(v)
+        else:
+            filters[k] = v
+    return filters, fmt, scale
+
+
+def _same(cell: str, want: str) -> bool:
+    if cell == want:
+        return True
+    try:
+        return float(cell) == float(want)
+    except ValueError:
+        return False
+
+
+def stored_value(path: str, key: str, filters: dict | None = None):
+    """The value of KEY in the stored result PATH (JSON: dotted path; CSV: the column of the one row that the
+    filters select; a filter's value matches the cell as text or as a number)."""
+    filters = filters or {}
+    file = ROOT / path
+    if not file.is_file():
+        raise ResultMissing(f"{path}: no such stored result")
+    if file.suffix == ".json":
+        value = json.loads(file.read_text())
+        if filters:                          # a list of records: the one that the filters select
+            rows = [r for r in value if isinstance(r, dict)
+                    and all(k in r and _same(str(r[k]), v) for k, v in filters.items())] \
+                if isinstance(value, list) else []
+            if len(rows) != 1:
+                raise ResultMissing(f"{path}: {len(rows)} records match {filters} (one wanted)")
+            value = rows[0]
+        for part in key.split("."):
+            try:
+                value = value[int(part)] if isinstance(value, list) else value[part]
+            except (KeyError, IndexError, ValueError, TypeError):
+                raise ResultMissing(f"{path}: no {key!r}") from None
+        return value
+    if file.suffix == ".csv":
+        with open(file, newline="") as f:
+            rows = [r for r in csv.DictReader(f) if all(_same(r.get(k, ""), v) for k, v in filters.items())]
+        if len(rows) != 1 or key not in rows[0]:
+            raise ResultMissing(f"{path}: {len(rows)} rows match {filters} (one wanted) with a column {key!r}")
+        return float(rows[0][key])
+    raise ResultMissing(f"{path}: only .json and .csv results are read")
+
+
+def fill_values(markdown: str) -> str:
+    def replace(match):
+        filters, fmt, scale = _filters(match.group(3))
+        value = stored_value(match.group(1), match.group(2), filters)
+        return format(value * scale, fmt) if isinstance(value, (int, float)) else str(value)
+    return VALUE_MARKER.sub(replace, markdown)
+
+
+def figure_paths(markdown: str) -> list[str]:
+    """The PNGs that the figure markers of a page name (paths from the repository root)."""
+    return [m.group(1) for m in FIGURE_MARKER.finditer(markdown)]
+
+
+def _site_name(path: str) -> str:
+    return FIGURE_DIR + "/" + path.replace("/", "_")
+
+
+def fill_figures(markdown: str, page_src: str) -> str:
+    depth = page_src.count("/")
+
+    def replace(match):
+        path, caption = match.group(1), " ".join(match.group(2).split())
+        if not (ROOT / path).is_file():
+            raise ResultMissing(f"{page_src}: figure {path} is not there (its command makes it)")
+        src = "../" * depth + _site_name(path)
+        return (f'<figure markdown="span">\n  ![{caption}]({src})\n  <figcaption markdown="span">{caption}'
+                f"</figcaption>\n</figure>")
+    return FIGURE_MARKER.sub(replace, markdown)
+
+
+def on_files(files, config):
+    """Every PNG that a figure marker of a page names, copied into the site under figures/."""
+    from mkdocs.structure.files import File
+    seen = set()
+    for f in list(files.documentation_pages()):
+        for path in figure_paths(pathlib.Path(f.abs_src_path).read_text()):
+            if path in seen:
+                continue
+            seen.add(path)
+            if not (ROOT / path).is_file():
+                raise ResultMissing(f"{f.src_uri}: figure {path} is not there (its command makes it)")
+            files.append(File.generated(config, _site_name(path), abs_src_path=str(ROOT / path)))
+    return files
+
+
 class _DocstringBracketsAreNotReferences(logging.Filter):
     """Drops the cross-reference plugin's warning about a target that a docstring wrote: the docstrings
     of the package are plain text, where ``float64[n, 3] [m]`` (a shape, then a unit) reads as a Markdown
@@ -178,6 +296,8 @@ def on_config(config):
 def on_page_markdown(markdown, page, config, files):
     markdown = expand_api_markers(markdown)
     markdown = fill_law_tables(markdown, page.file.src_path)
+    markdown = fill_values(markdown)
+    markdown = fill_figures(markdown, page.file.src_uri)
     if LAYOUT_MARKER in markdown:
         markdown = markdown.replace(LAYOUT_MARKER, layout_rules())
     return markdown

@@ -199,3 +199,74 @@ def test_built_site_lists_every_public_name(tmp_path):
             if f"{module}.{name}" not in primary and f"{where}.{defined}" not in primary:
                 missing.append(f"{module}.{name}")
     assert not missing, "not in the built API reference:\n" + "\n".join(missing)
+
+
+# ------------------------------------------------------------------------- figures the pages state
+
+MARKED = [p for p in PAGES if re.search(r"<!--\s*(value|figure)\s", p.read_text())]
+
+
+def test_pages_state_stored_results():
+    """Every ``value`` and ``figure`` marker of the pages resolves to a stored result (the build fails
+    otherwise too): the file, the key, the one CSV row, the PNG."""
+    hooks = _hooks()
+    assert MARKED, "no page reads a stored result"
+    for page in MARKED:
+        text = page.read_text()
+        assert not hooks.VALUE_MARKER.search(hooks.fill_values(text)), page
+        assert not hooks.FIGURE_MARKER.search(hooks.fill_figures(text, page.relative_to(DOCS).as_posix())), page
+
+
+def test_missing_result_fails():
+    hooks = _hooks()
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_values("<!-- value validation/chart/speed_accuracy.csv err_f_over_mu normal=nothing -->")
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_values("<!-- value validation/no_such_result.json a.b -->")
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_figures("<!-- figure validation/no_such_figure.png a caption -->", "index.md")
+
+
+def test_equations_render_as_math():
+    """The equations of the pages are LaTeX for KaTeX (pymdownx.arithmatex), not plain text."""
+    laws = (DOCS / "laws.md").read_text()
+    assert r"\(N = \tfrac{4}{3} E^* \sqrt{R^*}" in laws and "N = (4/3) E* sqrt(R*)" not in laws
+    config = (ROOT / "mkdocs.yml").read_text()
+    assert "pymdownx.arithmatex" in config and (DOCS / "javascripts" / "katex" / "katex.min.js").is_file()
+
+
+def test_hertz_damped_full_damping_rebound():
+    """impacts.md: hertz_damped with e_n = 0 leaves a rebound of about 1e-4 of the impact speed: 1.09e-4 at
+    the default 50 steps per contact, 1.01e-4 at 200."""
+    import dem_contact as dc
+    scene = dc.Scene(dc.Sphere(0.01, dc.STEEL), dc.Wall(dc.STEEL), mu=0.3, normal="hertz_damped", e_n=0.0)
+    coarse = dc.impact(scene, vn=5.0).e_n
+    fine = dc.impact(scene, vn=5.0, steps_per_contact=200).e_n
+    assert round(coarse, 6) == 1.09e-4 and round(fine, 6) == 1.01e-4, (coarse, fine)
+
+
+def test_twist_shear_pure_shear_with_default_cells():
+    """laws.md: pure shear is mdr_adaptive on the same cells (tests/test_twist_shear.py); with the defaults
+    (twist_shear_path 32 cells, mdr_adaptive 16) they differ by 9.1e-3 mu N on this loading, reversal and
+    turn (the path of test_twist_shear.test_pure_shear_is_the_vector_mdr_law)."""
+    import math
+
+    import numpy as np
+
+    from dem_contact.laws.twist_shear import twist_shear_path
+    from dem_contact.materials import STEEL
+    from dem_contact.studies.chart3d import chart_scene
+    from dem_contact.studies.paths import run_path
+
+    mu, radius, delta = 0.3, 0.01, 1e-5
+    g = STEEL.E / (2 * (1 + STEEL.nu))
+    g_star, g_c = g / (2 * (2 - STEEL.nu)), g / 2
+    a = math.sqrt(radius * delta)
+    n = 4 / 3 * STEEL.E / (2 * (1 - STEEL.nu**2)) * math.sqrt(radius) * delta**1.5
+    slip = 3 * mu * n / (16 * g_star * a)
+    k = np.linspace(0.0, 1.0, 61)
+    ux = slip * np.concatenate([0.8 * k, 0.8 - 1.3 * k[1:], -0.5 + 0.3 * k[1:]])
+    uy = slip * np.concatenate([0 * k, 0 * k[1:], 0.7 * k[1:]])
+    _, tx, ty = run_path(chart_scene(), np.full(ux.size, delta), ux, uy)
+    lx, ly, _, _ = twist_shear_path(g_star, g_c, mu, radius, n, a, ux, uy, 0 * ux)
+    assert round(float(np.hypot(lx + tx, ly + ty).max() / (mu * n)), 4) == 9.1e-3
