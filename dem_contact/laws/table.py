@@ -21,7 +21,9 @@ plus one row here. The file declares:
   step reads them); ``VECTOR_SLOTS`` (the number of its 3D slots), optional ``SWAP_NEGATE`` (the slots,
   relative to its base, that change sign when the bodies are swapped; default none) and ``VECTORS`` (the
   first slots, relative to its base, of the 3-vectors in global axes that ``rotate_history`` turns;
-  default none);
+  default none), ``max_torque(p, N, a)`` (the largest torque [N m] the law gives on the parameter row p
+  at normal force N and contact radius a: its slider's or Coulomb limit) and ``EXAMPLE`` (the Scene
+  settings of a typical contact, which the contract tests use);
 - optional hooks that the integrators and checks ask instead of naming laws (defaults: none):
   ``TAKES_E_N`` (True: a target restitution e_n acts on the law, a dashpot or a calibration);
   ``calibration_target(scene)``: ``(e_n, speed, what)``, the restitution the scene's law was calibrated for,
@@ -186,6 +188,7 @@ def _check():
         for m in FAMILIES[f]:
             assert all(0 <= k < m.VECTOR_SLOTS for k in m.SWAP_NEGATE), f"{m.__name__}: SWAP_NEGATE outside its slots"
             assert all(0 <= k <= m.VECTOR_SLOTS - 3 for k in m.VECTORS), f"{m.__name__}: VECTORS outside its slots"
+            assert callable(m.max_torque) and isinstance(m.EXAMPLE, dict), f"{m.__name__}: max_torque, EXAMPLE"
         assert FAMILIES[f][0].NAME == "none" and FAMILIES[f][0].VECTOR_SLOTS == 0, \
             f"the {f} law of id 0 is 'none', without slots (the default of the contact helpers)"
 

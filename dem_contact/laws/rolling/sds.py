@@ -37,6 +37,13 @@ VECTOR_SLOTS = 3
 VECTORS = (0,)
 #: LAMMPS's EPSILON of gran_sub_mod_rolling.cpp (the history is turned into the tangent plane only above it)
 EPSILON = 1e-10
+#: the Scene settings of a typical contact of this law (a 2 mm steel sphere; the contract tests use them)
+EXAMPLE = {"k_roll": 5e5, "gamma_roll": 1e-3, "mu_roll": 0.1}
+
+
+def max_torque(p, N, a):
+    """The slider's limit mu_roll R* N [N m] (parameter row p, normal force N [N])."""
+    return p[P_MU_ROLL] * p[P_RSTAR] * N
 
 
 @njit(inline="always", **JIT)

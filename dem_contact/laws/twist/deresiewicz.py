@@ -95,6 +95,14 @@ VECTOR_SLOTS = Q_CELLS + TWIST_CELLS
 TABLE_NODES = 1025
 #: margin of the table-free stick test (below the table's rounding, so that it never changes a result)
 CLEAR = 1.0 - 1e-9
+#: the Scene settings of a typical contact of this law (the contract tests use them)
+EXAMPLE = {}
+
+
+def max_torque(p, N, a):
+    """Lubkin's full-slip moment (3 pi / 16) mu N a [N m] (parameter row p, normal force N [N], contact radius
+    a [m]): the exact law's moment never exceeds it."""
+    return 3.0 * math.pi / 16.0 * p[P_MU] * N * a
 
 
 def _k_minus_e(u):

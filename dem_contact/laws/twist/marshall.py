@@ -28,6 +28,13 @@ PARAMETERS, STATE = ("k_t", "mu"), ("xi",)
 
 #: LAMMPS's TWOTHIRDS (math_const.h)
 TWOTHIRDS = 2.0 / 3.0
+#: the Scene settings of a typical contact of this law (the contract tests use them)
+EXAMPLE = {}
+
+
+def max_torque(p, N, a):
+    """The slider's limit (2/3) mu a N [N m] (parameter row p, normal force N [N], contact radius a [m])."""
+    return TWOTHIRDS * p[P_MU] * a * N
 
 
 @njit(inline="always", **JIT)

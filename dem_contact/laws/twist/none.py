@@ -8,6 +8,13 @@ NAME, FAMILY = "none", "twist"
 SOURCE = "no torque about the normal"
 PARAMETERS, STATE = (), ()
 VECTOR_SLOTS = 0
+#: the Scene settings of a typical contact of this law (the contract tests use them)
+EXAMPLE = {}
+
+
+def max_torque(p, N, a):
+    """The largest torque [N m] of the law on a parameter row p at normal force N [N], contact radius a [m]."""
+    return 0.0
 
 
 @njit(inline="always", **JIT)

@@ -34,6 +34,13 @@ SOURCE = "LAMMPS twisting sds: spring-dashpot-slider (Marshall 2009, eqs. 30, 34
 PARAMETERS, STATE = ("k_twist", "gamma_twist", "mu_twist"), ("xi",)
 OPTIONS = ("k_twist", "gamma_twist", "mu_twist")
 VECTOR_SLOTS = 1
+#: the Scene settings of a typical contact of this law (a 2 mm steel sphere; the contract tests use them)
+EXAMPLE = {"k_twist": 1.0, "gamma_twist": 1e-6, "mu_twist": 1e-4}
+
+
+def max_torque(p, N, a):
+    """The slider's limit mu_twist N [N m] (parameter row p, normal force N [N])."""
+    return p[P_MU_TWIST] * N
 
 
 @njit(inline="always", **JIT)
