@@ -25,7 +25,8 @@ plus one row here. The file declares:
   at normal force N and contact radius a: its slider's or Coulomb limit) and ``EXAMPLE`` (the Scene
   settings of a typical contact, which the contract tests use);
 - optional hooks that the integrators and checks ask instead of naming laws (defaults: none):
-  ``TAKES_E_N`` (True: a target restitution e_n acts on the law, a dashpot or a calibration);
+  ``TAKES_E_N`` (True: a target restitution e_n acts on the law, a dashpot or a calibration); ``EXAMPLE``
+  (the Scene settings of a typical contact of the law, e.g. its target e_n, which the contract tests use);
   ``calibration_target(scene)``: ``(e_n, speed, what)``, the restitution the scene's law was calibrated for,
   the normal speed at which it holds (None: every speed) and a description, or None;
   ``hint(scene, situation)``: the law's own reason, appended to the message of a failed or suspicious
@@ -164,7 +165,7 @@ def _unbounded(scene):
 
 #: the optional declarations and their defaults (set here on the law files that leave them out)
 OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing,
-                             "SWAP_NEGATE": (), "VECTORS": (), "TAKES_E_N": False,
+                             "SWAP_NEGATE": (), "VECTORS": (), "TAKES_E_N": False, "EXAMPLE": MappingProxyType({}),
                              "calibration_target": _no_target, "hint": _no_hint, "max_radius": _unbounded})
 
 #: the situations a law's ``hint`` may explain (an impact's failure or warning, by the law's own reasons)

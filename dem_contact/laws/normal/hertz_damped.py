@@ -19,6 +19,8 @@ SOURCE = "Hertz + dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, force clamped at 0, 
 PARAMETERS, STATE = ("E_star", "R_star", "m_star", "gamma"), ()
 USES_RATE, PLASTIC = True, False
 TAKES_E_N = True
+#: the Scene settings of a typical contact of this law (the contract tests use them)
+EXAMPLE = {"e_n": 0.3}
 
 #: Steps per Hertz contact time used to calibrate the dashpot.
 CALIBRATION_STEPS = 4000

@@ -17,6 +17,8 @@ PARAMETERS, STATE = ("k_n", "gamma", "m_star", "R_star"), ()
 OPTIONS = ("v_ref",)
 USES_RATE, PLASTIC = True, False
 TAKES_E_N = True
+#: the Scene settings of a typical contact of this law (the contract tests use them)
+EXAMPLE = {"e_n": 0.3}
 
 
 def linear_stiffness(scene, p, what):

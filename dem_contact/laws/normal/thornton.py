@@ -32,6 +32,9 @@ STATE = ("delta_star", "F_star", "R_p", "delta_p", "|T| / N of the last step (tr
 OPTIONS = ("traction_yield", "v_ref")
 USES_RATE, PLASTIC = False, True
 TAKES_E_N = True
+#: the Scene settings of a typical contact of this law (p_y calibrated for e_n at the scene's v_ref; the
+#: contract tests use them)
+EXAMPLE = {"e_n": 0.7}
 
 
 def configure(scene, p):
