@@ -323,3 +323,33 @@ def test_walls_packed_once_give_the_contacts_of_the_list():
         assert np.array_equal(a.normals, b.normals) and np.array_equal(a.wall_velocities, b.wall_velocities)
     with pytest.raises(InputError, match="walls.pack"):
         wall_contacts(x, r, (packed[0][:, :5].copy(), packed[1]))
+
+
+def test_a_plate_sliding_and_turning_in_its_plane_carries_its_centre():
+    """A plate moving in its own plane (velocity V in it, angular velocity along its normal about a centre
+    that moves with V: the surface stays where it is) has at time t the velocity V + Omega x (c - C0 - V t): a
+    sphere at rest on the point of zero velocity does not slide, as on a mesh of the same plane and motion;
+    the loads' torques are about the moved centre. A cylinder sliding along its axis carries its centre too."""
+    from dem_contact.walls import CylinderWall, MeshWall
+
+    V, Om, R, delta = 0.2, 4.0, 1e-3, 1e-6
+    motion = dict(velocity=(V, 0.0, 0.0), angular_velocity=(0.0, 0.0, Om), centre=(0.0, 0.0, 0.0))
+    plane = PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), **motion)
+    verts = np.array([[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]])
+    mesh = MeshWall(verts, np.array([[0, 1, 2], [0, 2, 3]]), **motion)
+    for t in (0.0, 0.5, 2.0):
+        still = np.array([[V * t, V / Om, R - delta]])       # over the point where V + Omega x (c - C(t)) = 0
+        for wall in (plane, mesh):
+            wc = wall_contacts(still, [R], [wall], time=t)
+            assert len(wc) == 1
+            assert np.abs(wc.relative_velocities(np.zeros((1, 3)), np.zeros((1, 3)))).max() <= 1e-12, (wall, t)
+            assert np.allclose(wc.centres[0], (V * t, 0.0, 0.0), rtol=0.0, atol=1e-15)
+            F = np.array([[0.3, -0.1, -2.0]])
+            arm = wc.points[0] - np.array([V * t, 0.0, 0.0])
+            assert np.allclose(wc.loads(F).torque[0], -np.cross(arm, F[0]), rtol=1e-13, atol=0.0)
+    cyl = CylinderWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.05, velocity=(0.0, 0.0, 0.3),
+                       angular_velocity=(0.0, 0.0, 2.0))
+    wc = wall_contacts([[0.05 - R + delta, 0.0, 0.1]], [R], [cyl], time=1.5)
+    assert len(wc) == 1 and np.allclose(wc.centres[0], (0.0, 0.0, 0.45), rtol=0.0, atol=1e-15)
+    # the drum's surface turns at 2 rad/s and slides at 0.3 m/s along z: its velocity at the contact
+    assert np.allclose(wc.wall_velocities[0], (0.0, 2.0 * 0.05, 0.3), rtol=1e-12, atol=1e-15)

@@ -6,7 +6,8 @@ translation at velocity V [m/s] of its centre C and a rotation at angular veloci
 is x(t) = C(t) + Rot(Omega t) (x(0) - C0) (Rodrigues' rotation), and its velocity at a point c of its
 surface is V + Omega x (c - C(t)) (``velocity`` below, the same for every kind). A motion that leaves the
 surface where it is (a plane sliding or turning in its own plane, a cylinder turning about its axis) is
-marked so: such a wall is never re-placed, only its velocity acts.
+marked so: its surface is never re-placed, but its centre is carried to C(t) all the same (``table.place_walls``), so
+that its velocity at a point and the torques of its loads are those about where the centre is now.
 
 Each kind of wall is one module of this package that provides:
 

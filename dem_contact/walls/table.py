@@ -152,7 +152,13 @@ def history_key(walls, w, e, x, y, z):
 
 @njit(cache=True)
 def place_walls(walls, t):
-    """Every wall whose motion moves its surface, placed at time t [s] (in place)."""
+    """Every wall at time t [s] (in place): a wall whose motion moves its surface placed, and the centre of
+    every wall carried to C0 + V t, also where the surface stays (a plane sliding in its own plane, a cylinder
+    along its axis): its velocity at a point, V + Omega x (c - C(t)), and the torques of its loads are about
+    the moved centre."""
     for w in range(count(walls)):
         if walls[w, MOVES] != 0.0:
             place(walls, w, t)
+        else:
+            for d in range(3):
+                walls[w, CENTRE + d] = walls[w, CENTRE0 + d] + walls[w, VEL + d] * t
