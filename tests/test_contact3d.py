@@ -17,6 +17,7 @@ from numba import njit, prange
 from numba.core.errors import NumbaPerformanceWarning
 
 from dem_contact.laws import closed_forms as cf
+from dem_contact.laws import table
 from dem_contact.dem.contact3d import (batch_loop, check_contacts, contact_force, contact_forces,
                                        contact_forces_batch, contact_forces_serial, history_size, new_histories,
                                        peek_force, reset_contact, rotate_history, swap_bodies, tangential_work)
@@ -815,12 +816,12 @@ def test_debug_mode_reports_the_first_bad_contact():
 
 
 def _law_scene(tangential, normal="hertz"):
-    """A pair for every normal law: thornton yields at the material's p_y; e_n sets the dashpot of the
-    damped laws (it cannot act on hertz, nor on thornton with a yield pressure given)."""
+    """A pair for every normal law: a plastic law yields at the material's p_y; the others take their
+    declared EXAMPLE settings (``laws.table``: a damped law's target e_n)."""
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
-    e_n = 0.8 if normal in ("hertz_damped", "linear") else None
-    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, e_n=e_n,
-                 v_ref=reference_speed(1.5))
+    law = table.law("normal", normal)
+    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential,
+                 v_ref=reference_speed(1.5), **({} if law.PLASTIC else law.EXAMPLE))
 
 
 def test_checked_entry_refuses_an_overlap_beyond_the_laws_and_reports_a_non_finite_force():

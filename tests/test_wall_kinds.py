@@ -548,3 +548,39 @@ def test_a_sphere_turning_with_a_turntable_feels_no_twist(frame_spin):
         assert np.abs(w - (0.0, 0.0, spin)).max() <= 1e-12 * spin
     else:
         assert w[2] < 0.99 * spin
+
+
+@pytest.mark.parametrize("cut", ["copied vertices", "T-junctions"])
+def test_a_mesh_of_a_plane_is_the_plane_however_its_seams_are_cut(cut):
+    """A floor meshed with triangles that carry their own copies of the corners, or whose seams meet in
+    T-junctions (a vertex of one triangle inside an edge of another), touches every sphere as the plane does:
+    one contact, the plane's overlap and normal, on the seams and at the junctions too."""
+    from dem_contact.dem.walls import wall_contacts
+    from dem_contact.walls import MeshWall, PlaneWall
+
+    if cut == "copied vertices":
+        corners = np.array([[[0, 0, 0], [2, 0, 0], [2, 2, 0]], [[0, 0, 0], [2, 2, 0], [0, 2, 0]],
+                            [[2, 0, 0], [4, 0, 0], [4, 2, 0]], [[2, 0, 0], [4, 2, 0], [2, 2, 0]]], float)
+        V, T = corners.reshape(-1, 3), np.arange(12).reshape(4, 3)
+    else:   # a strip of two triangles below y = 1 against five above it, whose vertices at x = 1, 2, 3 lie
+        # inside the strip's long edge
+        V = np.array([[0, 0, 0], [4, 0, 0], [4, 1, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0], [3, 1, 0], [0, 2, 0],
+                      [4, 2, 0]], float)
+        T = np.array([[0, 1, 2], [0, 2, 3], [7, 3, 4], [7, 4, 5], [7, 5, 8], [8, 5, 6], [8, 6, 2]])
+    mesh = MeshWall(V * 1e-2, T)
+    plane = PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    R, delta = 1e-3, 2e-6
+    # on the seams (y = 1, x = 2) and beside them; not on a vertex itself, where rounding can put the centre
+    # inside one triangle of a fan and on the edge of another (a mesh that conforms from the start the same)
+    xs, ys = np.meshgrid(np.linspace(0.25, 3.85, 19) * 1e-2, np.array([0.5, 1.0, 1.0 + 1e-13, 1.5, 2.0]) * 1e-2)
+    seams = np.array([[0.5, 0.5], [1.3, 1.3], [2.0, 0.5], [2.0, 1.3], [3.0, 1.0], [2.5, 0.5]]) * 1e-2
+    xy = np.vstack([np.column_stack([xs.ravel(), ys.ravel()]), seams])
+    centres = np.column_stack([xy, np.full(len(xy), R - delta)])
+    centres = centres[(centres[:, 1] <= 0.0199) | (cut == "T-junctions")]
+    radii = np.full(len(centres), R)
+    on_mesh, on_plane = wall_contacts(centres, radii, [mesh]), wall_contacts(centres, radii, [plane])
+    assert len(on_plane) == len(centres)
+    assert np.array_equal(np.sort(on_mesh.sphere), np.arange(len(centres))), "one contact per sphere"
+    order = np.argsort(on_mesh.sphere)
+    assert np.allclose(on_mesh.overlaps[order], on_plane.overlaps, rtol=0.0, atol=1e-15)
+    assert np.allclose(on_mesh.normals[order], on_plane.normals, rtol=0.0, atol=1e-12)

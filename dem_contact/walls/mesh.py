@@ -21,7 +21,10 @@ rule of LIGGGHTS (``tri_mesh_I.h``, ``resolveTriSphereContactBary``: barycentric
 a corner owned by one triangle) with the shadowing decided from the geometry of the neighbours at each
 step (no state). The mesh is two-sided: the normal points from the sphere's centre to the closest point,
 whichever side the sphere is on; a sphere whose centre crosses the surface is pushed out on the other
-side. An edge shared by more than two triangles is refused.
+side. An edge shared by more than two triangles is refused. The rule sees the mesh's triangles after
+``conforming``: corners given as separate copies are one vertex, and a triangle with another's vertex inside
+one of its edges (a T-junction) is split there, so a seam cut either way is an edge of the triangles on both
+sides (the wall's elements are those triangles).
 
 History. A contact keeps its history while it moves from triangle to triangle over a surface that is
 convex or flat on the sphere's side: the history key is the sphere's side of the contact's triangle (the
@@ -67,6 +70,68 @@ COPLANAR = 1e-5
 MAX_FAN = 256
 
 
+#: vertices closer than this fraction of the mesh's size are one vertex, and a vertex this close to another
+#: triangle's edge lies on it (``conforming``)
+JOIN_TOL = 1e-9
+
+
+def conforming(v, t):
+    """(vertices, triangles) of the same surface in which triangles that touch share their vertices and
+    edges: vertices closer than JOIN_TOL times the mesh's size merged (triangles given with their own copies
+    of the corners), and each triangle with a vertex of another lying inside one of its edges (a
+    T-junction) split there, so that every seam is an edge of the triangles on both sides and the contact
+    rule and the history keys (module docstring) see one surface. A mesh that conforms already is returned
+    as it is (same vertices, triangles and order)."""
+    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0))) or 1.0
+    tol = JOIN_TOL * size
+    _, first, inverse = np.unique(np.round((v - v.min(axis=0)) / tol), axis=0, return_index=True,
+                                  return_inverse=True)
+    inverse = inverse.reshape(-1)
+    if len(first) < len(v):                    # keep the first of each group, in the order given
+        keep = np.sort(first)
+        new_id = np.empty(len(v), dtype=np.int64)
+        new_id[keep] = np.arange(len(keep))
+        v, t = v[keep], new_id[first[inverse]][t]
+    t = [list(tri) for tri in t.tolist()]
+    for _ in range(64):                          # each pass splits every triangle at most once
+        owners = {}
+        for j, tri in enumerate(t):
+            for q in range(3):
+                a, b = tri[q], tri[(q + 1) % 3]
+                owners.setdefault((min(a, b), max(a, b)), []).append((j, q))
+        free = [(e, js[0]) for e, js in owners.items() if len(js) == 1]
+        if not free:
+            break
+        ends = np.unique([i for e, _ in free for i in e])
+        pts = v[ends]
+        split = {}
+        for _, (j, q) in free:
+            if j in split:
+                continue
+            a, b = t[j][q], t[j][(q + 1) % 3]
+            e = v[b] - v[a]
+            ee = float(e @ e)
+            s = (pts - v[a]) @ e / ee
+            off = np.linalg.norm(pts - v[a] - s[:, None] * e, axis=1)
+            on = (s * math.sqrt(ee) > tol) & ((1.0 - s) * math.sqrt(ee) > tol) & (off <= tol)
+            if on.any():
+                inner = ends[on][np.argsort(s[on])]
+                split[j] = (q, inner.tolist())
+        if not split:
+            break
+        out = []
+        for j, tri in enumerate(t):
+            if j not in split:
+                out.append(tri)
+                continue
+            q, inner = split[j]
+            a, b, c = tri[q], tri[(q + 1) % 3], tri[(q + 2) % 3]
+            chain = [a, *inner, b]
+            out += [[chain[i], chain[i + 1], c] for i in range(len(chain) - 1)]   # (the orientation of tri)
+        t = out
+    return v, np.array(t, dtype=np.int64)
+
+
 @dataclass(frozen=True, eq=False)
 class MeshWall:
     """A triangle mesh: ``vertices`` float[nv, 3] [m] (its pose at time 0) and ``triangles`` int[nt, 3]
@@ -92,7 +157,8 @@ class MeshWall:
 
     def topology(self, k: int = 0):
         """(vertices float64[nv, 3], triangles int64[nt, 3], neighbours int64[nt, 3] across each edge
-        (V_k, V_k+1), -1 none, patches int64[nt]), checked (InputError naming walls[k])."""
+        (V_k, V_k+1), -1 none, patches int64[nt]) of the conforming mesh (``conforming``: the elements of the
+        wall), checked (InputError naming walls[k])."""
         try:
             v = np.array(self.vertices, dtype=np.float64)
             t = np.array(self.triangles)
@@ -105,6 +171,7 @@ class MeshWall:
         t = t.astype(np.int64)
         if t.min() < 0 or t.max() >= len(v):
             raise InputError(f"walls[{k}].triangles must index the vertices (0 ... {len(v) - 1})")
+        v, t = conforming(v, t)
         c = v[t]
         n = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
         area = np.linalg.norm(n, axis=1)
