@@ -1429,8 +1429,9 @@ class LammpsContacts:
         self._setup_pending = False
         self._last_step = ntimestep
         same = False
-        if setup and self._moving:
-            self._follow_clock()
+        if setup:
+            if self._moving:
+                self._follow_clock()
             # (collective) the last run's last steps if they were not checked, then this run's checks
             self._error = None
             try:
