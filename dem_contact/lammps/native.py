@@ -26,6 +26,10 @@ from ..laws.slots import (P_ESTAR, P_GAMMA_ROLL, P_GAMMA_TWIST, P_GSTAR, P_K_ROL
 from ..walls import CylinderWall, PlaneWall, pack
 from ..walls import table as WT
 
+#: the id (after the prefix) of the fix halt that stops a run in which an atom is not in the group of its type
+#: (walls of materials that differ between the types)
+GROUP_GUARD = "atoms_outside_their_type_group_add_them"
+
 #: the laws of a table that LAMMPS's own models reproduce, and LAMMPS's names for them
 LAWS = {("hertz", "mindlin_total"): ("hertz/material", "mindlin")}
 
@@ -117,8 +121,14 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     """The LAMMPS commands (pair style, coefficients, walls) of LAMMPS's own model equivalent to ``table``
     (hertz + mindlin_total, with the twist and rolling models of its rows: none, twist marshall or sds,
     rolling sds) and its ``walls``: run them instead of attaching the bridge (with ``pair_style`` granular
-    LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for the bridge; one
-    group per type and one fix per type and wall (ids ``<prefix>_t<k>``, ``<prefix>_w<w>_t<k>``): ``fix
+    LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for the bridge. Each
+    wall is one fix on group ``all`` (id ``<prefix>_w<w>``) where every type has the same wall model, so
+    that atoms created later (fix pour, create_atoms) have it too; else one fix per type
+    (``<prefix>_w<w>_t<k>``) on a group of the type (``<prefix>_t<k>``: LAMMPS's fix wall/gran takes one
+    material and no dynamic group), and a run stops with an error (fix ``<prefix>_`` + ``GROUP_GUARD``) at
+    the step an atom is not in the group of its type: atoms created later must be put in it (``group
+    <prefix>_t<k> type <k>`` again after create_atoms; ``fix ... <prefix>_t<k> pour ...`` inserts into
+    it). ``fix
     wall/gran`` for a PlaneWall perpendicular to an axis (sliding in its plane: ``shear``), ``fix
     wall/gran/region ... contacts`` on a region (``<prefix>_r<w>``) for a CylinderWall along an axis
     (infinite, ``side in`` or ``out``) and for a PlaneWall turning about its normal, turning by ``move ...
@@ -158,15 +168,23 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     for i in range(nt):
         for j in range(i, nt):
             cmds.append(f"pair_coeff {i + 1} {j + 1} {_model(table, table.sphere_row[i, j], *names)}")
-    for k in range(nt):
-        cmds.append(f"group {prefix}_t{k + 1} type {k + 1}")
-        for w, (wall, plane) in enumerate(zip(walls, planes)):
-            model = _model(table, table.wall_row[k, wall.wall], *names)
+    models = [[_model(table, table.wall_row[k, wall.wall], *names) for k in range(nt)] for wall in walls]
+    if any(len(set(m)) > 1 for m in models):
+        # (fix wall/gran takes no dynamic group: a static group per type, and a run that an atom outside its
+        # type's group stops, as one created after these commands unless it was put in the group)
+        cmds += [f"group {prefix}_t{k + 1} type {k + 1}" for k in range(nt)]
+        outside = "+".join(f"(type=={k + 1})*(1-gmask({prefix}_t{k + 1}))" for k in range(nt))
+        cmds += [f"variable {prefix}_outside atom {outside}",
+                 f"compute {prefix}_outside all reduce sum v_{prefix}_outside",
+                 f"variable {prefix}_outside_n equal c_{prefix}_outside",
+                 f"fix {prefix}_{GROUP_GUARD} all halt 1 v_{prefix}_outside_n > 0.5 error hard message yes"]
+    for w, (plane, m) in enumerate(zip(planes, models)):
+        # one fix on group all where every type has the wall's model, else one per type
+        for k, group, fid in ([(0, "all", f"{prefix}_w{w}")] if len(set(m)) == 1 else
+                              [(k, f"{prefix}_t{k + 1}", f"{prefix}_w{w}_t{k + 1}") for k in range(nt)]):
             if isinstance(plane, str):
-                cmds.append(f"fix {prefix}_w{w}_t{k + 1} {prefix}_t{k + 1} wall/gran/region granular {model} "
-                            f"region {plane} contacts")
+                cmds.append(f"fix {fid} {group} wall/gran/region granular {m[k]} region {plane} contacts")
                 continue
             axis, lo, hi, shear = plane
-            cmds.append(f"fix {prefix}_w{w}_t{k + 1} {prefix}_t{k + 1} wall/gran granular {model} "
-                        f"{axis}plane {lo} {hi}{shear}")
+            cmds.append(f"fix {fid} {group} wall/gran granular {m[k]} {axis}plane {lo} {hi}{shear}")
     return cmds
