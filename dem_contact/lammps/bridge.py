@@ -663,7 +663,10 @@ class LammpsContacts:
         self.walls, self.wall_mat = pack(walls, table.wall_row.shape[1])
         _check_wall_curvatures(table, list(walls), self.wall_mat)
         self.n_walls = len(self.wall_mat)
-        self._moving = bool(self.n_walls and (self.walls[:self.n_walls, WT.MOVES] != 0.0).any())
+        # walls placed at every step: those whose surface moves, and those whose centre moves (a plate sliding
+        # and turning in its own plane: its velocity at a point and its loads' torques are about C(t))
+        w = self.walls[:self.n_walls]
+        self._moving = bool(self.n_walls and ((w[:, WT.MOVES] != 0.0) | (w[:, WT.VEL:WT.VEL + 3] != 0.0).any(axis=1)).any())
         self._wall_state = None        # moving walls: (time, local positions) at the last build of the wall list
         self._loads = np.zeros((self.n_walls, 7))   # this rank's wall loads at the last evaluated step
         self.skin = 0.3 * self.rmax if skin is None else float(skin)
