@@ -21,8 +21,8 @@ from __future__ import annotations
 
 from ..dem.pairs import PairTable
 from ..errors import InputError
-from ..laws.slots import (P_ESTAR, P_GAMMA_ROLL, P_GAMMA_TWIST, P_GSTAR, P_K_ROLL, P_K_TWIST, P_MU, P_MU_ROLL,
-                          P_MU_TWIST)
+from ..laws import table as LT
+from ..laws.slots import P_ESTAR, P_GSTAR, P_MU
 from ..walls import CylinderWall, PlaneWall, pack
 from ..walls import table as WT
 
@@ -30,8 +30,6 @@ from ..walls import table as WT
 #: (walls of materials that differ between the types)
 GROUP_GUARD = "atoms_outside_their_type_group_add_them"
 
-#: the laws of a table that LAMMPS's own models reproduce, and LAMMPS's names for them
-LAWS = {("hertz", "mindlin_total"): ("hertz/material", "mindlin")}
 
 
 def equivalent_material(E_star: float, G_star: float) -> tuple:
@@ -41,17 +39,16 @@ def equivalent_material(E_star: float, G_star: float) -> tuple:
     return 2.0 * (1.0 - nu * nu) * E_star, nu
 
 
-def _model(table, row, normal, tangential):
+def _model(table, row):
     p = table.params[row]
     E, nu = equivalent_material(float(p[P_ESTAR]), float(p[P_GSTAR]))
-    model = f"{normal} {E!r} 0.0 {nu!r} tangential {tangential} NULL 0.0 {float(p[P_MU])!r} damping viscoelastic"
     scene = table.scenes[row]
-    if scene.rolling == "sds":
-        model += f" rolling sds {float(p[P_K_ROLL])!r} {float(p[P_GAMMA_ROLL])!r} {float(p[P_MU_ROLL])!r}"
-    if scene.twist == "sds":
-        model += f" twisting sds {float(p[P_K_TWIST])!r} {float(p[P_GAMMA_TWIST])!r} {float(p[P_MU_TWIST])!r}"
-    elif scene.twist == "marshall":
-        model += " twisting marshall"
+    model = (f"{scene.normal_law.LAMMPS} {E!r} 0.0 {nu!r} tangential {scene.tangential_law.LAMMPS} NULL 0.0 "
+             f"{float(p[P_MU])!r} damping viscoelastic")
+    # (the rolling model before the twisting one, as LAMMPS's documentation writes them)
+    for family in ("rolling", "twist"):
+        words = LT.law(family, getattr(scene, f"{family}_id")).lammps_keywords(p)
+        model += f" {words}" if words else ""
     return model
 
 
@@ -138,15 +135,18 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     if not isinstance(table, PairTable):
         raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
     scene = table.scenes[0]
-    names = LAWS.get((scene.normal, scene.tangential))
-    if names is None:
-        raise InputError(f"LAMMPS's own models reproduce {', '.join(' + '.join(k) for k in LAWS)} only, not "
-                         f"{scene.normal} + {scene.tangential}")
+    if not (scene.normal_law.LAMMPS and scene.tangential_law.LAMMPS):
+        have = [" + ".join(m.NAME for m in (n, t)) for n in LT.FAMILIES["normal"] if n.LAMMPS
+                for t in LT.FAMILIES["tangential"] if t.LAMMPS]
+        raise InputError(f"LAMMPS's own models reproduce {', '.join(have)} only (the laws that declare their "
+                         f"LAMMPS equivalent), not {scene.normal} + {scene.tangential}")
     for sc in table.scenes:
-        if sc.twist not in ("none", "marshall", "sds") or sc.rolling not in ("none", "sds"):
-            raise InputError(f"LAMMPS's own models have twist none, marshall or sds and rolling none or sds, not "
-                             f"twist {sc.twist!r} / rolling {sc.rolling!r} (the exact twist law deresiewicz "
-                             f"runs through the bridge only)")
+        for family in ("twist", "rolling"):
+            law = LT.law(family, getattr(sc, f"{family}_id"))
+            if law.lammps_keywords(sc.params) is None:
+                have = [m.NAME for m in LT.FAMILIES[family] if m.lammps_keywords(sc.params) is not None]
+                raise InputError(f"LAMMPS's own models have the {family} laws {', '.join(have)}, not {law.NAME!r} "
+                                 f"(it runs through the bridge only)")
     walls = list(walls)
     rows, _ = pack(walls, table.wall_row.shape[1])   # every wall checked (kind, vectors, material index)
     cmds = ["pair_style granular"]
@@ -167,8 +167,8 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
         cmds.append("atom_modify sort 0 0.0")
     for i in range(nt):
         for j in range(i, nt):
-            cmds.append(f"pair_coeff {i + 1} {j + 1} {_model(table, table.sphere_row[i, j], *names)}")
-    models = [[_model(table, table.wall_row[k, wall.wall], *names) for k in range(nt)] for wall in walls]
+            cmds.append(f"pair_coeff {i + 1} {j + 1} {_model(table, table.sphere_row[i, j])}")
+    models = [[_model(table, table.wall_row[k, wall.wall]) for k in range(nt)] for wall in walls]
     if any(len(set(m)) > 1 for m in models):
         # (fix wall/gran takes no dynamic group: a static group per type, and a run that an atom outside its
         # type's group stops, as one created after these commands unless it was put in the group)

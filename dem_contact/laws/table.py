@@ -31,7 +31,9 @@ plus one row here. The file declares:
   the normal speed at which it holds (None: every speed) and a description, or None;
   ``hint(scene, situation)``: the law's own reason, appended to the message of a failed or suspicious
   impact, for ``situation`` in ``HINT_SITUATIONS`` ("" for none); ``max_radius(scene)``: the largest
-  contact radius [m] that the law's state covers (None: any);
+  contact radius [m] that the law's state covers (None: any); LAMMPS's equivalent model, where it has
+  one (``lammps.native``): ``LAMMPS`` (normal and tangential laws: its name in ``pair granular``) and
+  ``lammps_keywords(p)`` (twist and rolling laws: its keywords on the parameter row p; "" for none);
 - family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
   predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* the tangential laws may
   read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
@@ -163,10 +165,15 @@ def _unbounded(scene):
     return None
 
 
+def _no_lammps(p):
+    return None
+
+
 #: the optional declarations and their defaults (set here on the law files that leave them out)
 OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing,
                              "SWAP_NEGATE": (), "VECTORS": (), "TAKES_E_N": False, "EXAMPLE": MappingProxyType({}),
-                             "calibration_target": _no_target, "hint": _no_hint, "max_radius": _unbounded})
+                             "calibration_target": _no_target, "hint": _no_hint, "max_radius": _unbounded,
+                             "LAMMPS": None, "lammps_keywords": _no_lammps})
 
 #: the situations a law's ``hint`` may explain (an impact's failure or warning, by the law's own reasons)
 HINT_SITUATIONS = ("long_contact", "coarse_step", "impulse_excess")

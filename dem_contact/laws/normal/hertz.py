@@ -12,6 +12,8 @@ NAME, FAMILY = "hertz", "normal"
 SOURCE = "Hertz (Johnson 1985), elastic"
 PARAMETERS, STATE = ("E_star", "R_star"), ()
 USES_RATE, PLASTIC = False, False
+#: LAMMPS's equivalent normal model (``pair granular``; see ``lammps.native``)
+LAMMPS = "hertz/material"
 
 
 def configure(scene, p):

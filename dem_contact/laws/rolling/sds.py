@@ -41,6 +41,11 @@ EPSILON = 1e-10
 EXAMPLE = {"k_roll": 5e5, "gamma_roll": 1e-3, "mu_roll": 0.1}
 
 
+def lammps_keywords(p):
+    """LAMMPS's ``rolling sds`` keywords on the parameter row p."""
+    return f"rolling sds {float(p[P_K_ROLL])!r} {float(p[P_GAMMA_ROLL])!r} {float(p[P_MU_ROLL])!r}"
+
+
 def max_torque(p, N, a):
     """The slider's limit mu_roll R* N [N m] (parameter row p, normal force N [N])."""
     return p[P_MU_ROLL] * p[P_RSTAR] * N

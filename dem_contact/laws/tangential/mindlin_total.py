@@ -10,6 +10,8 @@ from .common import cap, release
 NAME, FAMILY = "mindlin_total", "tangential"
 SOURCE = "total-displacement no-slip Hertz-Mindlin (LIGGGHTS tangential history, EDEM, LAMMPS mindlin)"
 PARAMETERS, STATE = ("G_star", "mu"), ("xi", "T")
+#: LAMMPS's equivalent tangential model (``pair granular ... tangential``; see ``lammps.native``)
+LAMMPS = "mindlin"
 #: stiffness factor on 8 G* a
 FACTOR = 1.0
 #: fixed 3D slots (the work and the spring displacement xi); swapping the bodies negates xi

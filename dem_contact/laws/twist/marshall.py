@@ -32,6 +32,11 @@ TWOTHIRDS = 2.0 / 3.0
 EXAMPLE = {}
 
 
+def lammps_keywords(p):
+    """LAMMPS's ``twisting marshall`` keywords (its coefficients come from the tangential model)."""
+    return "twisting marshall"
+
+
 def max_torque(p, N, a):
     """The slider's limit (2/3) mu a N [N m] (parameter row p, normal force N [N], contact radius a [m])."""
     return TWOTHIRDS * p[P_MU] * a * N

@@ -12,6 +12,11 @@ VECTOR_SLOTS = 0
 EXAMPLE = {}
 
 
+def lammps_keywords(p):
+    """The keywords of LAMMPS's equivalent model on the parameter row p (``pair granular``): none."""
+    return ""
+
+
 def max_torque(p, N, a):
     """The largest torque [N m] of the law on a parameter row p at normal force N [N], contact radius a [m]."""
     return 0.0

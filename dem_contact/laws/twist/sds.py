@@ -38,6 +38,11 @@ VECTOR_SLOTS = 1
 EXAMPLE = {"k_twist": 1.0, "gamma_twist": 1e-6, "mu_twist": 1e-4}
 
 
+def lammps_keywords(p):
+    """LAMMPS's ``twisting sds`` keywords on the parameter row p."""
+    return f"twisting sds {float(p[P_K_TWIST])!r} {float(p[P_GAMMA_TWIST])!r} {float(p[P_MU_TWIST])!r}"
+
+
 def max_torque(p, N, a):
     """The slider's limit mu_twist N [N m] (parameter row p, normal force N [N])."""
     return p[P_MU_TWIST] * N
