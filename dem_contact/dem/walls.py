@@ -233,8 +233,8 @@ def check_curvatures(table, material, curvature, wall):
 def wall_contacts(centres, radii, walls, time: float = 0.0) -> WallContacts:
     """The contacts of spheres (centres float64[n, 3] [m], radii float64[n] > 0 [m]) with ``walls`` (a list
     of walls of ``dem_contact.walls``: ``PlaneWall``, ``CylinderWall``, ``MeshWall``; or the (rows,
-    materials) that ``walls.pack`` returned for them, packed once for every step: packing a mesh of 5,000
-    triangles takes about 0.15 s) at ``time`` [s] (the walls' poses are those at time 0), as the batch
+    materials) that ``walls.pack`` returned for them, packed once for every step: packing a mesh
+    takes longer than finding its contacts) at ``time`` [s] (the walls' poses are those at time 0), as the batch
     kernels take them (``WallContacts``). Checked:
     ``InputError`` naming the parameter and its valid range. A mesh's triangles are binned into cells over the
     centres (``walls.search``): the cost grows with the spheres and the contacts, not with n x triangles."""
