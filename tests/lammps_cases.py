@@ -310,10 +310,16 @@ def velocity(restart):
     return out
 
 
-def main():
+def world():
+    """(number of ranks, this rank) of the MPI run, from a LAMMPS instance made for the question."""
     probe = new_lammps()
     ranks, rank = probe.extract_setting("world_size"), probe.extract_setting("world_rank")
     probe.close()
+    return ranks, rank
+
+
+def main():
+    ranks, rank = world()
     res = {"ranks": ranks}
     res["hold"] = {how: {"ours": hold(how, True), **hold(how, True, before=True)}
                    for how in ("freeze", "setforce")}

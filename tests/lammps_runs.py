@@ -30,6 +30,7 @@ from dem_contact.errors import InputError
 from dem_contact.lammps import LammpsContacts, native_commands, new_lammps
 from dem_contact.materials import Material, Sphere, Wall
 from dem_contact.walls import PlaneWall
+from lammps_cases import world
 
 R = 1e-3
 MAT = Material(E=5e7, nu=0.3, rho=2500.0)
@@ -245,9 +246,7 @@ def bonded(lj, molecule=False):
 
 
 def main():
-    probe = new_lammps()
-    ranks, rank = probe.extract_setting("world_size"), probe.extract_setting("world_rank")
-    probe.close()
+    ranks, rank = world()
     res = {"ranks": ranks,
            "belt": {"ours": belt(False), "native": belt(True)},
            "rising": {"reset": rising(True), "plain": rising(False)},
