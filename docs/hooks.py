@@ -9,10 +9,12 @@
 - ``<!-- layout-rules -->`` becomes the table of what each room of the package may import, read from
   ``ALLOWED`` in ``tests/test_layout.py``.
 - ``<!-- value FILE KEY [COLUMN=VALUE ...] [fmt=SPEC] -->`` becomes a number of a stored result: FILE (a path
-  from the repository root) is a JSON file (KEY: a dotted path, list indices as numbers; with filters, of the
-  one record of a top-level list that they select) or a CSV file (KEY: a
+  from the repository root) is a JSON file (KEY: a dotted path, list indices as numbers, a key of the file
+  that holds dots taken whole; with filters, of the one record of a top-level list that they select) or a
+  CSV file (KEY: a
   column, of the one row that the COLUMN=VALUE filters select), formatted with SPEC (default ``.2g``) after
-  multiplying by ``scale=`` (default 1: ``scale=1e3`` writes seconds as ms). A file,
+  multiplying by ``scale=`` (default 1: ``scale=1e3`` writes seconds as ms); a KEY or VALUE with spaces is
+  written in double quotes (``path="circle 0.3"``). A file,
   key or row that is not there fails the build (``ResultMissing``): every figure that a page states this way
   comes from a result that a named command writes (the page names it next to the marker).
 - ``<!-- figure PATH caption text -->`` becomes the figure PATH (a PNG under the repository, where the command
@@ -33,11 +35,12 @@ import logging
 import pathlib
 import pkgutil
 import re
+import shlex
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 LAW_MARKER = re.compile(r"<!--\s*law-table\s+([\w-]+)\s*-->")
 LAYOUT_MARKER = "<!-- layout-rules -->"
-VALUE_MARKER = re.compile(r"<!--\s*value\s+(\S+)\s+(\S+)((?:\s+[\w.]+=\S+)*)\s*-->")
+VALUE_MARKER = re.compile(r'<!--\s*value\s+(\S+)\s+("[^"]*"|\S+)((?:\s+[\w.]+=(?:"[^"]*"|\S+))*)\s*-->')
 FIGURE_MARKER = re.compile(r"<!--\s*figure\s+(\S+\.png)\s+(.*?)\s*-->", re.S)
 #: where the figures are copied to in the site
 FIGURE_DIR = "figures"
@@ -178,7 +181,7 @@ class ResultMissing(LookupError):
 
 def _filters(text: str) -> tuple[dict, str, float]:
     filters, fmt, scale = {}, ".2g", 1.0
-    for item in text.split():
+    for item in shlex.split(text):
         k, v = item.split("=", 1)
         if k == "fmt":
             fmt = v
@@ -214,11 +217,18 @@ def stored_value(path: str, key: str, filters: dict | None = None):
             if len(rows) != 1:
                 raise ResultMissing(f"{path}: {len(rows)} records match {filters} (one wanted)")
             value = rows[0]
-        for part in key.split("."):
-            try:
-                value = value[int(part)] if isinstance(value, list) else value[part]
-            except (KeyError, IndexError, ValueError, TypeError):
-                raise ResultMissing(f"{path}: no {key!r}") from None
+        parts = key.split(".")
+        while parts:                         # a dict's key may hold dots: the shortest key present is taken
+            for n in range(1, len(parts) + 1):
+                part = ".".join(parts[:n])
+                try:
+                    value = value[int(part)] if isinstance(value, list) else value[part]
+                except (KeyError, IndexError, ValueError, TypeError):
+                    continue
+                parts = parts[n:]
+                break
+            else:
+                raise ResultMissing(f"{path}: no {key!r}")
         return value
     if file.suffix == ".csv":
         with open(file, newline="") as f:
@@ -232,7 +242,7 @@ def stored_value(path: str, key: str, filters: dict | None = None):
 def fill_values(markdown: str) -> str:
     def replace(match):
         filters, fmt, scale = _filters(match.group(3))
-        value = stored_value(match.group(1), match.group(2), filters)
+        value = stored_value(match.group(1), match.group(2).strip('"'), filters)
         return format(value * scale, fmt) if isinstance(value, (int, float)) else str(value)
     return VALUE_MARKER.sub(replace, markdown)
 

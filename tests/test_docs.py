@@ -227,6 +227,19 @@ def test_missing_result_fails():
         hooks.fill_figures("<!-- figure validation/no_such_figure.png a caption -->", "index.md")
 
 
+def test_value_marker_quotes_and_dotted_keys(tmp_path, monkeypatch):
+    """A filter value with spaces in double quotes; a JSON key holding dots (``circle:0.3``) taken whole."""
+    hooks = _hooks()
+    (tmp_path / "r.csv").write_text('path,error\ncircle 0.3,0.25\ncircle 0.6,0.5\n')
+    (tmp_path / "r.json").write_text('{"circle:0.3": {"max": 0.125}, "a": {"b c": 2}}')
+    monkeypatch.setattr(hooks, "ROOT", tmp_path)
+    assert hooks.fill_values('<!-- value r.csv error path="circle 0.6" fmt=.1f -->') == "0.5"
+    assert hooks.fill_values("<!-- value r.json circle:0.3.max fmt=.3f -->") == "0.125"
+    assert hooks.fill_values('<!-- value r.json "a.b c" -->') == "2"
+    with pytest.raises(hooks.ResultMissing):
+        hooks.fill_values("<!-- value r.json circle:0.3.min -->")
+
+
 def test_equations_render_as_math():
     """The equations of the pages are LaTeX for KaTeX (pymdownx.arithmatex), not plain text."""
     laws = (DOCS / "laws.md").read_text()

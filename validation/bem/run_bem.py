@@ -21,6 +21,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import platform
 import sys
 import time
 
@@ -166,8 +167,19 @@ def run_spin():
 
 
 # -- timing ---------------------------------------------------------------------------------------------
+def _machine():
+    """The record of the machine that timed: CPU model and logical cores."""
+    cpu = platform.processor() or "unknown"
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next((ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name")), cpu)
+    except OSError:
+        pass
+    return {"name": "machine", "cpu": cpu, "cores": os.cpu_count()}
+
+
 def run_timing():
-    out = []
+    out = [_machine()]
     for n in (32, 64, 128):
         for tol, inc, steps in ((B.DEFAULT_TOL, 0.08, 10), (1e-4, 0.08, 10), (B.DEFAULT_TOL, 0.01, 40)):
             t = B.time_per_step(n, steps, increment=inc, tol=tol)
@@ -419,10 +431,10 @@ def run_report():
         lines += ["## Time per step", "",
                   "Partial-slip loading at constant overlap from the unloaded contact, in steps of 0.08 or 0.01 "
                   "slip displacements (10 or 40 steps, min of 3 runs), warm-started, one FFT thread, on the "
-                  "development machine (2 cores shared with other jobs: absolute times are inflated). "
+                  "machine of the record `name=machine` of timing.json (its CPU and cores; timings depend on it). "
                   "`pytest tests/benchmarks/test_bench_bem.py --benchmark-only` measures the same.", "",
                   "| elements across | tolerance | step [slip displacements] | ms per step |", "|---|---|---|---|"]
-        for r in tim:
+        for r in (r for r in tim if "n_across" in r):
             lines.append(f"| {r['n_across']} | {r['tol']:g} | {r.get('increment', 0.08):g} | "
                          f"{r['time_per_step'] * 1e3:.1f} |")
         lines.append("")
