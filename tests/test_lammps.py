@@ -968,19 +968,20 @@ def test_atoms_of_any_radius_get_the_forces_of_their_two_radii():
     LammpsContacts(lmp, _polydisperse(e_n=0.7), [PlaneWall.axis("z", -0.77e-3, "lo")], v_max=1.0, r_max=1.4e-3)
     lmp.command("run 0")
     f, t = _lammps_forces(lmp)
-    ef, et = _expected_forces(lmp, mats, 1e-6)
-    assert np.count_nonzero(np.abs(ef).sum(axis=1)) == 3 and np.abs(et).max() > 0
+    # (a run's set-up adds no slip to the contacts, as LAMMPS's granular models: the kernel at dt = 0)
+    ef, et = _expected_forces(lmp, mats, 0.0)
+    assert np.count_nonzero(np.abs(ef).sum(axis=1)) == 3
     assert np.abs(f - ef).max() <= 1e-12 * np.abs(ef).max()
-    assert np.abs(t - et).max() <= 1e-12 * np.abs(et).max()
+    assert np.abs(t - et).max() <= 1e-12 * max(np.abs(et).max(), np.abs(ef).max() * 1e-3)
     for c in ("set atom 2 diameter 0.0024", "create_atoms 2 single 0.0002 0.0002 0.0042", "set atom 4 diameter 0.0022",
               f"set type 1 density {GLASS.rho!r}", f"set type 2 density {POLYMER.rho!r}"):
         lmp.command(c)
     lmp.command("run 0")
     f, t = _lammps_forces(lmp)
-    ef, et = _expected_forces(lmp, mats, 1e-6)
+    ef, et = _expected_forces(lmp, mats, 0.0)
     assert np.count_nonzero(np.abs(ef).sum(axis=1)) == 4
     assert np.abs(f - ef).max() <= 1e-12 * np.abs(ef).max()
-    assert np.abs(t - et).max() <= 1e-12 * np.abs(et).max()
+    assert np.abs(t - et).max() <= 1e-12 * max(np.abs(et).max(), np.abs(ef).max() * 1e-3)
 
 
 def test_sizes_the_laws_cannot_take_are_refused_at_every_run():
@@ -1005,7 +1006,7 @@ def test_sizes_the_laws_cannot_take_are_refused_at_every_run():
     assert lmp.get_natoms() == 5
     lmp.command("unfix ins")
     lmp.command(f"fix ins2 all pour 2 1 123457 region top diam one 0.003 dens {GLASS.rho!r} {GLASS.rho!r}")
-    with pytest.raises(InputError, match=r"radius \(0.0015 m\) exceeds r_max = 0.0012 m \(atoms inserted during"):
+    with pytest.raises(InputError, match=r"radius \(0.0015 m\) exceeds r_max = 0.0012 m \(atoms inserted or grown"):
         lmp.command("run 5")
 
 

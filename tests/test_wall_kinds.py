@@ -510,7 +510,7 @@ def _piston_run(native, speed=0.5, steps=600, every=200):
         lmp.command("comm_modify vel yes")
         lmp.command(f"variable dz equal {speed!r}*time")
         lmp.command("region floor plane 0 0 0 0 0 1 side in move NULL NULL v_dz units box")
-        lmp.command(f"fix wf all wall/gran/region granular {_model(table, table.wall_row[0, 0], 'hertz/material', 'mindlin')} "
+        lmp.command(f"fix wf all wall/gran/region granular {_model(table, table.wall_row[0, 0])} "
                     f"region floor")
     else:
         lmp.command("pair_style none")
