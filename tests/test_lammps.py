@@ -643,10 +643,14 @@ def test_saved_forces_are_not_reapplied_to_atoms_moved_between_runs():
 def cases(tmp_path_factory):
     """tests/lammps_cases.py on one rank (with the references: LAMMPS's pair granular, the restart file
     read on two ranks) and on two: {ranks: JSON}."""
-    d = tmp_path_factory.mktemp("cases")
-    out = {1: _run(["tests/lammps_cases.py", str(d)], ranks=1)}
+    return _on_one_and_two_ranks("tests/lammps_cases.py", tmp_path_factory.mktemp("cases"))
+
+
+def _on_one_and_two_ranks(script, d):
+    """The JSON of ``script`` run on one rank and, where mpirun is present, on two: {ranks: JSON}."""
+    out = {1: _run([script, str(d)], ranks=1)}
     if MPIRUN is not None:
-        out[2] = _run(["tests/lammps_cases.py", str(d)], ranks=2)
+        out[2] = _run([script, str(d)], ranks=2)
         assert out[2]["ranks"] == 2
     return out
 
@@ -1015,12 +1019,7 @@ def test_sizes_the_laws_cannot_take_are_refused_at_every_run():
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
     """tests/lammps_runs.py on one rank and on two: {ranks: JSON} (each with its own LAMMPS references)."""
-    d = tmp_path_factory.mktemp("runs")
-    out = {1: _run(["tests/lammps_runs.py", str(d)], ranks=1)}
-    if MPIRUN is not None:
-        out[2] = _run(["tests/lammps_runs.py", str(d)], ranks=2)
-        assert out[2]["ranks"] == 2
-    return out
+    return _on_one_and_two_ranks("tests/lammps_runs.py", tmp_path_factory.mktemp("runs"))
 
 
 @pytest.mark.parametrize("ranks", RANKS)

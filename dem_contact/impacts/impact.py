@@ -301,8 +301,9 @@ def check_series_budget(max_steps: int):
                          f"limit is {MAX_SERIES_BYTES / 2**30:g} GiB: lower steps_per_contact (or raise dt)")
 
 
-def check_mdr_reach(scene: Scene, vn_max: float):
-    """InputError when the springs of the mdr law cannot cover the contact at normal speed vn_max."""
+def check_law_reach(scene: Scene, vn_max: float):
+    """InputError when the tangential law's state cannot cover the contact at normal speed vn_max (its
+    ``max_radius``: the extent of the mdr springs)."""
     reach = scene.tangential_law.max_radius(scene)
     if reach is None:
         return
@@ -366,7 +367,7 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
         dt, spc = time_step(scene, vn, steps_per_contact, dt)
         n_max = max_steps(spc)
     if c.reach is not None:
-        check_mdr_reach(scene, vn)
+        check_law_reach(scene, vn)
     if series:
         check_series_budget(n_max)
         ser = np.zeros((n_max, N_SERIES))
@@ -380,13 +381,13 @@ def impact(scene: Scene, vn: float, vt: float = 0.0, spin: float = 0.0, *, spin2
         raise NumericalError(f"the {scene.normal}/{scene.tangential} kernels failed ({type(e).__name__}: "
                              f"{e}) at vn = {vn:g} m/s, dt = {dt:g} s") from None
     if c.reach is not None:
-        check_mdr_grid(scene, h, vn)
+        check_law_grid(scene, h, vn)
     return _build_result(c, scene, out, vn, vt, spin, spin2, dt, spc, scheme, ser, None)
 
 
-def check_mdr_grid(scene: Scene, h, vn: float):
-    """Raise NumericalError if the contact outgrew the springs of the mdr law (the kernel then stops the
-    integration with a NaN force)."""
+def check_law_grid(scene: Scene, h, vn: float):
+    """Raise NumericalError if the contact outgrew the tangential law's ``max_radius`` (the mdr springs: the
+    kernel then stops the integration with a NaN force)."""
     reach = scene.tangential_law.max_radius(scene)
     if reach is not None and h[H_A] > reach:
         raise NumericalError(f"the contact radius {h[H_A]:.4g} m at vn = {vn:g} m/s exceeds the extent of the "

@@ -52,7 +52,7 @@ from ..laws.normal_impact import drift, eval_overlap, normal_close, normal_start
 from ..laws.slots import P_MU
 from ..materials import Wall, check_finite
 from .impact import (ENERGY_CREATION_TOL, KE_ROUNDING_TOL, MAX_CONTACT_TIMES, SCHEMES, EnergyBudget,
-                     ImpactResult, _raise_failed, body_inertia, check_mdr_grid, check_scales, impact_warnings, raise_if_no_impulse,
+                     ImpactResult, _raise_failed, body_inertia, check_law_grid, check_scales, impact_warnings, raise_if_no_impulse,
                      raise_if_restitution_impossible, scene_constants, time_step, with_outcome)
 from .integrator import SLIDE_TOL, STATUS_MAX_STEPS, STATUS_OK, put
 
@@ -329,7 +329,7 @@ def impact3d(scene: Scene, vn: float, vt=(0.0, 0.0), spin=(0.0, 0.0, 0.0), *, sp
                            out, ser)
     except Exception as e:      # a failure inside the compiled code: no result
         raise kernel_failed(e, f"the {scene.normal}/{scene.tangential} kernels at vn = {vn:g} m/s") from None
-    check_mdr_grid(scene, H[0], vn)
+    check_law_grid(scene, H[0], vn)
     return build_result3d(scene, out, vn, vt, w1, w2, dt, spc, scheme, frame_spin, ser)
 
 

@@ -27,7 +27,7 @@ from numba.core import event as numba_event
 
 from ..errors import InputError, NumericalError
 from .impact import (MAX_CONTACT_TIMES, SCALE_RANGE, SCHEMES, body_row, build_result, check_incident,
-                     check_mdr_grid, check_mdr_reach, check_scales, derived_arrays, impact, speed_range, time_step)
+                     check_law_grid, check_law_reach, check_scales, derived_arrays, impact, speed_range, time_step)
 from .integrator import INTEGRATOR, N_OUT, N_SERIES, borrowed, integrator_for
 from ..materials import Material, Sphere, Wall, check_finite
 from ..laws.model import Scene
@@ -250,7 +250,7 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     if work > MAX_SWEEP_STEPS:
         raise InputError(f"the sweep asks for {work:.3g} steps ({n} impacts x {work / n:.3g} steps per contact); "
                          f"the limit is {MAX_SWEEP_STEPS:.3g}: use fewer impacts or fewer steps per contact")
-    check_mdr_reach(scene, float(vn.max()))
+    check_law_reach(scene, float(vn.max()))
     max_steps = np.ceil(MAX_CONTACT_TIMES * spcs).astype(np.int64) + 10
     out = np.zeros((n, N_OUT))
     hist = np.zeros((n, scene.history_size))
@@ -288,7 +288,7 @@ def sweep(scene: Scene, vn, vt, spin=0.0, *, steps_per_contact: float | None = N
     if bad.size:
         i = bad[0]
         try:
-            check_mdr_grid(scene, hist[i], vn[i])
+            check_law_grid(scene, hist[i], vn[i])
             build_result(scene, out[i], vn[i], vt[i], spin[i], 0.0, dts[i], spcs[i], scheme)
             raise NumericalError("non-finite result")
         except NumericalError as err:

@@ -486,7 +486,7 @@ def _exclusion_rules(log_text, group_bits) -> list:
                     rules.append((_EX_TYPE, int(args[1]), int(args[2])))
                 elif kind == "group":
                     rules.append((_EX_GROUP, group_bits[args[1]], group_bits[args[2]]))
-                elif kind in ("molecule/intra", "molecule/inter", "molecule"):
+                elif kind in ("molecule/intra", "molecule/inter"):
                     rules.append((_EX_INTRA if kind == "molecule/intra" else _EX_INTER, group_bits[args[1]], 0))
                 else:
                     raise ValueError(kind)
