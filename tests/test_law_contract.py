@@ -28,7 +28,9 @@ TANGENTIAL = [m.NAME for m in table.FAMILIES["tangential"]]
 
 
 def test_the_generated_dispatch_is_that_of_the_table():
-    """laws/dispatch.py and laws/dispatch3d.py are what ``python -m dem_contact.laws.generate`` writes now."""
+    """laws/slots.py, laws/dispatch.py and laws/dispatch3d.py are what ``python -m dem_contact.laws.generate``
+    writes now."""
+    assert generate.TARGET_SLOTS.read_text() == generate.slots_source(), "run python -m dem_contact.laws.generate"
     assert generate.TARGET.read_text() == generate.source(), "run python -m dem_contact.laws.generate"
     assert generate.TARGET_3D.read_text() == generate.source_3d(), "run python -m dem_contact.laws.generate"
 

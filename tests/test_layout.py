@@ -95,7 +95,7 @@ def test_imports_point_down():
 #: contact step); "integration": what integrates a contact in time to calibrate a law (the head-on impact)
 #: and the Scene that calls the calibrations.
 LAW_ROOMS = (
-    ("parts", {"normal", "tangential", "twist", "rolling", "slots", "vector", "closed_forms", "traction_yield",
+    ("parts", {"normal", "tangential", "twist", "rolling", "declare", "slots", "history_slots", "vector", "closed_forms", "traction_yield",
                "twist_shear"}),
     ("table", {"table", "generate", "dispatch", "dispatch3d", "compose", "contact"}),
     ("integration", {"normal_impact", "model", "__init__"}),

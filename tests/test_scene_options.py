@@ -12,6 +12,7 @@ from dem_contact.impacts import presets
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import scene_with
 import dem_contact as dc
+from dem_contact.laws import table
 from dem_contact.laws.model import Scene
 from dem_contact.studies import advise as advise_mod
 from dem_contact.studies import chart3d, spin
@@ -30,10 +31,13 @@ def _changed_value(kwargs):
 
 
 def test_scene_table_is_preset_scene_keywords():
-    """The CLI's scene options are the keyword arguments of preset_scene, all of them, no other."""
+    """The CLI's scene options are the keyword arguments of preset_scene (but the twist and rolling laws, of the
+    torque options) and the settings the normal and tangential laws declare for the command line, no other."""
     params = inspect.signature(presets.preset_scene).parameters
-    keywords = [n for n, p in params.items() if p.kind is p.KEYWORD_ONLY]
-    assert sorted(common.SCENE_KEYWORDS) == sorted(keywords)
+    keywords = [n for n, p in params.items() if p.kind is p.KEYWORD_ONLY and n not in ("twist", "rolling")]
+    declared = [o.name for o in table.options() if o.cli is not None
+                and any(o in m.OPTIONS for f in ("normal", "tangential") for m in table.FAMILIES[f])]
+    assert declared and sorted(common.SCENE_KEYWORDS) == sorted(keywords + declared)
 
 
 @pytest.mark.parametrize("command", ["impact", "impact3d", "sweep", "advise"])

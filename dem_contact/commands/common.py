@@ -10,8 +10,9 @@ import numpy as np
 
 from ..errors import InputError
 from ..impacts.presets import CASES, DEFAULT_TANGENTIAL, preset_scene
+from ..laws import table
 from ..laws.dispatch import ROLLING_NAMES as ROLLING_LAWS, TWIST_NAMES as TWIST_LAWS
-from ..laws.model import MDR_PROFILES, MODELS, NORMAL_LAWS, TANGENTIAL_LAWS, Scene
+from ..laws.model import MODELS, NORMAL_LAWS, TANGENTIAL_LAWS, Scene
 from ..materials import STEEL
 
 
@@ -32,6 +33,23 @@ def add_out_dir(p, default: str):
 def _option(flag, **kwargs):
     """One row of an option table: (flag, argparse keyword arguments)."""
     return flag, kwargs
+
+
+def law_options(*families) -> tuple:
+    """The option table rows of the settings that the laws of ``families`` take (``declare.Option`` with a
+    ``cli``), from their declarations: flag, default, choices, and a help naming the laws that take them."""
+    rows = []
+    for o in table.options():
+        laws = [m for f in families for m in table.FAMILIES[f] if o in m.OPTIONS]
+        if o.cli is None or not laws or any(o.flag == r[0] for r in rows):
+            continue
+        kw = dict(default=o.default, help=f"{o.describe()} ({', '.join(m.NAME for m in laws)})")
+        if o.choices is not None:
+            kw["choices"] = list(o.choices)
+        elif o.parse is None:
+            kw["type"] = float
+        rows.append(_option(o.flag, **{**kw, **o.cli}))
+    return tuple(rows)
 
 
 #: The scene options, spelled once: the argparse options of ``add_scene_options`` and, by their names, the
@@ -60,21 +78,10 @@ SCENE_OPTIONS = (
             help="sphere's limiting contact pressure p_y [Pa] (thornton)"),
     _option("--yield-stress", type=float, default=None,
             help="sphere's uniaxial yield stress Y [Pa], p_y = 1.6 Y (thornton)"),
-    _option("--e-n", type=float, default=None,
-            help="target normal restitution: sets the dashpot of hertz_damped and linear, or "
-                 "calibrates p_y of thornton at --vn"),
     _option("--model", choices=list(MODELS), default=None,
             help="named model that sets the laws and the time step: thornton2001 = Thornton et al. "
                  "(2001), thornton normal law (hertz if nothing yields) + md, 1000 steps per contact"),
-    _option("--traction-yield", nargs="?", const="proportional", default=False,
-            choices=["proportional", "partial_slip"],
-            help="thornton: the limiting pressure falls with the traction |T|/N the contact carries, "
-                 "as the first-yield pressure of a Hertz contact under that traction (Hamilton 1983); "
-                 "the traction is (|T|/N) p (proportional, the value without an argument) or the "
-                 "Cattaneo-Mindlin traction of stick radius c/a = (1 - |T|/(mu N))^(1/3) (partial_slip)"),
-    _option("--mdr-profile", choices=list(MDR_PROFILES), default="truncated",
-            help="Coulomb limit of mdr/mdr_adaptive in Thornton's plastic loading: truncated = Hertz "
-                 "pressure truncated at p_y (default), scaled = Hertz shape scaled to the force"),
+    *law_options("normal", "tangential"),
     _option("--vn", type=float, default=5.0,
             help="normal impact speed towards the wall [m/s] (default {vn:g})"),
 )
@@ -107,7 +114,8 @@ SCENE_KEYWORDS = tuple(dest(flag) for flag, _ in SCENE_OPTIONS if flag not in ("
 def add_scene_options(p, vn_default=5.0):
     """The options of SCENE_OPTIONS (group "scene") and TIME_OPTIONS (group "time step"); vn_default: the
     default of --vn."""
-    g = p.add_argument_group("scene (SI units; defaults: the EE steel scene of Wu et al. 2009)")
+    g = p.add_argument_group("scene (SI units; defaults: the EE steel scene of Wu et al. 2009; the laws' reference "
+                                 "speed v_ref is --vn)")
     for flag, kwargs in SCENE_OPTIONS:
         if flag == "--vn":
             kwargs = dict(kwargs, default=vn_default, help=kwargs["help"].format(vn=vn_default))
@@ -130,15 +138,11 @@ TORQUE_OPTIONS = (
     _option("--twist", choices=list(TWIST_LAWS), default=None,
             help="twist law, the moment about the normal: deresiewicz (exact for Hertz contacts: Lubkin "
                  "1951, Deresiewicz 1954), LAMMPS's marshall or sds (default none: no moment)"),
-    _option("--k-twist", type=float, default=None, help="twist sds: spring [N m/rad]"),
-    _option("--gamma-twist", type=float, default=None, help="twist sds: dashpot [N m s/rad]"),
-    _option("--mu-twist", type=float, default=None, help="twist sds: Coulomb limit per unit normal force [m]"),
+    *law_options("twist"),
     _option("--rolling", choices=list(ROLLING_LAWS), default=None,
             help="rolling resistance, LAMMPS's engine model sds (a calibration of shape and roughness, not "
                  "contact mechanics of smooth spheres; default none)"),
-    _option("--k-roll", type=float, default=None, help="rolling sds: spring [N/m]"),
-    _option("--gamma-roll", type=float, default=None, help="rolling sds: dashpot [N s/m]"),
-    _option("--mu-roll", type=float, default=None, help="rolling sds: Coulomb limit per unit normal force"),
+    *law_options("rolling"),
 )
 
 

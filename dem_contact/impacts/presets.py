@@ -24,13 +24,13 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
                  wall_nu: float | None = None, rigid_sphere: bool = False, rigid_wall: bool = False,
                  mu: float = 0.3, normal: str | None = None, tangential: str | None = None,
                  yield_pressure: float | None = None, yield_stress: float | None = None,
-                 e_n: float | None = None, model: str | None = None, traction_yield: bool | str = False,
-                 mdr_profile: str = "truncated") -> Scene:
+                 model: str | None = None, twist: str | None = None, rolling: str | None = None, **options) -> Scene:
     """The Scene of preset ``case`` (one of CASES) at normal speed ``vn`` [m/s] (the reference speed of
     calibrations and of the mdr grid), with any option changed. Defaults: the EE steel scene (E = 208 GPa,
     nu = 0.3, rho = 7850), hertz (thornton for PE) and the library's default tangential law. For RE,
-    ``nu`` is the Poisson ratio of the elastic wall. ``model``, ``traction_yield`` and ``mdr_profile`` are
-    passed to ``Scene``."""
+    ``nu`` is the Poisson ratio of the elastic wall. ``model``, ``twist``, ``rolling`` and ``options`` (the
+    settings the laws take, ``Scene``'s ``**options``: e_n, traction_yield, mdr_profile, ...) are passed to
+    ``Scene``; v_ref is ``vn``."""
     from ..errors import InputError
 
     if case not in CASES:
@@ -66,7 +66,8 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
             wall_nu_used, sphere_nu = nu, STEEL.nu
     elif case == "PE":
         normal = normal or "thornton"
-        if law_of("normal", normal).PLASTIC and yield_pressure is None and yield_stress is None and e_n is None:
+        if (law_of("normal", normal).PLASTIC and yield_pressure is None and yield_stress is None
+                and options.get("e_n") is None):
             yield_stress = PE_YIELD_STRESS
     normal = normal or "hertz"
     if rigid_sphere:
@@ -75,6 +76,8 @@ def preset_scene(case: str = "EE", vn: float = 5.0, *, radius: float = 0.01, den
         sphere_mat = Material(E=sphere_E, nu=sphere_nu, rho=density, yield_pressure=yield_pressure,
                               yield_stress=yield_stress)
     wall = Wall.rigid() if rigid_wall else Wall(Material(E=wall_E, nu=wall_nu_used, rho=STEEL.rho))
-    laws = {} if tangential is None else {"tangential": tangential}
-    return Scene(Sphere(radius, sphere_mat), wall, mu=mu, normal=normal, e_n=e_n, v_ref=reference_speed(vn), model=model,
-                 traction_yield=traction_yield, mdr_profile=mdr_profile, **laws)
+    laws = {k: v for k, v in (("tangential", tangential), ("twist", twist), ("rolling", rolling)) if v is not None}
+    if "v_ref" in options:
+        raise InputError("v_ref is the preset's vn: give vn")
+    return Scene(Sphere(radius, sphere_mat), wall, mu=mu, normal=normal, v_ref=reference_speed(vn), model=model,
+                 **laws, **options)

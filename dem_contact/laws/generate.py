@@ -1,14 +1,63 @@
-"""Write ``laws/dispatch.py`` from the law table: ``python -m dem_contact.laws.generate``.
+"""Write ``laws/slots.py``, ``laws/dispatch.py`` and ``laws/dispatch3d.py`` from the law table:
+``python -m dem_contact.laws.generate``.
 
 numba inlines and caches a switch on a law id only when the cases are literal integers, so the switch is
-written out as code, from ``laws.table``; ``tests/test_law_contract.py`` fails while the file is out of date.
+written out as code, from ``laws.table``; the slots of the parameter row are numbered from the laws'
+``PARAMETERS`` (``declare.Param``) for the same reason (kernels read them as constants).
+``tests/laws/test_law_contract.py`` fails while a file is out of date. A law that declares a new slot can be
+imported before the slot is numbered only while this generator runs (``laws.slots`` then reads it as -1).
 """
+import os
 import pathlib
 
-from . import table
+GENERATING = "DEM_CONTACT_GENERATING_SLOTS"
+HERE = pathlib.Path(__file__).parent
+TARGET = HERE / "dispatch.py"
+TARGET_3D = HERE / "dispatch3d.py"
+TARGET_SLOTS = HERE / "slots.py"
 
-TARGET = pathlib.Path(__file__).with_name("dispatch.py")
-TARGET_3D = pathlib.Path(__file__).with_name("dispatch3d.py")
+
+def slots_source() -> str:
+    """``laws/slots.py``: the slots of the parameter row, numbered in the order of ``table.parameters()``, with
+    the history slots of ``laws.history_slots``."""
+    from . import table
+
+    import textwrap
+
+    rows = []
+    out = ['"""Named slots of the parameter row (one per pair type, float64[N_PARAMS], read by every kernel) and of',
+           "the history row (``laws.history_slots``), generated from the laws' ``PARAMETERS`` by",
+           "``python -m dem_contact.laws.generate``: do not edit (a test fails when it is out of date).", "",
+           "Parameter row:", ""]
+    k = 0
+    for p in table.parameters():
+        readers = table.parameter_readers(p.slot)
+        unit = f" [{p.unit}]" if p.unit else ""
+        size = f" ({p.size} slots)" if p.size > 1 else ""
+        rows.append((p.slot, f"{p.doc}{unit}{size}" + (f" ({', '.join(dict.fromkeys(readers))})" if readers else "")))
+        k += p.size
+    width = max(len(s) for s, _ in rows) + 2
+    out += ["=" * width + "  " + "=" * 70, f"{'slot':<{width}}  meaning [unit] (the laws that read it)",
+            "=" * width + "  " + "=" * 70]
+    for s, d in rows:
+        lines = textwrap.wrap(d, 116 - width)
+        out += [f"{s:<{width}}  {lines[0]}"] + [" " * (width + 2) + line for line in lines[1:]]
+    out += ["=" * width + "  " + "=" * 70, '"""', "import os as _os", "",
+            "from .history_slots import *  # noqa: F401,F403  (the history row)", ""]
+    k = 0
+    for p in table.parameters():
+        out.append(f"{p.slot} = {k}")
+        if p.size > 1:
+            out.append(f"{p.slot}_SIZE = {p.size}")
+        k += p.size
+    out += [f"N_PARAMS = {k}", "", "",
+            "def __getattr__(name):",
+            "    if name.startswith(\"P_\") and _os.environ.get(\"%s\"):" % GENERATING,
+            "        return -1      # a slot a law declares, being numbered now (laws.generate)",
+            "    raise AttributeError(f\"module {__name__!r} has no attribute {name!r}\" + (",
+            "        \": a slot a law's PARAMETERS declare is numbered by `python -m dem_contact.laws.generate`\"",
+            "        if name.startswith(\"P_\") else \"\"))", ""]
+    return "\n".join(out)
 ALIASES = {"normal": "n", "tangential": "t", "twist": "q", "rolling": "r"}
 
 
@@ -16,6 +65,8 @@ def _switch(family, head, call):
     """A function ``head`` that returns ``call`` (with {m}: the law's module alias) for the law of the id (its
     first argument), as one conditional expression; the fall-through is the last law, and for the twist and
     rolling families the law of id 0, none (a row that records no law: id -1)."""
+    from . import table
+
     laws = table.FAMILIES[family]
     arg = head.split("(")[1].split(",")[0]
     order = list(range(1, len(laws))) + [0] if family in ("twist", "rolling") else list(range(len(laws)))
@@ -25,6 +76,8 @@ def _switch(family, head, call):
 
 
 def source() -> str:
+    from . import table
+
     out = ['"""Law dispatch by id, generated from ``laws.table`` by ``python -m dem_contact.laws.generate``: do not',
            'edit (a test fails when it is out of date). The ids are the places of the laws in ``table.FAMILIES``."""',
            "from numba import njit", ""]
@@ -75,6 +128,8 @@ def source() -> str:
 
 def source_3d() -> str:
     """The switch of the single-contact 3D entry on the tangential law id, over ``compose.LEAVES``."""
+    from . import table
+
     laws = table.FAMILIES["tangential"]
     out = ['"""The 3D contact step by tangential law id, generated from ``laws.table`` by',
            '``python -m dem_contact.laws.generate``: do not edit."""',
@@ -90,9 +145,11 @@ def source_3d() -> str:
 
 
 def main():
+    os.environ[GENERATING] = "1"
+    TARGET_SLOTS.write_text(slots_source())
     TARGET.write_text(source())
     TARGET_3D.write_text(source_3d())
-    print(f"wrote {TARGET} and {TARGET_3D}")
+    print(f"wrote {TARGET_SLOTS}, {TARGET} and {TARGET_3D}")
 
 
 if __name__ == "__main__":

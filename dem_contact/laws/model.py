@@ -44,22 +44,6 @@ MODELS = MappingProxyType({
 #: Largest friction coefficient accepted (the failure map runs to 1e4).
 MAX_MU = 1e10
 
-#: Values of Scene(traction_yield=) that switch it on (True is "proportional").
-TRACTION_YIELD = ("proportional", "partial_slip")
-
-
-def _traction_yield(value):
-    """False, or the name of the traction distribution of the first-yield table (True: "proportional")."""
-    if value is False or value is None:
-        return False
-    if value is True:
-        return "proportional"
-    if isinstance(value, str) and value in TRACTION_YIELD:
-        return value
-    raise InputError(f"traction_yield = {value!r} is unknown; choose False, True or one of: "
-                     f"{', '.join(TRACTION_YIELD)}")
-
-
 def _law(name: str, family: str):
     laws = table.ids(family)
     if name not in laws:
@@ -85,6 +69,10 @@ def law_of(family: str, name: str):
     return _law(name, family)
 
 
+#: the settings the laws take, by name (``declare.Option``; ``laws.table.options``)
+OPTIONS = MappingProxyType({o.name: o for o in table.options()})
+
+
 class Scene:
     """A sphere against a wall or a second sphere, with a normal and a tangential law.
 
@@ -94,39 +82,19 @@ class Scene:
     body2 : Wall or Sphere
     mu : friction coefficient, >= 0
     normal : one of ``NORMAL_LAWS``; tangential : one of ``TANGENTIAL_LAWS``
-    e_n : target normal restitution: sets the dashpot of ``hertz_damped`` and ``linear``; for
-        ``thornton`` calibrates p_y at speed ``v_ref`` when the materials give no yield pressure.
-        ``hertz_damped`` accepts e_n = 0 (perfectly inelastic): it is the limit of infinite damping, and
-        any e_n below HERTZ_DAMPED_EN_FLOOR uses the dashpot of e_n = HERTZ_DAMPED_EN_FLOOR
-    v_ref : reference normal speed [m/s], needed by ``linear`` laws (stiffness matched to the Hertz
-        contact time at v_ref) and by the thornton calibration from e_n; for ``mdr`` the largest normal
-        speed expected (sets the extent of the springs). Refused by a scene none of whose laws takes it,
-        unless given as ``reference_speed(vn)`` (the run's speed, for laws that may or may not use one)
-    mdr_springs : number of MDR springs (cells on the half-line), ``mdr`` only (default MDR_SPRINGS)
-    mdr_max_radius : largest contact radius the MDR springs must cover [m] (``mdr`` only; default: the
-        maximum contact radius of a normal impact at v_ref, times MDR_RADIUS_MARGIN)
-    mdr_profile : Coulomb limit of the MDR laws (the laws that take it, ``laws.table``) during Thornton's plastic
-        loading: "truncated" (default), mu times the line load of the Hertz pressure truncated at p_y,
-        the distribution Thornton's force law is built on; "scaled", a Hertz-shaped limit scaled to mu N
-        (see ``laws.tangential.mdr``). Both are the same for elastic laws and for Thornton unloading.
-    traction_yield : ``thornton`` only: the limiting pressure falls with the traction the contact carries,
-        p_y g(|T|/N), g = first-yield pressure of a Hertz contact carrying that traction over that without
-        (Hamilton 1983 stresses, von Mises; ``laws.traction_yield``), tabulated for the Poisson ratio of
-        the yielding body. False (default): off; "proportional" (or True): the traction (|T|/N) p;
-        "partial_slip": the Cattaneo-Mindlin traction of the stick radius c/a = (1 - |T|/(mu N))^(1/3).
-    twist, rolling : the twist law (torque about the normal from the relative spin about it) and the rolling
-        law (torque across the normal from the relative rolling), for the 3D kernels (which take the relative
-        spin and return the torque, ``dem.contact3d.contact_force_torque``): ``"none"`` (default), or LAMMPS's
-        engine models, which are not contact mechanics of smooth spheres: twist ``"marshall"`` (coefficients
-        from the tangential law and the contact radius) or ``"sds"``, rolling ``"sds"`` (``laws.twist``,
-        ``laws.rolling``)
-    k_twist, gamma_twist, mu_twist : twist="sds" only (then required): spring [N m/rad], dashpot
-        [N m s/rad] and slider [m] (the limit is mu_twist N), LAMMPS's ``twisting sds`` coefficients
-    k_roll, gamma_roll, mu_roll : rolling="sds" only (then required): spring [N/m], dashpot [N s/m] and
-        slider [-] (the limit of the pseudo-force is mu_roll N, of the torque mu_roll R* N), LAMMPS's
-        ``rolling sds`` coefficients
     model : a named model that sets the laws and the time step: ``MODELS`` (``"thornton2001"``: Thornton
         et al. 2001, thornton + md). Its laws are not to be given as well.
+    twist, rolling : the twist law (torque about the normal from the relative spin about it) and the rolling
+        law (torque across the normal from the relative rolling), for the 3D kernels (which take the relative
+        spin and return the torque, ``dem.contact3d.contact_force_torque``): ``"none"`` (default), the exact
+        twist ``"deresiewicz"``, or LAMMPS's engine models, which are not contact mechanics of smooth spheres:
+        twist ``"marshall"`` (coefficients from the tangential law and the contact radius) or ``"sds"``,
+        rolling ``"sds"`` (``laws.twist``, ``laws.rolling``)
+    **options : the settings the laws take (``OPTIONS`` of the law files, ``laws.declare.Option``), listed
+        below with the laws that take them. A setting given to a scene none of whose laws takes it cannot act
+        and is refused; ``v_ref`` given as ``reference_speed(vn)`` (the run's speed, for code that builds
+        scenes of any laws) is the exception. ``e_n`` for ``hertz_damped`` accepts 0 (perfectly inelastic):
+        the limit of infinite damping, for which the dashpot of e_n = HERTZ_DAMPED_EN_FLOOR stands.
 
     A Scene is immutable (its attributes cannot be assigned: the parameter row, the calibrations and the
     constants cached by the impact functions are derived from them once): ``scene.replace(mu=0.1)`` returns
@@ -138,23 +106,18 @@ class Scene:
     #: the head-on impact under a normal law alone (``laws.normal_impact``), for the laws' calibrations
     integrate_normal = staticmethod(normal_impact)
 
-    #: the constructor's arguments, which ``replace`` accepts
-    ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "e_n", "v_ref", "mdr_springs", "mdr_max_radius",
-                 "mdr_profile", "traction_yield", "model", "twist", "rolling", "k_twist", "gamma_twist", "mu_twist",
-                 "k_roll", "gamma_roll", "mu_roll")
+    #: the constructor's arguments besides the laws' options
+    BASE_ARGUMENTS = ("sphere", "body2", "mu", "normal", "tangential", "model", "twist", "rolling")
 
     def __init__(self, sphere: Sphere, body2: Sphere | Wall, mu: float = 0.3, normal: str = table.DEFAULTS["normal"],
-                 tangential: str = table.DEFAULTS["tangential"], e_n: float | None = None, v_ref: float | None = None,
-                 mdr_springs: int | None = None, mdr_max_radius: float | None = None,
-                 mdr_profile: str = "truncated", traction_yield: bool | str = False, model: str | None = None,
-                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"],
-                 k_twist: float | None = None, gamma_twist: float | None = None, mu_twist: float | None = None,
-                 k_roll: float | None = None, gamma_roll: float | None = None, mu_roll: float | None = None):
-        self._args = dict(sphere=sphere, body2=body2, mu=mu, normal=normal, tangential=tangential, e_n=e_n,
-                          v_ref=v_ref, mdr_springs=mdr_springs, mdr_max_radius=mdr_max_radius,
-                          mdr_profile=mdr_profile, traction_yield=traction_yield, model=model, twist=twist,
-                          rolling=rolling, k_twist=k_twist, gamma_twist=gamma_twist, mu_twist=mu_twist,
-                          k_roll=k_roll, gamma_roll=gamma_roll, mu_roll=mu_roll)
+                 tangential: str = table.DEFAULTS["tangential"], model: str | None = None,
+                 twist: str = table.DEFAULTS["twist"], rolling: str = table.DEFAULTS["rolling"], **options):
+        unknown = [k for k in options if k not in OPTIONS]
+        if unknown:
+            raise InputError(f"{', '.join(map(repr, unknown))} is not a setting of Scene; valid: "
+                             f"{', '.join(self.ARGUMENTS)}")
+        self._args = dict(sphere=sphere, body2=body2, mu=mu, normal=normal, tangential=tangential, model=model,
+                          twist=twist, rolling=rolling, **{o.name: options.get(o.name, o.default) for o in OPTIONS.values()})
         if not isinstance(sphere, Sphere):
             raise InputError("sphere must be a Sphere")
         if not isinstance(body2, (Sphere, Wall)):
@@ -162,6 +125,8 @@ class Scene:
         self.sphere = sphere
         self.body2 = body2
         self.mu = check_finite("mu (friction coefficient)", mu, lo=0.0, hi=MAX_MU, lo_open=False)
+        for o in OPTIONS.values():
+            object.__setattr__(self, o.name, o.check(self._args[o.name]))
         self.model = model
         self.steps_per_contact = None       # the model's time-step practice (None: the integrator default)
         if model is not None:
@@ -169,7 +134,7 @@ class Scene:
                 raise InputError(f"model {model!r} is unknown; choose one of: {', '.join(MODELS)}")
             spec = MODELS[model]
             yields = any(b.material.p_y is not None for b in (sphere, body2))
-            model_normal = spec["normal"] if yields or e_n is not None else spec["normal_elastic"]
+            model_normal = spec["normal"] if yields or self.e_n is not None else spec["normal_elastic"]
             if (normal not in (table.DEFAULTS["normal"], model_normal)
                     or tangential not in (table.DEFAULTS["tangential"], spec["tangential"])):
                 raise InputError(f"model={model!r} sets the laws ({model_normal} + {spec['tangential']} here): "
@@ -187,11 +152,6 @@ class Scene:
         _law(rolling, "rolling")
         self.twist_id = table.law_id("twist", twist)
         self.rolling_id = table.law_id("rolling", rolling)
-        self.e_n = None if e_n is None else check_finite("e_n (normal restitution)", e_n, lo=0.0, hi=1.0,
-                                                                    lo_open=False)
-        self.v_ref = None if v_ref is None else check_finite("v_ref (reference normal speed, m/s)", v_ref, lo=0.0)
-        self.traction_yield = _traction_yield(traction_yield)
-        self.mdr_profile = mdr_profile
         self._refuse_options()
         self.pair = pr = pair_properties(sphere, body2)
         p = np.zeros(N_PARAMS)
@@ -205,25 +165,21 @@ class Scene:
         p[P_TWIST_LAW] = self.twist_id + 1
         p[P_ROLLING_LAW] = self.rolling_id + 1
         self.p_y = None
-        self.mdr_springs = 0
         self._params = p
         for law in self.laws:
             law.configure(self, p)
         # history slots after N_HIST_BASE (the laws with cells)
-        self.tangential_extra_slots = table.planar_extra(self.tangential_id, self.mdr_springs)
+        self.tangential_extra_slots = table.planar_extra(self.tangential_id, self.mdr_springs or 0)
         self._frozen = True
 
     def _refuse_options(self):
         """A law option given to laws that do not take it cannot act: refused."""
-        defaults = inspect.signature(Scene).parameters
         taken = sum((law.OPTIONS for law in self.laws), ())
-        for option in table.options():
-            if option == "v_ref" and isinstance(self._args["v_ref"], _ReferenceSpeed):
+        for option in OPTIONS.values():
+            if isinstance(self._args[option], _ReferenceSpeed):
                 continue
-            if option not in taken and self._args[option] != defaults[option].default:
-                takers = [f"{m.NAME} ({m.FAMILY})" for laws in table.FAMILIES.values() for m in laws
-                          if option in m.OPTIONS]
-                raise InputError(f"{option} applies to the laws {', '.join(takers)} only "
+            if option not in taken and self._args[option] != option.default:
+                raise InputError(f"{option} applies to the laws {', '.join(table.takers(option))} only "
                                  f"(here: {' + '.join(law.NAME for law in self.laws)})")
 
     def __setattr__(self, name, value):
@@ -247,16 +203,15 @@ class Scene:
     __replace__ = replace           # copy.replace (Python 3.13)
 
     def with_tangential(self, tangential: str, **changes) -> "Scene":
-        """``replace(tangential=..., **changes)`` for another tangential law: the settings that only the mdr
-        laws take (mdr_springs, mdr_max_radius, mdr_profile) go back to their defaults where the new law does
-        not take them (a cell count of one law is not one of another); every other setting is kept."""
-        defaults = inspect.signature(Scene).parameters
+        """``replace(tangential=..., **changes)`` for another tangential law: the settings of the old law that
+        no law of the new scene takes, and those that hold for one law only (``per_law``: a cell count of
+        one law is not one of another), go back to their defaults; every other setting is kept."""
         new = _law(tangential, "tangential")
         others = sum((law.OPTIONS for law in self.laws if law is not self.tangential_law), new.OPTIONS)
         drop = [] if tangential == self.tangential else [
-            k for k in self.tangential_law.OPTIONS if k not in others or k in ("mdr_springs", "mdr_max_radius")
-            if not (k == "v_ref" and isinstance(self._args["v_ref"], _ReferenceSpeed))]
-        reset = {k: defaults[k].default for k in drop if k not in changes}
+            o for o in self.tangential_law.OPTIONS if (o not in others or o.per_law)
+            and not isinstance(self._args[o], _ReferenceSpeed)]
+        reset = {o.name: o.default for o in drop if o not in changes}
         return self.replace(tangential=tangential, **{**reset, **changes})
 
     @property
@@ -342,6 +297,19 @@ class Scene:
             d.update(law.describe(self, p))
         return d
 
+
+
+def _signature():
+    """Scene's signature: the base arguments, then the laws' settings (keyword only, with their defaults)."""
+    P = inspect.Parameter
+    base = [q for q in inspect.signature(Scene.__init__).parameters.values() if q.kind != P.VAR_KEYWORD][1:]
+    return inspect.Signature(base + [P(o.name, P.KEYWORD_ONLY, default=o.default) for o in OPTIONS.values()])
+
+
+Scene.ARGUMENTS = Scene.BASE_ARGUMENTS + tuple(OPTIONS)
+Scene.__signature__ = _signature()
+Scene.__doc__ += "\n    Settings of the laws (``**options``):\n\n" + "\n".join(
+    f"    {o.name} : {o.describe()}; taken by {', '.join(table.takers(o))}" for o in OPTIONS.values()) + "\n"
 
 def _material_dict(m) -> dict:
     if m.is_rigid:

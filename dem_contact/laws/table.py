@@ -5,10 +5,12 @@ is derived from it.
 A law is one file in the folder of its family (``normal/``, ``tangential/``, ``twist/``, ``rolling/``)
 plus one row here. The file declares:
 
-- ``NAME``, ``FAMILY``, ``SOURCE`` (the paper and equation it implements), ``PARAMETERS`` (what it reads
-  from the parameter row, for the documentation), ``STATE`` (its history slots, by name); optional
-  ``OPTIONS`` (the ``Scene`` settings it takes beyond the common ones; a setting given to laws that do
-  not take it is refused; default none);
+- ``NAME``, ``FAMILY``, ``SOURCE`` (the paper and equation it implements), ``PARAMETERS`` (the slots of
+  the parameter row it reads, ``declare.Param``: ``laws.generate`` numbers the row from them, in table
+  order, after ``declare.COMMON``), ``STATE`` (its history slots, by name); optional ``OPTIONS`` (the
+  ``Scene`` settings it takes beyond the common ones, ``declare.Option``: name, unit, default, valid
+  values; ``Scene``, the presets and the command line take them from here, and a setting given to laws
+  that do not take it is refused; default none);
 - optional ``configure(scene, p)``: sets its slots of the parameter row ``p`` from the scene (materials,
   e_n, v_ref, its options), raising ``InputError`` for what it cannot act on; optional
   ``describe(scene, p)``: the derived parameters for reports (defaults: nothing to set, nothing to report);
@@ -25,7 +27,7 @@ plus one row here. The file declares:
   at normal force N and contact radius a: its slider's or Coulomb limit) and ``EXAMPLE`` (the Scene
   settings of a typical contact, which the contract tests use);
 - optional hooks that the integrators and checks ask instead of naming laws (defaults: none):
-  ``TAKES_E_N`` (True: a target restitution e_n acts on the law, a dashpot or a calibration); ``EXAMPLE``
+  ``EXAMPLE``
   (the Scene settings of a typical contact of the law, e.g. its target e_n, which the contract tests use);
   ``calibration_target(scene)``: ``(e_n, speed, what)``, the restitution the scene's law was calibrated for,
   the normal speed at which it holds (None: every speed) and a description, or None;
@@ -34,9 +36,11 @@ plus one row here. The file declares:
   contact radius [m] that the law's state covers (None: any); LAMMPS's equivalent model, where it has
   one (``lammps.native``): ``LAMMPS`` (normal and tangential laws: its name in ``pair granular``) and
   ``lammps_keywords(p)`` (twist and rolling laws: its keywords on the parameter row p; "" for none);
+  ``lammps_k_t(p)`` (tangential laws: the coefficient k_t of LAMMPS's equivalent tangential model, from
+  which its ``twisting marshall`` is scaled; default Mindlin's 8 G*);
 - family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
-  predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* the tangential laws may
-  read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
+  predicted velocity), ``PLASTIC`` (a Thornton-like state whose largest force F* and limiting pressure
+  p_y, the slot ``P_PY``, the tangential laws may read), ``contact_time(scene, vn)``, ``gap``, and where ``STATE`` is not empty ``store`` (writes the 3D
   state after the tangential law, which it may read); tangential laws ``VECTOR_SLOTS`` (fixed 3D slots, the
   work and the vector of ``laws.vector`` included), ``SWAP_NEGATE`` (the slots, relative to the
   tangential base, that change sign when the bodies are swapped), optional ``CELLS`` (default False: a
@@ -58,6 +62,9 @@ After a change here or in a law's declarations, ``python -m dem_contact.laws.gen
 ``laws/dispatch.py`` again (a test fails while it is out of date).
 """
 from types import MappingProxyType
+
+from . import declare
+from .slots import P_GSTAR
 
 from .normal import hertz, hertz_damped, thornton
 from .normal import linear as linear_normal
@@ -104,12 +111,37 @@ def law(family: str, key):
 
 
 def options() -> tuple:
-    """Every Scene option that some law takes, in table order."""
+    """Every Scene option that some law takes (``declare.Option``), in table order."""
     seen = []
     for laws in FAMILIES.values():
         for m in laws:
             seen += [o for o in m.OPTIONS if o not in seen]
     return tuple(seen)
+
+
+def option(name: str):
+    """The ``declare.Option`` of the Scene option ``name``."""
+    return {o.name: o for o in options()}[name]
+
+
+def takers(name: str) -> list:
+    """The laws that take the Scene option ``name``, as "law (family)"."""
+    return [f"{m.NAME} ({m.FAMILY})" for laws in FAMILIES.values() for m in laws if name in m.OPTIONS]
+
+
+def parameters() -> tuple:
+    """The slots of the parameter row, in row order (``declare.Param``): ``declare.COMMON``, then those the laws
+    declare, in table order, each slot once (where several laws read it, the first one's declaration)."""
+    seen = {}
+    for p in declare.COMMON + tuple(p for laws in FAMILIES.values() for m in laws for p in m.PARAMETERS):
+        seen.setdefault(p.slot, p)
+    return tuple(seen.values())
+
+
+def parameter_readers(slot: str) -> list:
+    """The laws that declare the slot ``slot`` ("family name")."""
+    return [f"{m.FAMILY} {m.NAME}" for laws in FAMILIES.values() for m in laws
+            if any(p.slot == slot for p in m.PARAMETERS)]
 
 
 def twist_base(nid: int) -> int:
@@ -169,11 +201,16 @@ def _no_lammps(p):
     return None
 
 
+def _mindlin_k_t(p):
+    return 8.0 * p[P_GSTAR]
+
+
 #: the optional declarations and their defaults (set here on the law files that leave them out)
 OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing,
-                             "SWAP_NEGATE": (), "VECTORS": (), "TAKES_E_N": False, "EXAMPLE": MappingProxyType({}),
+                             "SWAP_NEGATE": (), "VECTORS": (), "EXAMPLE": MappingProxyType({}),
                              "calibration_target": _no_target, "hint": _no_hint, "max_radius": _unbounded,
-                             "LAMMPS": None, "lammps_keywords": _no_lammps})
+                             "LAMMPS": None, "lammps_keywords": _no_lammps,
+                             "lammps_k_t": _mindlin_k_t})
 
 #: the situations a law's ``hint`` may explain (an impact's failure or warning, by the law's own reasons)
 HINT_SITUATIONS = ("long_contact", "coarse_step", "impulse_excess")
@@ -188,10 +225,22 @@ def _check():
                 if not hasattr(m, attr):
                     setattr(m, attr, default)
             assert m.FAMILY == family, f"{m.__name__} declares family {m.FAMILY}, listed under {family}"
+            assert all(isinstance(o, declare.Option) for o in m.OPTIONS), f"{m.__name__}: OPTIONS are declare.Option"
+            assert all(isinstance(p, declare.Param) for p in m.PARAMETERS), f"{m.__name__}: PARAMETERS: declare.Param"
+            # whether a target restitution e_n acts on the law (a dashpot or a calibration)
+            m.TAKES_E_N = declare.E_N in m.OPTIONS
             for attr in ("SOURCE", "PARAMETERS", "STATE", "OPTIONS", "configure", "describe", "vector"):
                 assert hasattr(m, attr), f"{m.__name__} lacks {attr}"
         assert DEFAULTS[family] in names
     assert max(len(m.STATE) for m in FAMILIES["normal"]) <= MAX_NORMAL_STATE
+    for name in {o.name for o in options()}:
+        decl = {id(o) for laws in FAMILIES.values() for m in laws for o in m.OPTIONS if o.name == name}
+        assert len(decl) == 1, f"the laws that take {name} must list the same declare.Option"
+    for p in parameters():
+        same = {(q.unit, q.size) for laws in FAMILIES.values() for m in laws for q in m.PARAMETERS if q.slot == p.slot}
+        assert len(same) <= 1, f"laws declare the slot {p.slot} with different units or sizes"
+    for m in FAMILIES["normal"]:
+        assert not m.PLASTIC or "P_PY" in {p.slot for p in m.PARAMETERS}, f"{m.__name__}: a PLASTIC law sets P_PY"
     for f in ("twist", "rolling"):
         for m in FAMILIES[f]:
             assert all(0 <= k < m.VECTOR_SLOTS for k in m.SWAP_NEGATE), f"{m.__name__}: SWAP_NEGATE outside its slots"

@@ -55,7 +55,7 @@ import functools
 import numpy as np
 
 from ..errors import InputError
-from .slots import TY_MAX_NODES
+from .slots import P_TY_TABLE_SIZE
 
 
 def _aux(x, y, z):
@@ -196,7 +196,7 @@ def max_von_mises(nu: float, mu_eff: float, stick: float = 0.0):
 
 
 #: Number of uniform nodes of mu_eff in the first-yield table (the slots the parameter row has for it).
-TABLE_NODES = TY_MAX_NODES
+TABLE_NODES = P_TY_TABLE_SIZE
 
 
 #: The traction distributions of the first-yield table, by name (``Scene(traction_yield=)``).

@@ -3,23 +3,17 @@ import math
 
 from numba import njit
 
-from ...errors import InputError
 from .. import closed_forms as cf
+from ..declare import ESTAR, RSTAR
 from ..slots import P_ESTAR, P_RSTAR
 from ..vector import JIT
 
 NAME, FAMILY = "hertz", "normal"
 SOURCE = "Hertz (Johnson 1985), elastic"
-PARAMETERS, STATE = ("E_star", "R_star"), ()
+PARAMETERS, STATE = (ESTAR, RSTAR), ()
 USES_RATE, PLASTIC = False, False
 #: LAMMPS's equivalent normal model (``pair granular``; see ``lammps.native``)
 LAMMPS = "hertz/material"
-
-
-def configure(scene, p):
-    if scene.e_n is not None:
-        raise InputError("e_n cannot act on the hertz law (elastic, e_n = 1): use hertz_damped or linear for a "
-                         "restitution, or thornton to calibrate its yield pressure from e_n")
 
 
 def contact_time(scene, vn):

@@ -10,15 +10,18 @@ from numba import njit
 
 from ...errors import InputError
 from .. import closed_forms as cf
+from ..declare import E_N, ESTAR, MSTAR, RSTAR, Param
 from ..slots import N_HIST_BASE, N_PARAMS, P_ESTAR, P_GAMMA, P_MSTAR, P_RSTAR
 from ..vector import JIT
 from .hertz import hertz, hertz_vector
 
 NAME, FAMILY = "hertz_damped", "normal"
 SOURCE = "Hertz + dashpot 2 gamma sqrt(m* k_n) d(delta)/dt, force clamped at 0, gamma calibrated for e_n"
-PARAMETERS, STATE = ("E_star", "R_star", "m_star", "gamma"), ()
+#: the dashpot ratio, shared with the linear law
+GAMMA = Param("gamma", "P_GAMMA", "dashpot ratio gamma", "-")
+PARAMETERS, STATE = (ESTAR, RSTAR, MSTAR, GAMMA), ()
+OPTIONS = (E_N,)
 USES_RATE, PLASTIC = True, False
-TAKES_E_N = True
 #: the Scene settings of a typical contact of this law (the contract tests use them)
 EXAMPLE = {"e_n": 0.3}
 

@@ -8,15 +8,19 @@ from numba import njit
 
 from ...errors import InputError
 from .. import closed_forms as cf
+from ..declare import E_N, MSTAR, RSTAR, V_REF, Param
 from ..slots import P_GAMMA, P_KN, P_KT, P_MSTAR, P_RSTAR
 from ..vector import JIT
 
 NAME, FAMILY = "linear", "normal"
 SOURCE = "linear spring-dashpot, stiffness matched to the Hertz contact time at v_ref, closed-form e_n"
-PARAMETERS, STATE = ("k_n", "gamma", "m_star", "R_star"), ()
-OPTIONS = ("v_ref",)
+#: the stiffnesses of the linear laws of both families (``linear_stiffness``)
+KN = Param("k_n", "P_KN", "linear normal stiffness k_n", "N/m")
+KT = Param("k_t", "P_KT", "linear tangential stiffness k_t", "N/m")
+GAMMA = Param("gamma", "P_GAMMA", "dashpot ratio gamma", "-")
+PARAMETERS, STATE = (KN, KT, GAMMA, MSTAR, RSTAR), ()
+OPTIONS = (E_N, V_REF)
 USES_RATE, PLASTIC = True, False
-TAKES_E_N = True
 #: the Scene settings of a typical contact of this law (the contract tests use them)
 EXAMPLE = {"e_n": 0.3}
 

@@ -18,6 +18,7 @@ from numba import njit
 
 from ...errors import InputError
 from .. import closed_forms as cf
+from ..declare import E_N, ESTAR, RSTAR, V_REF, Option, Param
 from ..slots import (H_DP, H_DSTAR, H_FSTAR, H_N, H_RP, H_T, P_DELTA_Y, P_ESTAR, P_F_Y, P_MU, P_PY, P_RSTAR,
                      P_TY_DMU, P_TY_NODES, P_TY_TABLE)
 from ..vector import JIT, V_STATE
@@ -26,12 +27,41 @@ from .hertz import hertz_vector
 
 NAME, FAMILY = "thornton", "normal"
 SOURCE = "Thornton (1997) elastic-perfectly plastic, limiting contact pressure p_y"
-PARAMETERS = ("E_star", "R_star", "p_y", "delta_y", "F_y", "traction-yield table")
+#: the normal law's limiting contact pressure (0: elastic), which the tangential laws may read (``PLASTIC``)
+PY = Param("p_y", "P_PY", "limiting contact pressure p_y (0: none)", "Pa")
+#: nodes of the first-yield table (``traction_yield``)
+TABLE_NODES = 16
+PARAMETERS = (ESTAR, RSTAR, PY, Param("delta_y", "P_DELTA_Y", "yield overlap delta_y", "m"),
+              Param("F_y", "P_F_Y", "yield force F_y", "N"),
+              Param("table nodes", "P_TY_NODES", "nodes of the traction-yield table, 0 = off"),
+              Param("table spacing", "P_TY_DMU", "spacing of the traction-yield table in mu_eff = |T|/N", "-"),
+              Param("traction-yield table", "P_TY_TABLE", "p0(mu_eff)/p0(0) at mu_eff = 0, P_TY_DMU, ...",
+                    size=TABLE_NODES))
+#: values of traction_yield that switch it on (True is "proportional")
+TRACTION_YIELD = ("proportional", "partial_slip")
 #: 3D history slots (the planar row has the first four, and reads |T| / N from its header)
 STATE = ("delta_star", "F_star", "R_p", "delta_p", "|T| / N of the last step (traction_yield; -1: N = 0)")
-OPTIONS = ("traction_yield", "v_ref")
+
+
+def _traction_yield(value):
+    """False, or the name of the traction distribution of the first-yield table (True: "proportional")."""
+    if value is False or value is None:
+        return False
+    if value is True:
+        return "proportional"
+    if isinstance(value, str) and value in TRACTION_YIELD:
+        return value
+    raise InputError(f"traction_yield = {value!r} is unknown; choose False, True or one of: "
+                     f"{', '.join(TRACTION_YIELD)}")
+
+
+OPTIONS = (E_N, V_REF, Option(
+    "traction_yield", "the limiting pressure falls with the traction |T|/N the contact carries, as the "
+    "first-yield pressure of a Hertz contact under that traction (Hamilton 1983); the traction is (|T|/N) p "
+    "(proportional, the value without an argument) or the Cattaneo-Mindlin traction of stick radius "
+    "c/a = (1 - |T|/(mu N))^(1/3) (partial_slip)", default=False, parse=_traction_yield,
+    cli=dict(nargs="?", const="proportional", choices=list(TRACTION_YIELD))))
 USES_RATE, PLASTIC = False, True
-TAKES_E_N = True
 #: the Scene settings of a typical contact of this law (p_y calibrated for e_n at the scene's v_ref; the
 #: contract tests use them)
 EXAMPLE = {"e_n": 0.7}

@@ -25,14 +25,21 @@ import math
 
 from numba import njit
 
+from ..declare import RSTAR, Param, non_negative, positive
 from ..slots import P_GAMMA_ROLL, P_K_ROLL, P_MU_ROLL, P_RSTAR
 from ..twist.sds import configure_sds
 from ..vector import JIT
 
 NAME, FAMILY = "sds", "rolling"
 SOURCE = "LAMMPS rolling sds: spring-dashpot-slider on the rolling displacement (Wang et al. 2015, eq. 31)"
-PARAMETERS, STATE = ("k_roll", "gamma_roll", "mu_roll"), ("h_x", "h_y", "h_z")
-OPTIONS = ("k_roll", "gamma_roll", "mu_roll")
+PARAMETERS = (Param("k_roll", "P_K_ROLL", "rolling spring k_roll", "N/m"),
+              Param("gamma_roll", "P_GAMMA_ROLL", "rolling dashpot gamma_roll", "N s/m"),
+              Param("mu_roll", "P_MU_ROLL", "rolling slider mu_roll (the limit of the pseudo-force is mu_roll N)", "-"),
+              RSTAR)
+STATE = ("h_x", "h_y", "h_z")
+#: LAMMPS's rolling sds coefficients (all required)
+OPTIONS = (positive("k_roll", "rolling sds: spring", "N/m"), non_negative("gamma_roll", "rolling sds: dashpot", "N s/m"),
+           non_negative("mu_roll", "rolling sds: Coulomb limit per unit normal force", ""))
 VECTOR_SLOTS = 3
 VECTORS = (0,)
 #: LAMMPS's EPSILON of gran_sub_mod_rolling.cpp (the history is turned into the tangent plane only above it)
@@ -105,9 +112,8 @@ def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
 
 
 def configure(scene, p):
-    configure_sds(scene, p, "rolling='sds'", "LAMMPS's rolling sds coefficients",
-                  (("k_roll", "rolling spring", "N/m", P_K_ROLL), ("gamma_roll", "rolling dashpot", "N s/m",
-                   P_GAMMA_ROLL), ("mu_roll", "rolling slider", "", P_MU_ROLL)))
+    configure_sds(scene, p, "rolling='sds'", "LAMMPS's rolling sds coefficients", OPTIONS, (P_K_ROLL, P_GAMMA_ROLL,
+                                                                                        P_MU_ROLL))
 
 
 def describe(scene, p):

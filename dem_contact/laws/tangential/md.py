@@ -9,13 +9,14 @@ import math
 import numpy as np
 from numba import njit
 
+from ..declare import GSTAR, MU
 from ..slots import H_REGIME, H_SIGN, H_T, H_TS, H_TSS, P_GSTAR, P_MU
 from ..vector import JIT, V_A, V_N, W_WORK, W_X, W_Y, W_Z, carry_unit, renamed
 from .common import mean_radius, release
 
 NAME, FAMILY = "md", "tangential"
 SOURCE = "Thornton & Yin (1991) incremental Mindlin-Deresiewicz"
-PARAMETERS, STATE = ("G_star", "mu"), ("T", "T*", "T**", "regime", "sign")
+PARAMETERS, STATE = (GSTAR, MU), ("T", "T*", "T**", "regime", "sign")
 RESCALE = False
 
 # 3D slots relative to the tangential base b: the work, the axis u (W_X, W_Y, W_Z), then these

@@ -44,14 +44,21 @@ from numba import njit
 
 from ...errors import InputError
 from ...materials import check_finite
+from ..declare import ESTAR, GSTAR, MU, RSTAR, V_REF, Option, Param
 from ..slots import (H_FSTAR, H_T, H_TANG_EXTRA, P_DX, P_ESTAR, P_GSTAR, P_MDR_PROFILE, P_MU, P_NSPRING, P_PY,
                      P_RSTAR)
 from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, carry_unit, renamed
 
 NAME, FAMILY = "mdr", "tangential"
 SOURCE = "exact reference: method of dimensionality reduction (Popov & Hess), springs on a half-line"
-PARAMETERS, STATE = ("E_star", "G_star", "R_star", "mu", "p_y", "n", "dx", "profile"), ("T", "cells")
-OPTIONS = ("mdr_springs", "mdr_max_radius", "mdr_profile", "v_ref")
+PARAMETERS = (ESTAR, GSTAR, RSTAR, MU,
+              Param("p_y", "P_PY", "the normal law's limiting contact pressure (0: none)", "Pa"),
+              Param("n", "P_NSPRING", "number of cells (springs) of the MDR laws"),
+              Param("dx", "P_DX", "cell width of the fixed MDR grid", "m"),
+              Param("profile", "P_MDR_PROFILE", "Coulomb-limit profile of the MDR laws: 0 the pressure the normal "
+                    "law implies (Hertz truncated at p_y during Thornton's plastic loading), 1 a Hertz shape "
+                    "scaled to N"))
+STATE = ("T", "cells")
 #: the state has a cell part sized by the cell count (the parameter n): one slot per cell in the plane,
 #: two in 3D (a displacement in the frame e1, e2)
 CELLS = True
@@ -98,11 +105,19 @@ SWAP_NEGATE_CELL = 1
 NAN_HINT = "beyond the fixed MDR grid?"
 
 
+#: the settings of the MDR laws (``mdr_adaptive`` takes the cell count and the profile)
+SPRINGS = Option("mdr_springs", "number of MDR springs (cells on the half-line; mdr_adaptive: an even cell count)",
+                 per_law=True)
+MAX_RADIUS = Option("mdr_max_radius", "largest contact radius the MDR springs must cover (default: that of a "
+                    "normal impact at v_ref, times MDR_RADIUS_MARGIN)", "m", per_law=True)
+PROFILE = Option("mdr_profile", "Coulomb limit of the MDR laws during Thornton's plastic loading: truncated, mu "
+                 "times the line load of the Hertz pressure truncated at p_y; scaled, a Hertz shape scaled to mu N",
+                 default="truncated", choices=MDR_PROFILES, cli={})
+OPTIONS = (SPRINGS, MAX_RADIUS, PROFILE, V_REF)
+
+
 def set_profile(scene, p):
-    profile = scene.mdr_profile
-    if profile not in MDR_PROFILES:
-        raise InputError(f"mdr_profile = {profile!r} is unknown; choose one of: {', '.join(MDR_PROFILES)}")
-    p[P_MDR_PROFILE] = MDR_PROFILES[profile]
+    p[P_MDR_PROFILE] = MDR_PROFILES[scene.mdr_profile]
 
 
 def configure(scene, p):

@@ -7,13 +7,13 @@ from numba import njit
 
 from ...errors import InputError
 from ..slots import H_T, H_TANG_EXTRA, P_NSPRING, P_RSTAR
-from .mdr import (PARAMETERS, SWAP_NEGATE_ADAPTIVE, SWAP_NEGATE_CELL, VECTOR_SLOTS_ADAPTIVE, _advance, _cells,  # noqa: F401
+from .mdr import (PARAMETERS, PROFILE, SPRINGS, SWAP_NEGATE_ADAPTIVE, SWAP_NEGATE_CELL, VECTOR_SLOTS_ADAPTIVE, _advance, _cells,  # noqa: F401
                   _merge, _release, _split, initial_width, set_profile, shrink_edge, vector_form)
 
 NAME, FAMILY = "mdr_adaptive", "tangential"
 SOURCE = "method of dimensionality reduction with few cells on a grid that follows the contact"
 STATE = ("T", "cell width", "cells")
-OPTIONS = ("mdr_springs", "mdr_profile")
+OPTIONS = (SPRINGS, PROFILE)
 CELLS = True
 #: planar slots before the cells: the cell width
 CELL_HEADER = 1

@@ -3,13 +3,14 @@ capped at mu N. In 3D T is a vector of the tangent plane, carried into the curre
 (LAMMPS's arithmetic)."""
 from numba import njit
 
+from ..declare import GSTAR, MU
 from ..slots import H_T, P_GSTAR, P_KT, P_MU
 from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry, renamed
 from .common import cap, release
 
 NAME, FAMILY = "mindlin_incremental", "tangential"
 SOURCE = "incremental Hertz-Mindlin force (Yade, LAMMPS mindlin/force)"
-PARAMETERS, STATE = ("G_star", "mu"), ("T",)
+PARAMETERS, STATE = (GSTAR, MU), ("T",)
 #: scale T by a / a_old when the contact shrinks
 RESCALE = False
 #: k_t the constant parameter of the linear law (its variant in tangential/linear.py)

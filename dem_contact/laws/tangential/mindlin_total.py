@@ -3,13 +3,14 @@ granular `mindlin`): a spring displacement xi takes every increment, T = 8 G* a 
 back to mu N with xi = T / (8 G* a). In 3D xi is a vector of the tangent plane (LAMMPS's arithmetic)."""
 from numba import njit
 
+from ..declare import GSTAR, MU
 from ..slots import H_T, H_XI, P_GSTAR, P_MU
 from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry, renamed
 from .common import cap, release
 
 NAME, FAMILY = "mindlin_total", "tangential"
 SOURCE = "total-displacement no-slip Hertz-Mindlin (LIGGGHTS tangential history, EDEM, LAMMPS mindlin)"
-PARAMETERS, STATE = ("G_star", "mu"), ("xi", "T")
+PARAMETERS, STATE = (GSTAR, MU), ("xi", "T")
 #: LAMMPS's equivalent tangential model (``pair granular ... tangential``; see ``lammps.native``)
 LAMMPS = "mindlin"
 #: stiffness factor on 8 G* a

@@ -73,6 +73,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..declare import MU, RSTAR, Param
 from ..slots import P_G_TWIST, P_MU, P_RSTAR
 from ..tangential.mdr import initial_width_ldexp
 from ..vector import JIT, V_A
@@ -80,7 +81,7 @@ from ..vector import JIT, V_A
 NAME, FAMILY = "deresiewicz", "twist"
 SOURCE = ("Lubkin 1951 (J. Appl. Mech. 18:183), Deresiewicz 1954 (J. Appl. Mech. 21:52): exact, by flat-punch "
           "superposition (Jaeger 1995) on springs over the punch radius")
-PARAMETERS = ("G_c", "mu", "R_star")
+PARAMETERS = (Param("G_c", "P_G_TWIST", "shear modulus of the twist G_c, 1/G_c = 1/G1 + 1/G2", "Pa"), MU, RSTAR)
 STATE = ("M", "work", "ds", "cells")
 
 #: cells over the punch radius s (the contact covers between n/4 and n of them)

@@ -18,13 +18,14 @@ step, its quirks and the sign convention are those of ``laws.twist.sds``.
 """
 from numba import njit
 
-from ..slots import P_GAMMA_TWIST, P_GSTAR, P_K_TWIST, P_KT, P_MU
+from ..declare import MU
+from ..slots import P_GAMMA_TWIST, P_K_TWIST, P_MU
 from ..vector import JIT
-from .sds import VECTOR_SLOTS, spring_dashpot_slider  # noqa: F401
+from .sds import GAMMA, K, VECTOR_SLOTS, spring_dashpot_slider  # noqa: F401
 
 NAME, FAMILY = "marshall", "twist"
 SOURCE = "LAMMPS twisting marshall: sds with k = 0.5 k_t a^2, mu = (2/3) mu a (Marshall 2009, eq. 32)"
-PARAMETERS, STATE = ("k_t", "mu"), ("xi",)
+PARAMETERS, STATE = (K, GAMMA, MU), ("xi",)
 
 #: LAMMPS's TWOTHIRDS (math_const.h)
 TWOTHIRDS = 2.0 / 3.0
@@ -54,8 +55,9 @@ def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
 
 
 def configure(scene, p):
-    """k_t of LAMMPS's tangential model: the linear law's, else Mindlin's 8 G* (``tangential mindlin NULL``)."""
-    p[P_K_TWIST] = p[P_KT] if scene.tangential == "linear" else 8.0 * p[P_GSTAR]
+    """k_t of LAMMPS's tangential model (the tangential law's ``lammps_k_t``: Mindlin's 8 G* of ``tangential
+    mindlin NULL``, or the linear law's k_t)."""
+    p[P_K_TWIST] = scene.tangential_law.lammps_k_t(p)
     p[P_GAMMA_TWIST] = 0.0
 
 

@@ -25,14 +25,23 @@ import math
 from numba import njit
 
 from ...errors import InputError
-from ...materials import check_finite
+from ..declare import Param, non_negative, positive
 from ..slots import P_GAMMA_TWIST, P_K_TWIST, P_MU_TWIST
 from ..vector import JIT
 
 NAME, FAMILY = "sds", "twist"
 SOURCE = "LAMMPS twisting sds: spring-dashpot-slider (Marshall 2009, eqs. 30, 34, 44)"
-PARAMETERS, STATE = ("k_twist", "gamma_twist", "mu_twist"), ("xi",)
-OPTIONS = ("k_twist", "gamma_twist", "mu_twist")
+#: the spring and the dashpot, whose slots the marshall twist sets from the tangential law
+K = Param("k_twist", "P_K_TWIST", "twist spring k_twist (marshall: the tangential coefficient k_t it is scaled from)",
+          "N m/rad")
+GAMMA = Param("gamma_twist", "P_GAMMA_TWIST", "twist dashpot gamma_twist (marshall: the tangential damping it is "
+              "scaled from)", "N m s/rad")
+PARAMETERS = (K, GAMMA, Param("mu_twist", "P_MU_TWIST", "twist slider mu_twist (the limit is mu_twist N)", "m"))
+STATE = ("xi",)
+#: LAMMPS's twisting sds coefficients (all required)
+OPTIONS = (positive("k_twist", "twist sds: spring", "N m/rad"),
+           non_negative("gamma_twist", "twist sds: dashpot", "N m s/rad"),
+           non_negative("mu_twist", "twist sds: Coulomb limit per unit normal force", "m"))
 VECTOR_SLOTS = 1
 #: the Scene settings of a typical contact of this law (a 2 mm steel sphere; the contract tests use them)
 EXAMPLE = {"k_twist": 1.0, "gamma_twist": 1e-6, "mu_twist": 1e-4}
@@ -73,24 +82,20 @@ def vector(params, row, H, c, b, N, a, nx, ny, nz, wx, wy, wz, dt):
 
 
 def configure(scene, p):
-    configure_sds(scene, p, "twist='sds'", "LAMMPS's twisting sds coefficients",
-                  (("k_twist", "twist spring", "N m/rad", P_K_TWIST), ("gamma_twist", "twist dashpot", "N m s/rad",
-                   P_GAMMA_TWIST), ("mu_twist", "twist slider", "m", P_MU_TWIST)))
+    configure_sds(scene, p, "twist='sds'", "LAMMPS's twisting sds coefficients", OPTIONS, (P_K_TWIST, P_GAMMA_TWIST,
+                                                                                       P_MU_TWIST))
 
 
-def configure_sds(scene, p, law, source, coefficients):
-    """Check and store the spring, dashpot and slider coefficients of a spring-dashpot-slider engine model
-    (LAMMPS's twisting and rolling sds): coefficients, rows of (Scene argument, what it is, unit, parameter
-    slot); the spring > 0, the dashpot and the slider >= 0. InputError naming the missing or bad one."""
-    args = scene.arguments
-    missing = [name for name, *_ in coefficients if args[name] is None]
+def configure_sds(scene, p, law, source, options, slots):
+    """Store the spring, dashpot and slider coefficients of a spring-dashpot-slider engine model (LAMMPS's
+    twisting and rolling sds; the Options, checked by Scene, and their slots), InputError naming those
+    missing."""
+    missing = [o for o in options if getattr(scene, o) is None]
     if missing:
-        (k, _, ku, _), (g, _, gu, _), (m, _, mu_, _) = coefficients
-        raise InputError(f"{law} needs {', '.join(missing)} ({k} > 0 [{ku}], {g} >= 0 [{gu}], {m} >= 0"
-                         f"{f' [{mu_}]' if mu_ else ''}: {source})")
-    for q, (name, what, unit, slot) in enumerate(coefficients):
-        label = f"{name} ({what}, {unit})" if unit else f"{name} ({what})"
-        p[slot] = check_finite(label, args[name], lo=0.0, lo_open=q == 0)
+        raise InputError(f"{law} needs {', '.join(missing)} ({'; '.join(f'{o}: {o.describe()}' for o in options)}: "
+                         f"{source})")
+    for o, slot in zip(options, slots):
+        p[slot] = getattr(scene, o)
 
 
 def describe(scene, p):
