@@ -4,7 +4,9 @@ numba keys a cached kernel on the source file of the function it compiles, but t
 other files (``laws/*.py``): an edit there, or a new version of the package installed over an old one, would
 leave every kernel that inlines them at the old numbers. This module registers cache locators (numba's
 ``CacheImpl._locator_classes``, consulted in order) that serve the package's files, and files a user
-registers with ``follow_kernels``, exactly as numba's own (same folders: ``NUMBA_CACHE_DIR``, the source's
+registers with ``follow_kernels``, and every jitted function whose globals reach the package (a function or a
+module of the package, directly or through other jitted functions: a user's loop that calls ``contact_force``),
+exactly as numba's own (same folders: ``NUMBA_CACHE_DIR``, the source's
 ``__pycache__`` or the user-wide cache), with the source stamp widened to a hash of every kernel source of the
 package (``kernel_sources_hash``). Any change to those sources invalidates every such cache entry; an unchanged
 package reuses them.
@@ -17,6 +19,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import os
+import types
 
 from numba.core import caching
 
@@ -55,9 +58,34 @@ def follow_kernels(path: str) -> None:
     _FOLLOWED.add(os.path.abspath(path))
 
 
-def _served(py_file) -> bool:
+def _of_package(name) -> bool:
+    return isinstance(name, str) and (name == "dem_contact" or name.startswith("dem_contact."))
+
+
+def _reaches_package(py_func, seen=None) -> bool:
+    """Whether the globals of ``py_func`` hold a module or a function of the package, directly or in the
+    globals of the jitted functions (numba dispatchers) it holds: then its compiled code may inline laws."""
+    seen = set() if seen is None else seen
+    if id(py_func) in seen:
+        return False
+    seen.add(id(py_func))
+    for v in list(getattr(py_func, "__globals__", {}).values()):
+        if isinstance(v, types.ModuleType):
+            if _of_package(v.__name__):
+                return True
+            continue
+        inner = getattr(v, "py_func", None)
+        if _of_package(getattr(inner if inner is not None else v, "__module__", None)):
+            return True
+        if inner is not None and _reaches_package(inner, seen):
+            return True
+    return False
+
+
+def _served(py_file, py_func=None) -> bool:
     path = os.path.abspath(py_file)
-    return path.startswith(PACKAGE_DIR + os.sep) or path in _FOLLOWED
+    return (path.startswith(PACKAGE_DIR + os.sep) or path in _FOLLOWED
+            or (py_func is not None and _reaches_package(py_func)))
 
 
 class _KernelStamp:
@@ -66,7 +94,7 @@ class _KernelStamp:
 
     @classmethod
     def from_function(cls, py_func, py_file):
-        if not _served(py_file):
+        if not _served(py_file, py_func):
             return None
         return super().from_function(py_func, py_file)
 

@@ -259,7 +259,7 @@ def test_hertz_damped_full_damping_rebound():
 
 
 def test_twist_shear_pure_shear_with_default_cells():
-    """laws.md: pure shear is mdr_adaptive on the same cells (tests/test_twist_shear.py); with the defaults
+    """laws.md: pure shear is mdr_adaptive on the same cells (tests/laws/test_twist_shear.py); with the defaults
     (twist_shear_path 32 cells, mdr_adaptive 16) they differ by 9.1e-3 mu N on this loading, reversal and
     turn (the path of test_twist_shear.test_pure_shear_is_the_vector_mdr_law)."""
     import math

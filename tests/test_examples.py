@@ -5,6 +5,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import _have_lammps
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -21,15 +22,6 @@ CASES = {
 NEEDS_LAMMPS = {"lammps_impact.py", "lammps_pour.py"}
 #: examples run by other tests: test_lammps_scene.py runs them --small, against LAMMPS's own models
 ELSEWHERE = {"lammps_drum.py", "lammps_hopper.py"}
-
-
-def _have_lammps():
-    try:
-        from dem_contact.lammps import lammps_module
-        lammps_module()
-        return True
-    except ImportError:
-        return False
 
 
 def test_every_example_is_listed():

@@ -209,3 +209,12 @@ def test_no_law_chosen_by_name_outside_laws():
             if (name, law) not in NAMED_BY_USER:
                 bad.append(f"{name}:{line} compares with {law!r}")
     assert not bad, "\n".join(bad)
+
+
+def test_the_tests_mirror_the_rooms():
+    """Every folder of tests/ (but the benchmarks) is a room of the package, and every test file sits in the
+    folder of its room, but the tests of the whole package (its layout, its documentation, its examples)."""
+    tests = pathlib.Path(__file__).parent
+    folders = {p.name for p in tests.iterdir() if p.is_dir() and not p.name.startswith((".", "__"))} - {"benchmarks"}
+    assert folders and folders <= set(ALLOWED), folders - set(ALLOWED)
+    assert {p.name for p in tests.glob("test_*.py")} == {"test_layout.py", "test_docs.py", "test_examples.py"}

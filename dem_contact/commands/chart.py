@@ -5,6 +5,7 @@ import os
 import sys
 
 from ..errors import InputError
+from ..laws.model import NORMAL_LAWS
 from .common import add_out_dir, check_output_dir
 
 ORDER = 4
@@ -23,8 +24,8 @@ def add_options(p):
     p.add_argument("--full", action="store_true",
                    help="all steps per contact from 5 to 1e4 and 41 values of Theta")
     p.add_argument("--laws", nargs="+", default=None, help="tangential laws (default: all)")
-    p.add_argument("--normals", nargs="+", default=None, choices=["hertz", "thornton"],
-                   help="normal laws (default: hertz thornton)")
+    p.add_argument("--normals", nargs="+", default=None, choices=list(NORMAL_LAWS),
+                   help="normal laws (default: hertz thornton; the laws that take e_n are set for e_n = 0.7)")
     p.add_argument("--steps", nargs="+", type=float, default=None,
                    help="steps per contact (default 5 20 100 1000; --full: 5 ... 10000)")
     p.add_argument("--n-theta", type=int, default=None, help="number of Theta values (default 11; --full 41)")
@@ -53,7 +54,7 @@ def run(args) -> int:
     repeats = 3 if args.repeats is None else args.repeats
     if repeats < 1:
         raise InputError("--repeats must be >= 1")
-    rows = chart.chart(laws=args.laws, normals=args.normals or ["hertz", "thornton"], steps=steps, n_theta=n_theta,
+    rows = chart.chart(laws=args.laws, normals=args.normals or list(chart.NORMALS), steps=steps, n_theta=n_theta,
                        repeats=repeats,
                        progress=lambda s: print(f"  {s}", file=sys.stderr, flush=True))
     os.makedirs(args.out, exist_ok=True)

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..laws import table
-from ..laws.model import TANGENTIAL_LAWS
+from ..laws.model import TANGENTIAL_LAWS, law_of
 from ..materials import STEEL
 from .common import check_output_file, dump_json
 
@@ -28,6 +28,15 @@ DESCRIPTION = ("Drive one contact (the 3D per-contact kernel, normal along z) al
                "--reference: the law 'none' ignores the twist (Mz = 0) and is refused for it unless named. "
                "SI units.")
 
+
+#: the normal laws a path can run: those whose force is a function of the overlap (no rate, which a path has not)
+PATH_NORMAL_LAWS = [m.NAME for m in table.FAMILIES["normal"] if not m.USES_RATE]
+#: the tangential laws a path can set up: those that take no reference speed (a path has none), or whose springs
+#: are placed from the path's largest overlap instead (they take mdr_max_radius)
+PATH_TANGENTIAL_LAWS = [t for t in TANGENTIAL_LAWS if "v_ref" not in law_of("tangential", t).OPTIONS
+                        or "mdr_max_radius" in law_of("tangential", t).OPTIONS]
+#: the settings of the twist laws
+TWIST_SETTINGS = tuple(dict.fromkeys(o.name for m in table.FAMILIES["twist"] for o in m.OPTIONS))
 
 def add_options(p):
     from ..reference.paths import DEFAULT_SIZES, SHAPES, TWIST_SHAPES
@@ -59,10 +68,10 @@ def add_options(p):
     s.add_argument("--rigid-wall", action="store_true", help="the wall is rigid")
     s.add_argument("--rigid-sphere", action="store_true", help="the sphere is rigid")
     s.add_argument("--mu", type=float, default=0.3, help="friction coefficient >= 0 (default 0.3)")
-    s.add_argument("--normal", choices=["hertz", "thornton"], default="hertz",
+    s.add_argument("--normal", choices=PATH_NORMAL_LAWS, default="hertz",
                    help="normal law (default hertz; dashpot laws need a rate, which a path does not have)")
     s.add_argument("--yield-stress", type=float, default=None, help="sphere's yield stress Y [Pa] (thornton)")
-    s.add_argument("--tangential", choices=[t for t in TANGENTIAL_LAWS if t != "linear"], default=None,
+    s.add_argument("--tangential", choices=PATH_TANGENTIAL_LAWS, default=None,
                    help="tangential law (default: the library default; mdr places its springs for the path's "
                         "largest overlap)")
     twist_laws = list(table.ids("twist"))
@@ -70,11 +79,10 @@ def add_options(p):
                    help=f"twist law: the moment about the normal from the twist (default: the library's, "
                         f"{table.DEFAULTS['twist']!r}; 'none' ignores the twist, Mz = 0: a path that twists is "
                         f"refused unless a law is named)")
-    from .common import TORQUE_OPTIONS
+    from .common import law_options
 
-    for flag, kwargs in TORQUE_OPTIONS:
-        if flag in ("--k-twist", "--gamma-twist", "--mu-twist"):
-            s.add_argument(flag, **kwargs)
+    for flag, kwargs in law_options("twist"):
+        s.add_argument(flag, **kwargs)
     s.add_argument("--coupled", action="store_true",
                    help="twist and shear from one local state (laws.twist_shear: the cells of the default "
                         "tangential law and of deresiewicz sharing the Coulomb limit at points of each ring; "
@@ -96,7 +104,7 @@ def add_options(p):
 
 def _scene(args, delta_max: float):
     """The contact of the options; delta_max [m]: the path's largest overlap (places the mdr springs)."""
-    from ..laws.model import Scene, law_of
+    from ..laws.model import Scene
     from ..materials import Material, Sphere, Wall, pair_properties
 
     plastic = law_of("normal", args.normal).PLASTIC
@@ -121,7 +129,7 @@ def _scene(args, delta_max: float):
     laws = {} if args.tangential is None else {"tangential": args.tangential}
     if args.twist is not None:
         laws["twist"] = args.twist
-    laws.update({k: getattr(args, k) for k in ("k_twist", "gamma_twist", "mu_twist") if getattr(args, k) is not None})
+    laws.update({k: getattr(args, k) for k in TWIST_SETTINGS if getattr(args, k) is not None})
     if args.tangential is not None and "mdr_max_radius" in law_of("tangential", args.tangential).OPTIONS:
         # a path has no impact speed to place the springs by: they cover the contact radius of its largest
         # overlap (as studies.paths.path_scene does)
@@ -139,8 +147,7 @@ def run(args) -> int:
         check_output_file("--csv", args.csv)
     if args.plot:
         check_output_file("--plot", args.plot, (".png",))
-    coefficients = [f"--{k.replace('_', '-')}" for k in ("k_twist", "gamma_twist", "mu_twist")
-                    if getattr(args, k) is not None]
+    coefficients = [table.option(k).flag for k in TWIST_SETTINGS if getattr(args, k) is not None]
     if args.coupled and (args.reference or args.tangential is not None or args.twist is not None or coefficients):
         raise InputError("--coupled is a law of its own (the default tangential law and deresiewicz coupled): "
                          "give it without --reference, --tangential, --twist and the twist coefficients")

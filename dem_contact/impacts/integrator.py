@@ -65,7 +65,7 @@ N_SERIES = 7
 #: up to 2e-2 in the last steps, where the contact spans only a few springs: that last SLIDE_IMPULSE_TOL of
 #: the impulse is a vanishing set (the adaptive MDR and md stay at the limit to rounding). With these values the
 #: direct Theta_c of mdr, the adaptive MDR and md lies 0.03% to 0.06% below eq. 4.1 from 50 to 50,000 steps per
-#: contact (tests/test_sweep.py).
+#: contact (tests/impacts/test_sweep.py).
 SLIDE_TOL = 1e-3
 SLIDE_IMPULSE_TOL = 1e-4
 

@@ -3,7 +3,7 @@ with the bridge and for users moving between the two.
 
 The equivalent exists for hertz + mindlin_total (LAMMPS ``pair granular hertz/material ... tangential
 mindlin``, no damping, with ``fix wall/gran granular`` for the walls), which the bridge matches to rounding
-with ``frame_spin=False`` (LAMMPS's models keep the tangential history fixed in space): tests/test_lammps.py
+with ``frame_spin=False`` (LAMMPS's models keep the tangential history fixed in space): tests/lammps/test_lammps.py
 runs a pour both ways. LAMMPS mixes a pair of different materials itself (its normal stiffness from both
 materials, its Mindlin stiffness from the mixed modulus with the geometric mean of the Poisson ratios), so
 each pair of types and each wall is given as one equivalent material, (E, nu) with the pair's E* and G*:

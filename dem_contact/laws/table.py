@@ -16,7 +16,7 @@ plus one row here. The file declares:
   ``describe(scene, p)``: the derived parameters for reports (defaults: nothing to set, nothing to report);
 - its kernels, ``@njit`` functions with the signature of its family: a planar form ``planar`` (normal and
   tangential laws) and a 3D form ``vector``; where both are kept for speed they stand side by side in the
-  file and ``tests/test_law_contract.py`` holds them equal;
+  file and ``tests/laws/test_law_contract.py`` holds them equal;
 - twist and rolling laws: a 3D form ``vector(params, row, H, c, b, N, a, n, w, dt)`` that returns the
   torque on body 1 from the relative spin w = w1 - w2 of the bodies, its state in the slots b ... b +
   VECTOR_SLOTS - 1 of the history row (their ids are recorded in the parameter row, from which the 3D
@@ -36,6 +36,8 @@ plus one row here. The file declares:
   contact radius [m] that the law's state covers (None: any); LAMMPS's equivalent model, where it has
   one (``lammps.native``): ``LAMMPS`` (normal and tangential laws: its name in ``pair granular``) and
   ``lammps_keywords(p)`` (twist and rolling laws: its keywords on the parameter row p; "" for none);
+  ``CONVERGED_STEPS`` (tangential laws: the steps per contact at which an oblique impact's f/mu is
+  converged to the chart's accuracy, 1e-4; default 20000, as first-order laws need);
   ``lammps_k_t(p)`` (tangential laws: the coefficient k_t of LAMMPS's equivalent tangential model, from
   which its ``twisting marshall`` is scaled; default Mindlin's 8 G*);
 - family flags: normal laws ``USES_RATE`` (the force depends on the overlap rate: integrators kick with a
@@ -209,7 +211,7 @@ def _mindlin_k_t(p):
 OPTIONAL = MappingProxyType({"OPTIONS": (), "CELLS": False, "configure": _nothing, "describe": _nothing,
                              "SWAP_NEGATE": (), "VECTORS": (), "EXAMPLE": MappingProxyType({}),
                              "calibration_target": _no_target, "hint": _no_hint, "max_radius": _unbounded,
-                             "LAMMPS": None, "lammps_keywords": _no_lammps,
+                             "LAMMPS": None, "lammps_keywords": _no_lammps, "CONVERGED_STEPS": 20000,
                              "lammps_k_t": _mindlin_k_t})
 
 #: the situations a law's ``hint`` may explain (an impact's failure or warning, by the law's own reasons)

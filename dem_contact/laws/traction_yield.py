@@ -43,7 +43,7 @@ Y = 1.85 GPa on steel at 5 m/s reaches E* a / (Y R) of about 6 (Hertz radius of 
 about 4: contained elastic-plastic contacts, for which first yield is the result that applies, so the
 junction argument is not used.
 
-The field is checked in ``tests/test_plastic.py`` (equilibrium, Beltrami-Michell compatibility and the
+The field is checked in ``tests/laws/test_plastic.py`` (equilibrium, Beltrami-Michell compatibility and the
 surface tractions by finite differences; the trailing-edge surface stress
 sigma_x = p0 ((1 - 2 nu)/3 + (4 + nu) pi mu / 8) of Hamilton & Goodman 1966; the surface shear of the
 partly slipping traction).

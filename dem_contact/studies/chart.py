@@ -30,8 +30,6 @@ from ..laws.model import TANGENTIAL_LAWS, Scene, law_of, reference_speed
 #: Settings of the converged MDR reference.
 REFERENCE_SPRINGS = 400
 REFERENCE_STEPS = 4000
-#: Steps per contact at which every other law counts as converged (first-order laws need many).
-CONVERGED_STEPS = 20000
 DEFAULT_STEPS = (5, 20, 100, 1000)
 FULL_STEPS = (5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000)
 NORMALS = ("hertz", "thornton")
@@ -157,7 +155,7 @@ def chart(laws=None, normals=NORMALS, schemes=SCHEMES, steps=DEFAULT_STEPS, Thet
         for law in laws:
             sc = chart_scene(normal, law, vn)
             for scheme in schemes:
-                conv_steps = REFERENCE_STEPS if law.startswith("mdr") else CONVERGED_STEPS
+                conv_steps = law_of("tangential", law).CONVERGED_STEPS
                 conv = run(sc, vn, vt, conv_steps, scheme)
                 model_err = _maxabs(conv.f_over_mu, ref.f_over_mu)
                 for spc in steps:

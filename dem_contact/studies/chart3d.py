@@ -36,6 +36,7 @@ import numpy as np
 
 from ..dem.contact3d import history_size, new_histories
 from ..errors import InputError
+from ..laws import table
 from ..laws.model import TANGENTIAL_LAWS, Scene, law_of, reference_speed
 from ..materials import STEEL, Sphere, Wall
 from ..reference.bem import bem_path_scene
@@ -50,8 +51,8 @@ PATH_STEPS = 400
 #: BEM elements across the contact diameter of the reference.
 N_ACROSS = 64
 #: The laws charted: (label, tangential law, Scene options).
-LAWS = tuple((t, t, {}) for t in TANGENTIAL_LAWS if t != "mdr") + (
-    ("mdr", "mdr", {}), ("mdr (2000 springs)", "mdr", {"mdr_springs": 2000}),
+LAWS = tuple((t, t, {}) for t in TANGENTIAL_LAWS) + (
+    ("mdr (2000 springs)", "mdr", {"mdr_springs": 2000}),
     ("mdr_adaptive (64 cells)", "mdr_adaptive", {"mdr_springs": 64}))
 
 
@@ -170,7 +171,7 @@ def chart3d(paths: dict, forces: dict, laws=LAWS, repeats: int = 5) -> list:
 
 
 #: The twist laws of the twist chart (with the default tangential law).
-TWIST_LAWS = ("none", "deresiewicz", "marshall", "sds")
+TWIST_LAWS = tuple(table.ids("twist"))
 
 
 def contact_radius(scene: Scene, delta: float) -> float:

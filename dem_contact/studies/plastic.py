@@ -165,7 +165,7 @@ def plastic_sections(figdir: str, log=print, angles=ANGLES) -> list:
       "elastic-plastic contact; the MDR reference is exact for the pressure it is given. During plastic "
       "loading Thornton (1997) builds his force from the Hertz pressure of the current overlap truncated at "
       "p_y; its MDR line load (the Abel transform of p, Popov & Hess 2015) integrates to his force exactly "
-      "(tests/test_plastic.py: 1e-10), and each spring's Coulomb limit is mu times that line load "
+      "(tests/laws/test_plastic.py: 1e-10), and each spring's Coulomb limit is mu times that line load "
       "(`mdr_profile=\"truncated\"`, the default). On unloading the pressure is Hertz with (R_p, delta_p). "
       "The alternative (`\"scaled\"`) keeps a Hertz-shaped limit scaled to mu N: less limit at the edge, more "
       "at the centre. Both give mu N in total; elastic contacts do not see the choice. The switch from the "

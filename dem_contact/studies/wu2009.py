@@ -34,7 +34,7 @@ THETA_C_TOL = 0.05
 UNIVERSAL_THETA = np.linspace(0.0, 8.0, 81)
 UNIVERSAL_MU = (0.1, 0.3, 0.5)
 UNIVERSAL_VN = (2.0, 5.0)
-#: Tolerance in f/mu of the universality claim (tests/test_sweep.py); the report gives the measured value.
+#: Tolerance in f/mu of the universality claim (tests/impacts/test_sweep.py); the report gives the measured value.
 UNIVERSALITY_TOL = 1e-3
 #: Steps per contact of the time-step study.
 STEP_STUDY = (250, 500, 1000, 2000, 4000)
@@ -327,7 +327,7 @@ def run_validation(outdir: str, log=print, grids: ValidationGrids = FULL) -> str
     mu_only = max(v for k, v in uni_diff.items() if k.endswith("V_n = 5 m/s"))
     w(f"Measured: the elastic curves agree to {uni_max:.1e} in f/mu ({mu_only:.1e} between the friction "
       f"coefficients at V_n = 5 m/s); the claim is tested with the tolerance {UNIVERSALITY_TOL:g} "
-      "(tests/test_sweep.py). With Hertz contact, a tangential law built on Mindlin's stiffness and mu N, "
+      "(tests/impacts/test_sweep.py). With Hertz contact, a tangential law built on Mindlin's stiffness and mu N, "
       "and a time step that is a fixed fraction of the contact time, the discrete problem is invariant under "
       "a change of mu at fixed Theta, and under a change of V_n unless the law holds an absolute length or "
       "tolerance: agreement at rounding level shows exact invariance, a larger value the law's "

@@ -145,3 +145,30 @@ def place(walls, w, t):
     rot = rigid(walls, w, t)
     move_point(walls, w, rot, w, _A, w, _A0)
     move_vector(walls, rot, w, _U, w, _U0)
+
+
+def example(**motion) -> CylinderWall:
+    """A typical wall of this kind, with the rigid motion ``motion`` (the contract tests use it)."""
+    return CylinderWall((0.1, -0.2, 0.3), (0.0, 0.6, 0.8), 1.0, **motion)
+
+
+def sample(wall: CylinderWall, n: int, rng):
+    """(surface points float[m, 3], sphere centres float[n, 3]) of ``wall`` at time 0: points covering the
+    surface around the centres densely, and centres on the spheres' side, 0.1 to 0.5 m from it, whose closest
+    point is among them (the contract tests' brute force)."""
+    import numpy as np
+
+    p, u = np.array(wall.point, float), np.array(wall.axis, float)
+    e1 = np.cross(u, [1.0, 0.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(u, e1)
+
+    def at(radius, angle, height):
+        return p + radius[:, None] * (np.cos(angle)[:, None] * e1 + np.sin(angle)[:, None] * e2) + height[:, None] * u
+
+    m = 600_000
+    surface = at(np.full(m, wall.radius), rng.uniform(0.0, 2.0 * np.pi, m), rng.uniform(-1.0, 1.0, m))
+    side = -1.0 if wall.inside else 1.0
+    centres = at(wall.radius + side * rng.uniform(0.1, 0.5, n), rng.uniform(0.0, 2.0 * np.pi, n),
+                 rng.uniform(-0.3, 0.3, n))
+    return surface, centres

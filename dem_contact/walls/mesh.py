@@ -519,3 +519,33 @@ def place(walls, w, t):
         q = first + e
         for k in range(3):
             move_point(walls, w, rot, q, _V + 3 * k, q, _V0 + 3 * k)
+
+
+def example(**motion) -> MeshWall:
+    """A typical wall of this kind, with the rigid motion ``motion`` (the contract tests use it): a regular
+    octahedron, 1 m from its centre to its corners, turned off the axes."""
+    c, s = math.cos(0.4), math.sin(0.4)
+    rot = np.array([[c, -s, 0.0], [s * c, c * c, -s], [s * s, s * c, c]])
+    v = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float) @ rot.T
+    t = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    return MeshWall(v + np.array([0.1, -0.2, 0.3]), t, **motion)
+
+
+def sample(wall: MeshWall, n: int, rng):
+    """(surface points float[m, 3], sphere centres float[n, 3]) of ``wall`` at time 0: points covering every
+    triangle densely, and centres 0.1 to 0.5 m outside the example's octahedron (the contract tests' brute
+    force)."""
+    v, t = np.asarray(wall.vertices, float), np.asarray(wall.triangles)
+    per = 100_000
+    a, b = rng.uniform(0.0, 1.0, (2, len(t) * per, 1))
+    flip = a + b > 1.0
+    a, b = np.where(flip, 1.0 - a, a), np.where(flip, 1.0 - b, b)
+    tri = np.repeat(t, per, axis=0)
+    surface = v[tri[:, 0]] + a * (v[tri[:, 1]] - v[tri[:, 0]]) + b * (v[tri[:, 2]] - v[tri[:, 0]])
+    centre = v.mean(axis=0)
+    d = rng.normal(size=(n, 3))
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    # the octahedron |x|_1 <= 1 (in its own axes) lies within 1 of its centre and contains the ball of radius
+    # 1/sqrt(3): a centre at 1 + [0.1, 0.5] from it is 0.1 to 1.5 from the surface
+    centres = centre + d * rng.uniform(1.1, 1.5, (n, 1))
+    return surface, centres

@@ -111,3 +111,25 @@ def place(walls, w, t):
     rot = rigid(walls, w, t)
     move_point(walls, w, rot, w, _P, w, _P0)
     move_vector(walls, rot, w, _N, w, _N0)
+
+
+def example(**motion) -> PlaneWall:
+    """A typical wall of this kind, with the rigid motion ``motion`` (the contract tests use it)."""
+    return PlaneWall((0.1, -0.2, 0.3), (1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0), **motion)
+
+
+def sample(wall: PlaneWall, n: int, rng):
+    """(surface points float[m, 3], sphere centres float[n, 3]) of ``wall`` at time 0: points covering the
+    surface around the centres densely, and centres on the spheres' side, 0.1 to 0.5 m from it, whose closest
+    point is among them (the contract tests' brute force)."""
+    import numpy as np
+
+    p, nrm = np.array(wall.point, float), np.array(wall.normal, float)
+    e1 = np.cross(nrm, [1.0, 0.0, 0.0] if abs(nrm[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(nrm, e1)
+    u = rng.uniform(-1.0, 1.0, (400_000, 2))
+    surface = p + u[:, :1] * e1 + u[:, 1:] * e2
+    v = rng.uniform(-0.3, 0.3, (n, 2))
+    centres = p + v[:, :1] * e1 + v[:, 1:] * e2 + rng.uniform(0.1, 0.5, (n, 1)) * nrm
+    return surface, centres

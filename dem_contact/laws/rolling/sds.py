@@ -38,8 +38,9 @@ PARAMETERS = (Param("k_roll", "P_K_ROLL", "rolling spring k_roll", "N/m"),
               RSTAR)
 STATE = ("h_x", "h_y", "h_z")
 #: LAMMPS's rolling sds coefficients (all required)
-OPTIONS = (positive("k_roll", "rolling sds: spring", "N/m"), non_negative("gamma_roll", "rolling sds: dashpot", "N s/m"),
-           non_negative("mu_roll", "rolling sds: Coulomb limit per unit normal force", ""))
+OPTIONS = (positive("k_roll", "rolling sds: spring", "N/m", short="rolling spring"),
+           non_negative("gamma_roll", "rolling sds: dashpot", "N s/m", short="rolling dashpot"),
+           non_negative("mu_roll", "rolling sds: Coulomb limit per unit normal force", "", short="rolling slider"))
 VECTOR_SLOTS = 3
 VECTORS = (0,)
 #: LAMMPS's EPSILON of gran_sub_mod_rolling.cpp (the history is turned into the tangent plane only above it)

@@ -72,6 +72,9 @@ MDR_SPRINGS = 200
 MDR_STEPS_PER_CONTACT = 1000
 #: The MDR grid covers this multiple of the largest contact radius expected at v_ref.
 MDR_RADIUS_MARGIN = 1.05
+#: Steps per contact at which f/mu of an oblique impact is converged (second order in the step: the chart's
+#: reference, ``studies.chart``, takes it with 400 springs).
+CONVERGED_STEPS = 4000
 #: Coulomb-limit profiles during plastic loading (``Scene(mdr_profile=...)``, see above).
 MDR_PROFILES = MappingProxyType({"truncated": 0.0, "scaled": 1.0})
 
@@ -482,6 +485,228 @@ def mdr_frame(ex, ey, ez, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     return ex, ey, ez, fx, fy, fz, ddx * ex + ddy * ey + ddz * ez, ddx * fx + ddy * fy + ddz * fz
 
 
+@njit(inline="always", **JIT)
+def _released(H, c, b, k0, a, a_old, dx, n):
+    """The contact is over: its cells, frame, force and work (the slots b + W_X ... k0 - 1) cleared."""
+    if dx > 0.0:
+        for j in range(2 * max(cells(a, dx, n), cells(a_old, dx, n))):
+            H[c, k0 + j] = 0.0
+    for j in range(b + W_X, k0):
+        H[c, j] = 0.0
+
+
+@njit(inline="always", **JIT)
+def _zone_dissolved(H, c, b, k0, lazy, D1, D2):
+    """The sticking zone's cells take their displacement u = v + D, and the zone is cleared."""
+    for i in range(lazy):
+        H[c, k0 + 2 * i] += D1
+        H[c, k0 + 2 * i + 1] += D2
+    for j in range(R_LAZY, R_CELLS_ADAPTIVE):
+        H[c, b + j] = 0.0
+
+
+@njit(inline="always", **JIT)
+def _regrid(H, c, b, k0, n, dx, a, a_old, R):
+    """The adaptive grid of the planar law for the contact radius a (its merge, split and shrink-edge rules on
+    both components; a grid set up at first contact): (dx, a_old), the cell width now and the old radius
+    (0 for a new grid)."""
+    if dx <= 0.0 or a_old <= 0.0:
+        for j in range(2 * n):
+            H[c, k0 + j] = 0.0
+        a_old = 0.0
+        dx = initial_width_ldexp(a, n, R)
+        H[c, b + R_DX] = dx
+    if a > n * dx or (4.0 * a < n * dx and 4.0 * a_old < n * dx):
+        while a > n * dx:
+            for j in range(n // 2):
+                x0 = 2 * j * dx
+                u1 = merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
+                u2 = merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
+                H[c, k0 + 2 * j] = u1
+                H[c, k0 + 2 * j + 1] = u2
+            for j in range(2 * (n // 2), 2 * n):
+                H[c, k0 + j] = 0.0
+            dx *= 2.0
+        while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
+            hdx = 0.5 * dx
+            for j in range(n // 2 - 1, -1, -1):
+                u10, u11 = halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
+                u20, u21 = halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
+                H[c, k0 + 4 * j] = u10
+                H[c, k0 + 4 * j + 1] = u20
+                H[c, k0 + 4 * j + 2] = u11
+                H[c, k0 + 4 * j + 3] = u21
+            dx *= 0.5
+        H[c, b + R_DX] = dx
+    return dx, a_old
+
+
+@njit(inline="always", **JIT)
+def _truncated_cells(H, c, k0, full, dx, a, kt, umax_per_w, d1, d2):
+    """The cells wholly in contact under the truncated profile: u += d, returned radially to the circle of the
+    cell's mean line load. (S1, S2, Q0): the sums of u and the integral of the line load up to the cells'
+    end."""
+    S1 = 0.0
+    S2 = 0.0
+    Q0 = 0.0
+    for i in range(full):
+        k = k0 + 2 * i
+        Q1 = truncated_integral_vector((i + 1) * dx, a, kt)
+        umax = umax_per_w * (Q1 - Q0) / dx
+        Q0 = Q1
+        u1, u2 = radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        S1 += u1
+        S2 += u2
+    return S1, S2, Q0
+
+
+@njit(inline="always", **JIT)
+def _zone_step(H, c, b, k0, lazy, umax_per_w, a2, dx2, d1, d2):
+    """The sticking zone of ``lazy`` cells advanced by d in O(1) if it provably sticks (its test, see
+    ``_vector``), else dissolved: (lazy, L1, L2), the zone's cells now and the sums of their u (0 if none)."""
+    L1 = 0.0
+    L2 = 0.0
+    D1 = H[c, b + R_D1] + d1
+    D2 = H[c, b + R_D2] + d2
+    Ks = H[c, b + R_KS]
+    G0 = H[c, b + R_G0]
+    wl = 3.0 * (lazy - 1) * lazy + 1.0
+    e = min(QNEAR * umax_per_w * (a2 - dx2) - G0 + Ks * dx2,
+            QNEAR * umax_per_w * (a2 - dx2 * wl) - G0 + Ks * dx2 * wl)
+    if e >= 0.0 and e * e >= D1 * D1 + D2 * D2:
+        H[c, b + R_D1] = D1
+        H[c, b + R_D2] = D2
+        L1 = H[c, b + R_SV1] + lazy * D1
+        L2 = H[c, b + R_SV2] + lazy * D2
+    else:
+        _zone_dissolved(H, c, b, k0, lazy, D1 - d1, D2 - d2)
+        lazy = 0
+    return lazy, L1, L2
+
+
+@njit(inline="always", **JIT)
+def _sticking_cells(H, c, k0, lazy, full, umax_per_w, a2, dx2, d1, d2):
+    """The cells lazy ... full - 1 (wholly in contact, full profile) in a loop without square roots: u += d,
+    and a flag for any cell near or beyond its circle; if flagged, the cells before the first such cell keep
+    their values and the radial return acts from it on. The mean of a^2 - x^2 over cell i is a^2 - dx^2 w3 / 3
+    with w3 = 3 i (i + 1) + 1 (exact in floating point). (S1, S2, i0): the sums of u and the first cell near
+    its circle (full: none)."""
+    S1 = 0.0
+    S2 = 0.0
+    w3 = 3.0 * lazy * (lazy + 1) + 1.0
+    step = 6.0 * (lazy + 1)
+    near = False
+    i0 = full
+    for i in range(lazy, full):
+        k = k0 + 2 * i
+        umax = umax_per_w * (a2 - dx2 * w3)
+        w3 += step
+        step += 6.0
+        u1 = H[c, k] + d1
+        u2 = H[c, k + 1] + d2
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        S1 += u1
+        S2 += u2
+        near |= u1 * u1 + u2 * u2 > NEAR * (umax * umax)
+    if near:
+        S1 = 0.0
+        S2 = 0.0
+        w3 = 3.0 * lazy * (lazy + 1) + 1.0
+        step = 6.0 * (lazy + 1)
+        i0 = lazy
+        while i0 < full:
+            k = k0 + 2 * i0
+            u1 = H[c, k]
+            u2 = H[c, k + 1]
+            umax = umax_per_w * (a2 - dx2 * w3)
+            if u1 * u1 + u2 * u2 > NEAR * (umax * umax):
+                break
+            w3 += step
+            step += 6.0
+            S1 += u1
+            S2 += u2
+            i0 += 1
+        for i in range(i0, full):
+            k = k0 + 2 * i
+            umax = umax_per_w * (a2 - dx2 * w3)
+            w3 += step
+            step += 6.0
+            u1, u2 = radial(H[c, k], H[c, k + 1], umax)
+            H[c, k] = u1
+            H[c, k + 1] = u2
+            S1 += u1
+            S2 += u2
+    return S1, S2, i0
+
+
+@njit(inline="always", **JIT)
+def _new_zone(H, c, b, k0, i0, umax_per_w, a2, dx2):
+    """A new sticking zone: the cells 0 ... i0 - 1 before the first one near its circle (``_vector``)."""
+    smin = math.inf
+    V1 = 0.0
+    V2 = 0.0
+    w3 = 1.0
+    step = 6.0
+    for i in range(i0):
+        k = k0 + 2 * i
+        umax = umax_per_w * (a2 - dx2 * w3)
+        w3 += step
+        step += 6.0
+        u1 = H[c, k]
+        u2 = H[c, k + 1]
+        V1 += u1
+        V2 += u2
+        smin = min(smin, umax - math.sqrt(u1 * u1 + u2 * u2))
+    H[c, b + R_LAZY] = i0
+    H[c, b + R_D1] = 0.0
+    H[c, b + R_D2] = 0.0
+    H[c, b + R_SV1] = V1
+    H[c, b + R_SV2] = V2
+    H[c, b + R_KS] = umax_per_w
+    H[c, b + R_G0] = umax_per_w * a2 - smin
+
+
+@njit(inline="always", **JIT)
+def _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, T1, T2, Q0):
+    """The cells full ... m - 1, cut by the old or the new edge: the part entering during the step takes the
+    increment after its entry (``mdr._advance``), each cell is returned radially to the circle of its mean
+    line load over its part in contact. (T1, T2) with their sums of u times that part added."""
+    a2 = a * a
+    da = a - a_old
+    for i in range(full, m):
+        k = k0 + 2 * i
+        x0 = i * dx
+        l_new = min(max(a - x0, 0.0), dx)
+        if l_new <= 0.0:
+            H[c, k] = 0.0
+            H[c, k + 1] = 0.0
+            continue
+        l_old = min(max(a_old - x0, 0.0), dx)
+        u1 = H[c, k] + d1
+        u2 = H[c, k + 1] + d2
+        if l_new > l_old:
+            xm = x0 + 0.5 * (l_old + l_new)
+            f = (a - xm) / da * (l_new - l_old)
+            u1 = (u1 * l_old + d1 * f) / l_new
+            u2 = (u2 * l_old + d2 * f) / l_new
+        x1 = x0 + l_new
+        if kt < 1.0:
+            Q1 = truncated_integral_vector(x1, a, kt)
+            wbar = (Q1 - Q0) / l_new
+            Q0 = Q1
+        else:
+            wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
+        u1, u2 = radial(u1, u2, umax_per_w * wbar)
+        H[c, k] = u1
+        H[c, k + 1] = u2
+        T1 += u1 * l_new
+        T2 += u2 * l_new
+    return T1, T2
+
+
 def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     """Vector MDR (Popov & Hess 2015 with a displacement vector per cell), on the fixed grid of ``mdr`` or
     (the global ADAPTIVE, bound by ``vector_form``) the grid that follows the contact. Returns T (tx, ty, tz): NaN where the contact outgrows
@@ -524,11 +749,7 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     ty = 0.0
     tz = 0.0
     if Np <= 0.0 or a * a * a <= 0.0:      # (a^3 underflows at the touch overlap 1e-300 m: no contact)
-        if dx > 0.0:
-            for j in range(2 * max(cells(a, dx, n), cells(a_old, dx, n))):
-                H[c, k0 + j] = 0.0
-        for j in range(W_X, R_CELLS):
-            H[c, b + j] = 0.0
+        _released(H, c, b, k0, a, a_old, dx, n)
     elif not ADAPTIVE and a > n * dx:
         tx = math.nan
         ty = math.nan
@@ -542,43 +763,9 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
             lazy = int(H[c, b + R_LAZY])
             if lazy > 0 and (kt < 1.0 or a > n * dx or 4.0 * a < n * dx or min(a, a_old) / dx < lazy):
                 # the cells of the sticking zone take their displacement u = v + D before anything else acts
-                D1 = H[c, b + R_D1]
-                D2 = H[c, b + R_D2]
-                for i in range(lazy):
-                    H[c, k0 + 2 * i] += D1
-                    H[c, k0 + 2 * i + 1] += D2
+                _zone_dissolved(H, c, b, k0, lazy, H[c, b + R_D1], H[c, b + R_D2])
                 lazy = 0
-                for j in range(R_LAZY, R_CELLS):
-                    H[c, b + j] = 0.0
-            # the adaptive grid of the planar law (its merge, split and shrink-edge rules on both components)
-            if dx <= 0.0 or a_old <= 0.0:
-                for j in range(2 * n):
-                    H[c, k0 + j] = 0.0
-                a_old = 0.0
-                dx = initial_width_ldexp(a, n, R)
-                H[c, b + R_DX] = dx
-            if a > n * dx or (4.0 * a < n * dx and 4.0 * a_old < n * dx):
-                while a > n * dx:
-                    for j in range(n // 2):
-                        x0 = 2 * j * dx
-                        u1 = merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
-                        u2 = merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
-                        H[c, k0 + 2 * j] = u1
-                        H[c, k0 + 2 * j + 1] = u2
-                    for j in range(2 * (n // 2), 2 * n):
-                        H[c, k0 + j] = 0.0
-                    dx *= 2.0
-                while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
-                    hdx = 0.5 * dx
-                    for j in range(n // 2 - 1, -1, -1):
-                        u10, u11 = halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
-                        u20, u21 = halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
-                        H[c, k0 + 4 * j] = u10
-                        H[c, k0 + 4 * j + 1] = u20
-                        H[c, k0 + 4 * j + 2] = u11
-                        H[c, k0 + 4 * j + 3] = u21
-                    dx *= 0.5
-                H[c, b + R_DX] = dx
+            dx, a_old = _regrid(H, c, b, k0, n, dx, a, a_old, R)
         # cells in contact: qa = a / dx and qo = a_old / dx give the cell counts and the cut cell
         qa = a / dx
         qo = a_old / dx
@@ -596,152 +783,21 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
         GM = 4.0 * G
         umax_per_w = coulomb_per_w(mu, E, G, R, Np, a, kt)
         a2 = a * a
-        da = a - a_old
         dx2 = dx * dx / 3.0
-        S1 = 0.0
-        S2 = 0.0
         Q0 = 0.0      # truncated profile: the integral of the line load up to the cell's lower edge
         if kt < 1.0:
-            for i in range(full):
-                k = k0 + 2 * i
-                Q1 = truncated_integral_vector((i + 1) * dx, a, kt)
-                umax = umax_per_w * (Q1 - Q0) / dx
-                Q0 = Q1
-                u1, u2 = radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
-                H[c, k] = u1
-                H[c, k + 1] = u2
-                S1 += u1
-                S2 += u2
+            S1, S2, Q0 = _truncated_cells(H, c, k0, full, dx, a, kt, umax_per_w, d1, d2)
         else:
-            # cells sticking (the common case) in a loop without square roots: u += d, and a flag for any
-            # cell near or beyond its circle; if flagged, the cells before the first such cell keep their
-            # values and the radial return acts from it on. The mean of a^2 - x^2 over cell i is
-            # a^2 - dx^2 w3 / 3 with w3 = 3 i (i + 1) + 1 (exact in floating point).
             L1 = 0.0
             L2 = 0.0
             if lazy > 0:
-                D1 = H[c, b + R_D1] + d1
-                D2 = H[c, b + R_D2] + d2
-                Ks = H[c, b + R_KS]
-                G0 = H[c, b + R_G0]
-                wl = 3.0 * (lazy - 1) * lazy + 1.0
-                e = min(QNEAR * umax_per_w * (a2 - dx2) - G0 + Ks * dx2,
-                        QNEAR * umax_per_w * (a2 - dx2 * wl) - G0 + Ks * dx2 * wl)
-                if e >= 0.0 and e * e >= D1 * D1 + D2 * D2:
-                    H[c, b + R_D1] = D1
-                    H[c, b + R_D2] = D2
-                    L1 = H[c, b + R_SV1] + lazy * D1
-                    L2 = H[c, b + R_SV2] + lazy * D2
-                else:
-                    D1 -= d1
-                    D2 -= d2
-                    for i in range(lazy):
-                        H[c, k0 + 2 * i] += D1
-                        H[c, k0 + 2 * i + 1] += D2
-                    lazy = 0
-                    for j in range(R_LAZY, R_CELLS):
-                        H[c, b + j] = 0.0
-            w3 = 3.0 * lazy * (lazy + 1) + 1.0
-            step = 6.0 * (lazy + 1)
-            near = False
-            i0 = full
-            for i in range(lazy, full):
-                k = k0 + 2 * i
-                umax = umax_per_w * (a2 - dx2 * w3)
-                w3 += step
-                step += 6.0
-                u1 = H[c, k] + d1
-                u2 = H[c, k + 1] + d2
-                H[c, k] = u1
-                H[c, k + 1] = u2
-                S1 += u1
-                S2 += u2
-                near |= u1 * u1 + u2 * u2 > NEAR * (umax * umax)
-            if near:
-                S1 = 0.0
-                S2 = 0.0
-                w3 = 3.0 * lazy * (lazy + 1) + 1.0
-                step = 6.0 * (lazy + 1)
-                i0 = lazy
-                while i0 < full:
-                    k = k0 + 2 * i0
-                    u1 = H[c, k]
-                    u2 = H[c, k + 1]
-                    umax = umax_per_w * (a2 - dx2 * w3)
-                    if u1 * u1 + u2 * u2 > NEAR * (umax * umax):
-                        break
-                    w3 += step
-                    step += 6.0
-                    S1 += u1
-                    S2 += u2
-                    i0 += 1
-                for i in range(i0, full):
-                    k = k0 + 2 * i
-                    umax = umax_per_w * (a2 - dx2 * w3)
-                    w3 += step
-                    step += 6.0
-                    u1, u2 = radial(H[c, k], H[c, k + 1], umax)
-                    H[c, k] = u1
-                    H[c, k + 1] = u2
-                    S1 += u1
-                    S2 += u2
+                lazy, L1, L2 = _zone_step(H, c, b, k0, lazy, umax_per_w, a2, dx2, d1, d2)
+            S1, S2, i0 = _sticking_cells(H, c, k0, lazy, full, umax_per_w, a2, dx2, d1, d2)
             if ADAPTIVE and lazy == 0 and i0 >= LAZY_MIN:
-                # a new sticking zone: the cells before the first one near its circle
-                smin = math.inf
-                V1 = 0.0
-                V2 = 0.0
-                w3 = 1.0
-                step = 6.0
-                for i in range(i0):
-                    k = k0 + 2 * i
-                    umax = umax_per_w * (a2 - dx2 * w3)
-                    w3 += step
-                    step += 6.0
-                    u1 = H[c, k]
-                    u2 = H[c, k + 1]
-                    V1 += u1
-                    V2 += u2
-                    smin = min(smin, umax - math.sqrt(u1 * u1 + u2 * u2))
-                H[c, b + R_LAZY] = i0
-                H[c, b + R_D1] = 0.0
-                H[c, b + R_D2] = 0.0
-                H[c, b + R_SV1] = V1
-                H[c, b + R_SV2] = V2
-                H[c, b + R_KS] = umax_per_w
-                H[c, b + R_G0] = umax_per_w * a2 - smin
+                _new_zone(H, c, b, k0, i0, umax_per_w, a2, dx2)
             S1 += L1
             S2 += L2
-        T1 = S1 * dx
-        T2 = S2 * dx
-        for i in range(full, m):
-            k = k0 + 2 * i
-            x0 = i * dx
-            l_new = min(max(a - x0, 0.0), dx)
-            if l_new <= 0.0:
-                H[c, k] = 0.0
-                H[c, k + 1] = 0.0
-                continue
-            l_old = min(max(a_old - x0, 0.0), dx)
-            u1 = H[c, k] + d1
-            u2 = H[c, k + 1] + d2
-            if l_new > l_old:
-                # the part entering during the step takes the increment after its entry (mdr._advance)
-                xm = x0 + 0.5 * (l_old + l_new)
-                f = (a - xm) / da * (l_new - l_old)
-                u1 = (u1 * l_old + d1 * f) / l_new
-                u2 = (u2 * l_old + d2 * f) / l_new
-            x1 = x0 + l_new
-            if kt < 1.0:
-                Q1 = truncated_integral_vector(x1, a, kt)
-                wbar = (Q1 - Q0) / l_new
-                Q0 = Q1
-            else:
-                wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
-            u1, u2 = radial(u1, u2, umax_per_w * wbar)
-            H[c, k] = u1
-            H[c, k + 1] = u2
-            T1 += u1 * l_new
-            T2 += u2 * l_new
+        T1, T2 = _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, S1 * dx, S2 * dx, Q0)
         T1 *= 2.0 * GM
         T2 *= 2.0 * GM
         H[c, b + W_WORK] += 0.5 * ((H[c, b + R_T1] + T1) * d1 + (H[c, b + R_T2] + T2) * d2)

@@ -7,7 +7,7 @@ from numba import njit
 
 from ...errors import InputError
 from ..slots import H_T, H_TANG_EXTRA, P_NSPRING, P_RSTAR
-from .mdr import (PARAMETERS, PROFILE, SPRINGS, SWAP_NEGATE_ADAPTIVE, SWAP_NEGATE_CELL, VECTOR_SLOTS_ADAPTIVE, _advance, _cells,  # noqa: F401
+from .mdr import (CONVERGED_STEPS, PARAMETERS, PROFILE, SPRINGS, SWAP_NEGATE_ADAPTIVE, SWAP_NEGATE_CELL, VECTOR_SLOTS_ADAPTIVE, _advance, _cells,  # noqa: F401
                   _merge, _release, _split, initial_width, set_profile, shrink_edge, vector_form)
 
 NAME, FAMILY = "mdr_adaptive", "tangential"

@@ -39,9 +39,9 @@ GAMMA = Param("gamma_twist", "P_GAMMA_TWIST", "twist dashpot gamma_twist (marsha
 PARAMETERS = (K, GAMMA, Param("mu_twist", "P_MU_TWIST", "twist slider mu_twist (the limit is mu_twist N)", "m"))
 STATE = ("xi",)
 #: LAMMPS's twisting sds coefficients (all required)
-OPTIONS = (positive("k_twist", "twist sds: spring", "N m/rad"),
-           non_negative("gamma_twist", "twist sds: dashpot", "N m s/rad"),
-           non_negative("mu_twist", "twist sds: Coulomb limit per unit normal force", "m"))
+OPTIONS = (positive("k_twist", "twist sds: spring", "N m/rad", short="twist spring"),
+           non_negative("gamma_twist", "twist sds: dashpot", "N m s/rad", short="twist dashpot"),
+           non_negative("mu_twist", "twist sds: Coulomb limit per unit normal force", "m", short="twist slider"))
 VECTOR_SLOTS = 1
 #: the Scene settings of a typical contact of this law (a 2 mm steel sphere; the contract tests use them)
 EXAMPLE = {"k_twist": 1.0, "gamma_twist": 1e-6, "mu_twist": 1e-4}

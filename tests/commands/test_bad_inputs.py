@@ -348,7 +348,7 @@ def test_readme_benchmark_usage_parses():
 
     from dem_contact.cli import build_parser
 
-    readme = (pathlib.Path(__file__).resolve().parents[1] / "README.md").read_text()
+    readme = (pathlib.Path(__file__).resolve().parents[2] / "README.md").read_text()
     usage = next(line.strip() for line in readme.splitlines() if line.strip().startswith("dem-contact benchmark"))
     test_part = re.search(r"\[--test N.*?\]+", usage).group(0)
     filled = test_part.replace("[", " ").replace("]", " ").replace("...", "").replace("N", "1").split()

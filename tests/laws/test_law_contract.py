@@ -20,7 +20,7 @@ from dem_contact.dem.contact3d import contact_force, rotate_history, swap_bodies
 from dem_contact.laws import generate, table
 from dem_contact.laws.contact import contact_step, normal_force
 from dem_contact.laws.dispatch import uses_rate
-from test_contact3d import _frame, _law_scene, scene_history
+from conftest import _frame, _law_scene, scene_history
 from dem_contact.laws.model import reference_speed
 
 NORMAL = [m.NAME for m in table.FAMILIES["normal"]]

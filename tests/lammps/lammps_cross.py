@@ -1,4 +1,4 @@
-"""Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps_cross.py``: a sphere pair pressed
+"""Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps/lammps_cross.py``: a sphere pair pressed
 together (fixed overlap) and sliding slowly across the boundary between two MPI subdomains (x = 0),
 with prescribed motion (fix move). Prints JSON on rank 0: rows of the step, the forces (fx1, fx2, fy1, ...) and the
 positions of both atoms every --every steps; 8 G*, R*, the diameter and the slip per step."""

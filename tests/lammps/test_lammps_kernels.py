@@ -46,7 +46,7 @@ def test_wall_candidates_of_a_mesh_are_every_close_element_in_order():
 
     nall, nlocal, skin = 400, 300, 0.01
     x, radius = _points(nall, 3)
-    hopper = MeshWall.from_stl(os.path.join(os.path.dirname(__file__), "..", "examples", "hopper.stl"))
+    hopper = MeshWall.from_stl(os.path.join(os.path.dirname(__file__), "..", "..", "examples", "hopper.stl"))
     span = hopper.vertices.max(axis=0) - hopper.vertices.min(axis=0)
     scale = 1.2 / span.max()                                 # the hopper over the atoms' box, and beyond it
     near = MeshWall(hopper.vertices * scale - 0.1, hopper.triangles)

@@ -20,7 +20,7 @@ from dem_contact.laws import table
 from dem_contact.laws.model import Scene
 from dem_contact.laws.vector import V_A
 from dem_contact.materials import STEEL, Sphere, Wall
-from test_contact3d import scene_history
+from conftest import scene_history
 
 LAWS = [(family, m.NAME) for family in ("twist", "rolling") for m in table.FAMILIES[family] if m.NAME != "none"]
 DELTA = 2e-6        # overlap [m]

@@ -1,4 +1,4 @@
-"""Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps_cases.py DIR``: the scenes in which a
+"""Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps/lammps_cases.py DIR``: the scenes in which a
 LAMMPS user's result used to be silently wrong, each run with the bridge on this number of ranks and, on
 one rank, the reference (LAMMPS's own ``pair granular``, or the bridge on one rank where the reference is
 the one-rank run). Prints one JSON object on rank 0; DIR keeps the restart file that the one-rank call

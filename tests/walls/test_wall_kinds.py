@@ -14,7 +14,7 @@ from dem_contact.dem.walls import wall_contacts
 from dem_contact.errors import InputError
 from dem_contact.materials import Material, Sphere, Wall
 from dem_contact.walls import CylinderWall, MeshWall, PlaneWall, pack, read_stl, write_stl
-from test_examples import _have_lammps
+from conftest import _have_lammps
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 R = 1e-3
@@ -357,7 +357,7 @@ def test_stl_files_ascii_and_binary_and_the_hopper():
             v2, t2 = read_stl(path)
             assert len(v2) == len(v) and len(t2) == len(t)
             assert np.abs(np.sort(v2[t2].reshape(-1, 9), axis=0) - np.sort(v[t].reshape(-1, 9), axis=0)).max() <= tol
-    hopper = MeshWall.from_stl(pathlib.Path(__file__).parent.parent / "examples" / "hopper.stl")
+    hopper = MeshWall.from_stl(pathlib.Path(__file__).parents[2] / "examples" / "hopper.stl")
     v, t, nb, patches = hopper.topology()
     assert len(t) >= 16 and (nb >= 0).sum() > len(t)                     # connected, open (rims)
     assert patches.max() + 1 < len(t)                                     # quads of two coplanar triangles

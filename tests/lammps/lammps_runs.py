@@ -1,4 +1,4 @@
-"""Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps_runs.py DIR``: what a LAMMPS user does
+"""Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps/lammps_runs.py DIR``: what a LAMMPS user does
 around the bridge's fix during and between runs, each scene with the bridge on this number of ranks and,
 where LAMMPS has the equivalent, with LAMMPS's own models (``native_commands``) on the same ranks. Prints
 one JSON object on rank 0; DIR takes the dump file of the rerun scene.

@@ -78,7 +78,7 @@ def test_law_scenes_keep_every_setting_but_the_law():
                                       "mdr_springs": None}
 
 
-ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
 
 
 def test_twist_chart_meets_the_twist_cycle_target():

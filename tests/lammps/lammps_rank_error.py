@@ -1,4 +1,4 @@
-"""Run by test_lammps.py as ``mpirun -np 2 python tests/lammps_rank_error.py OUT_DIR``: two ranks (subdomains
+"""Run by test_lammps.py as ``mpirun -np 2 python tests/lammps/lammps_rank_error.py OUT_DIR``: two ranks (subdomains
 x < 0 and x > 0), every atom on rank 0, and an error injected into the contact step on rank 1 only,
 which owns no atom (so no per-atom flag can carry it). Each rank writes OUT_DIR/rank<k>.json: its
 number of local atoms and the exception its ``run`` raised (null for none)."""
