@@ -4,8 +4,8 @@
   ``tangential``, ...), from ``dem_contact.laws.table.law_rows()``; ``<!-- law-table others -->`` becomes a
   section with the tables of the families that no marker of the page names (nothing when there are none).
 - ``<!-- api-modules PACKAGE ... -->`` becomes a ``::: module`` directive (mkdocstrings) for each named package
-  that exists and for every module in it, so a new law file appears in the API reference without an edit
-  of the page (``api_directives`` is what ``tests/test_docs.py`` reads too).
+  that exists and for every module in it (``PACKAGE.*``: the modules in it only), so a new law file or wall
+  kind appears in the API reference without an edit of the page (``api_directives`` is what ``tests/test_docs.py`` reads too).
 - ``<!-- layout-rules -->`` becomes the table of what each room of the package may import, read from
   ``ALLOWED`` in ``tests/test_layout.py``.
 - ``<!-- value FILE KEY [COLUMN=VALUE ...] [fmt=SPEC] -->`` becomes a number of a stored result: FILE (a path
@@ -44,7 +44,7 @@ VALUE_MARKER = re.compile(r'<!--\s*value\s+(\S+)\s+("[^"]*"|\S+)((?:\s+[\w.]+=(?
 FIGURE_MARKER = re.compile(r"<!--\s*figure\s+(\S+\.png)\s+(.*?)\s*-->", re.S)
 #: where the figures are copied to in the site
 FIGURE_DIR = "figures"
-API_MARKER = re.compile(r"<!--\s*api-modules\s+([\w. ]+?)\s*-->")
+API_MARKER = re.compile(r"<!--\s*api-modules\s+([\w.* ]+?)\s*-->")
 #: columns of the law tables, in this order, each shown when a row has it (options: the Scene settings the law takes)
 COLUMNS = ("name", "id", "family", "source", "parameters", "state", "options")
 #: families in the order their tables appear in the "others" section
@@ -151,7 +151,8 @@ def expand_api_markers(markdown: str) -> str:
     def replace(match):
         lines = []
         for package in match.group(1).split():
-            for name in package_modules(package):
+            below = package.endswith(".*")
+            for name in package_modules(package[:-2] if below else package)[1 if below else 0:]:
                 lines += [f"::: {name}", ""]
         return "\n".join(lines)
 

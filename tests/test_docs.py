@@ -125,6 +125,11 @@ def _source_module(module, name):
                         else:
                             target = node.module
                         origin = (target, alias.name)
+        if origin is None:
+            # a name exported from a table (``walls``: the kinds' classes): where its object was defined
+            defined = getattr(getattr(mod, name, None), "__module__", None)
+            if isinstance(defined, str) and defined.startswith("dem_contact") and defined != module:
+                origin = (defined, name)
         if origin is None or not origin[0].startswith("dem_contact"):
             return module, name
         module, name = origin

@@ -3,11 +3,10 @@ contact point, the wall's velocity there from its rigid motion, its curvature fo
 wall and patch), and one table of kinds (``table``: the kind ids, the packing of a list of walls into the
 rows the kernels read, and the dispatch of the kernels on the kind). Used by the LAMMPS bridge
 (``lammps``) and the 3D batch face (``dem.walls``). Kinds: ``plane`` (``PlaneWall``), ``cylinder``
-(``CylinderWall``), ``mesh`` (``MeshWall``, from STL files: ``stl``). Uses ``errors`` only."""
-from .cylinder import CylinderWall
-from .mesh import MeshWall
-from .plane import PlaneWall
+(``CylinderWall``), ``mesh`` (``MeshWall``, from STL files: ``stl``); the user class of every kind of the
+table is exported here. Uses ``errors`` only."""
 from .stl import read_stl, write_stl
-from .table import KINDS, ROW_SIZE, pack
+from .table import CLASSES, KINDS, ROW_SIZE, pack
 
-__all__ = ["KINDS", "CylinderWall", "MeshWall", "PlaneWall", "ROW_SIZE", "pack", "read_stl", "write_stl"]
+globals().update({c.__name__: c for c in CLASSES})
+__all__ = ["KINDS", "ROW_SIZE", "pack", "read_stl", "write_stl", *(c.__name__ for c in CLASSES)]
