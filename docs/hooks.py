@@ -5,7 +5,8 @@
   section with the tables of the families that no marker of the page names (nothing when there are none).
 - ``<!-- api-modules PACKAGE ... -->`` becomes a ``::: module`` directive (mkdocstrings) for each named package
   that exists and for every module in it (``PACKAGE.*``: the modules in it only), so a new law file or wall
-  kind appears in the API reference without an edit of the page (``api_directives`` is what ``tests/test_docs.py`` reads too).
+  kind appears in the API reference without an edit of the page (``api_directives`` is what
+  ``tests/test_docs.py`` reads too).
 - ``<!-- layout-rules -->`` becomes the table of what each room of the package may import, read from
   ``ALLOWED`` in ``tests/test_layout.py``.
 - ``<!-- value FILE KEY [COLUMN=VALUE ...] [fmt=SPEC] -->`` becomes a number of a stored result: FILE (a path
