@@ -5,12 +5,13 @@ numba inlines and caches a switch on a law id only when the cases are literal in
 written out as code, from ``laws.table``; the slots of the parameter row are numbered from the laws'
 ``PARAMETERS`` (``declare.Param``) for the same reason (kernels read them as constants).
 ``tests/laws/test_law_contract.py`` fails while a file is out of date. A law that declares a new slot can be
-imported before the slot is numbered only while this generator runs (``laws.slots`` then reads it as -1).
+imported before the slot is numbered only in the process of this generator (``laws.slots`` then reads it as
+-1).
 """
-import os
 import pathlib
 
-GENERATING = "DEM_CONTACT_GENERATING_SLOTS"
+#: the generator's module, as its command line names it (``laws.slots`` looks for it)
+GENERATOR = "dem_contact.laws.generate"
 HERE = pathlib.Path(__file__).parent
 TARGET = HERE / "dispatch.py"
 TARGET_3D = HERE / "dispatch3d.py"
@@ -42,7 +43,7 @@ def slots_source() -> str:
     for s, d in rows:
         lines = textwrap.wrap(d, 116 - width)
         out += [f"{s:<{width}}  {lines[0]}"] + [" " * (width + 2) + line for line in lines[1:]]
-    out += ["=" * width + "  " + "=" * 70, '"""', "import os as _os", "",
+    out += ["=" * width + "  " + "=" * 70, '"""', "import sys as _sys", "",
             "from .history_slots import *  # noqa: F401,F403  (the history row)", ""]
     k = 0
     for p in table.parameters():
@@ -52,7 +53,7 @@ def slots_source() -> str:
         k += p.size
     out += [f"N_PARAMS = {k}", "", "",
             "def __getattr__(name):",
-            "    if name.startswith(\"P_\") and _os.environ.get(\"%s\"):" % GENERATING,
+            "    if name.startswith(\"P_\") and \"%s\" in getattr(_sys, \"orig_argv\", ()):" % GENERATOR,
             "        return -1      # a slot a law declares, being numbered now (laws.generate)",
             "    raise AttributeError(f\"module {__name__!r} has no attribute {name!r}\" + (",
             "        \": a slot a law's PARAMETERS declare is numbered by `python -m dem_contact.laws.generate`\"",
@@ -145,7 +146,6 @@ def source_3d() -> str:
 
 
 def main():
-    os.environ[GENERATING] = "1"
     TARGET_SLOTS.write_text(slots_source())
     TARGET.write_text(source())
     TARGET_3D.write_text(source_3d())

@@ -49,7 +49,7 @@ P_GAMMA_ROLL        rolling dashpot gamma_roll [N s/m] (rolling sds)
 P_MU_ROLL           rolling slider mu_roll (the limit of the pseudo-force is mu_roll N) [-] (rolling sds)
 ==================  ======================================================================
 """
-import os as _os
+import sys as _sys
 
 from .history_slots import *  # noqa: F401,F403  (the history row)
 
@@ -86,7 +86,7 @@ N_PARAMS = 43
 
 
 def __getattr__(name):
-    if name.startswith("P_") and _os.environ.get("DEM_CONTACT_GENERATING_SLOTS"):
+    if name.startswith("P_") and "dem_contact.laws.generate" in getattr(_sys, "orig_argv", ()):
         return -1      # a slot a law declares, being numbered now (laws.generate)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}" + (
         ": a slot a law's PARAMETERS declare is numbered by `python -m dem_contact.laws.generate`"
