@@ -491,7 +491,9 @@ def test_pair_table_rows_and_validation():
 
 def test_user_loop_caches_and_calls_the_kernel(tmp_path):
     """A user's @njit(cache=True) loop calling contact_force compiles once and is loaded from the
-    cache in a second process."""
+    cache in a second process; its cache, and that of a function that calls it, is keyed on the package's
+    kernel sources (``kernel_cache``: an update of the laws recompiles them), that of a function that reaches
+    no kernel is numba's own."""
     script = tmp_path / "user_loop.py"
     script.write_text(textwrap.dedent("""
         import numpy as np
@@ -499,6 +501,7 @@ def test_user_loop_caches_and_calls_the_kernel(tmp_path):
         from dem_contact.dem.contact3d import contact_force, new_histories
         from dem_contact.dem.pairs import pair_table
         from dem_contact.materials import STEEL, Sphere, Wall
+        from dem_contact import kernel_cache
 
         @njit(cache=True)
         def loop(nid, tid, params, row, H, steps):
@@ -509,6 +512,16 @@ def test_user_loop_caches_and_calls_the_kernel(tmp_path):
                 fz = f[2]
             return fz
 
+        @njit(cache=True)
+        def outer(nid, tid, params, row, H):
+            return loop(nid, tid, params, row, H, 1)
+
+        @njit(cache=True)
+        def plain(x):
+            return x + 1.0
+
+        keyed = [isinstance(f._cache._impl._locator, kernel_cache._KernelStamp) for f in (loop, outer, plain)]
+        assert keyed == [True, True, False], keyed
         tab = pair_table([Sphere(1e-3, STEEL)], [Wall(STEEL)])
         fz = loop(tab.normal_id, tab.tangential_id, tab.params, tab.wall_row[0, 0],
                   new_histories(1, tab.history_size), 10)
