@@ -87,10 +87,18 @@ def carry(x, y, z, nx, ny, nz, cs, sn):
     if un != 0.0:
         m2 = x * x + y * y + z * z
         x, y, z, p2 = in_plane(x, y, z, nx, ny, nz, un)
-        s = math.sqrt(m2 / p2) if p2 > 0.0 else 0.0
-        x *= s
-        y *= s
-        z *= s
+        x, y, z = _scaled(x, y, z, math.sqrt(m2 / p2) if p2 > 0.0 else 0.0)
+    return _turned(x, y, z, nx, ny, nz, cs, sn)
+
+
+@njit(inline="always", **JIT)
+def _scaled(x, y, z, s):
+    return x * s, y * s, z * s
+
+
+@njit(inline="always", **JIT)
+def _turned(x, y, z, nx, ny, nz, cs, sn):
+    """(x, y, z) turned by the angle (cs, sn) about n, unless it is 0."""
     if sn != 0.0:
         x, y, z = turn(x, y, z, nx, ny, nz, cs, sn)
     return x, y, z
@@ -103,13 +111,8 @@ def carry_unit(x, y, z, nx, ny, nz, cs, sn):
     x, y, z, p2 = in_plane(x, y, z, nx, ny, nz, x * nx + y * ny + z * nz)
     if p2 <= 0.0:
         return 0.0, 0.0, 0.0
-    s = 1.0 / math.sqrt(p2)
-    x *= s
-    y *= s
-    z *= s
-    if sn != 0.0:
-        x, y, z = turn(x, y, z, nx, ny, nz, cs, sn)
-    return x, y, z
+    x, y, z = _scaled(x, y, z, 1.0 / math.sqrt(p2))
+    return _turned(x, y, z, nx, ny, nz, cs, sn)
 
 
 @njit(inline="always", **JIT)

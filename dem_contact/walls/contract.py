@@ -111,6 +111,18 @@ def velocity(walls, w, cx, cy, cz):
 
 
 @njit(inline="always", cache=True)
+def unbounded(walls, w, e):
+    """``bounds`` of an unbounded element (a plane, a cylinder)."""
+    return -math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf
+
+
+@njit(inline="always", cache=True)
+def one_patch(walls, w, e, x, y, z):
+    """``patch`` of a wall that is one patch (one history key)."""
+    return 0
+
+
+@njit(inline="always", cache=True)
 def rigid(walls, w, t):
     """Set the centre of wall w at time t, C0 + V t, and return the rotation by Omega t (Rodrigues'
     formula) as its 9 entries, row by row."""
@@ -154,3 +166,12 @@ def move_vector(walls, rot, row, col, row0, col0):
     walls[row, col] = rot[0] * px + rot[1] * py + rot[2] * pz
     walls[row, col + 1] = rot[3] * px + rot[4] * py + rot[5] * pz
     walls[row, col + 2] = rot[6] * px + rot[7] * py + rot[8] * pz
+
+
+@njit(inline="always", cache=True)
+def place_point_vector(walls, w, t):
+    """``place`` of a kind whose data are a point and a unit vector now, then the same at time 0 (columns DATA
+    ... DATA + 11: a plane's point and normal, a cylinder's point and axis)."""
+    rot = rigid(walls, w, t)
+    move_point(walls, w, rot, w, DATA, w, DATA + 6)
+    move_vector(walls, rot, w, DATA + 3, w, DATA + 9)

@@ -25,15 +25,13 @@ from numba import njit
 
 from ..errors import InputError
 from . import checks
-from .contract import DATA, move_point, move_vector, rigid
+from .contract import DATA, one_patch, place_point_vector, unbounded
 
 CLASS = "CylinderWall"
 N_DATA = 15
 PAYLOAD_WIDTH = 0
 _A = DATA           # point of the axis
 _U = DATA + 3       # unit direction of the axis
-_A0 = DATA + 6
-_U0 = DATA + 9
 _R = DATA + 12      # radius
 _SIDE = DATA + 13   # +1 spheres inside, -1 outside
 _K = DATA + 14      # curvature entering R*
@@ -127,24 +125,8 @@ def curvature(walls, w, e, cx, cy, cz):
     return walls[w, _K]
 
 
-@njit(inline="always", cache=True)
-def bounds(walls, w, e):
-    """A cylinder is unbounded (infinite along its axis)."""
-    return -math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf
-
-
-@njit(inline="always", cache=True)
-def patch(walls, w, e, x, y, z):
-    """A cylinder is one patch."""
-    return 0
-
-
-@njit(inline="always", cache=True)
-def place(walls, w, t):
-    """The axis at time t."""
-    rot = rigid(walls, w, t)
-    move_point(walls, w, rot, w, _A, w, _A0)
-    move_vector(walls, rot, w, _U, w, _U0)
+#: a cylinder is unbounded (infinite along its axis) and one patch, placed by its point and axis
+bounds, patch, place = unbounded, one_patch, place_point_vector
 
 
 def example(**motion) -> CylinderWall:

@@ -8,20 +8,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import math
-
 from numba import njit
 
 from . import checks
-from .contract import DATA, rigid, move_point, move_vector
+from .contract import DATA, one_patch, place_point_vector, unbounded
 
 CLASS = "PlaneWall"
 N_DATA = 12
 PAYLOAD_WIDTH = 0
 _P = DATA           # point
 _N = DATA + 3       # unit normal into the region of the spheres
-_P0 = DATA + 6      # point at time 0
-_N0 = DATA + 9      # normal at time 0
 
 #: a motion moves the plane unless |V . n| <= SURFACE_TOL |V| and |Omega x n| <= SURFACE_TOL |Omega|
 SURFACE_TOL = 1e-12
@@ -93,24 +89,8 @@ def curvature(walls, w, e, cx, cy, cz):
     return 0.0
 
 
-@njit(inline="always", cache=True)
-def bounds(walls, w, e):
-    """A plane is unbounded."""
-    return -math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf
-
-
-@njit(inline="always", cache=True)
-def patch(walls, w, e, x, y, z):
-    """A plane is one patch."""
-    return 0
-
-
-@njit(inline="always", cache=True)
-def place(walls, w, t):
-    """The point and normal at time t."""
-    rot = rigid(walls, w, t)
-    move_point(walls, w, rot, w, _P, w, _P0)
-    move_vector(walls, rot, w, _N, w, _N0)
+#: a plane is unbounded and one patch, placed by its point and normal
+bounds, patch, place = unbounded, one_patch, place_point_vector
 
 
 def example(**motion) -> PlaneWall:
