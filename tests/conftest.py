@@ -49,12 +49,13 @@ def _frame(rotated):
 
 
 def _law_scene(tangential, normal="hertz"):
-    """A pair for every normal law: a plastic law yields at the material's p_y; the others take their
-    declared EXAMPLE settings (``laws.table``: a damped law's target e_n)."""
+    """A pair for every pair of laws, with their declared EXAMPLE settings (``laws.table``: a damped law's
+    target e_n, a tangential law's own coefficients); a plastic normal law yields at the material's p_y."""
     mat = Material(E=70e9, nu=0.25, rho=2700.0, yield_pressure=1.2e9)
     law = table.law("normal", normal)
     return Scene(Sphere(5e-3, mat), Wall(STEEL), mu=0.35, normal=normal, tangential=tangential,
-                 v_ref=reference_speed(1.5), **({} if law.PLASTIC else law.EXAMPLE))
+                 v_ref=reference_speed(1.5), **({} if law.PLASTIC else law.EXAMPLE),
+                 **table.law("tangential", tangential).EXAMPLE)
 
 
 def _have_lammps():
