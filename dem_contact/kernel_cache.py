@@ -16,6 +16,8 @@ first).
 """
 from __future__ import annotations
 
+import builtins
+import dis
 import functools
 import hashlib
 import os
@@ -62,14 +64,33 @@ def _of_package(name) -> bool:
     return isinstance(name, str) and (name == "dem_contact" or name.startswith("dem_contact."))
 
 
+def _global_names(code) -> set:
+    """The global names that ``code`` (and the code nested in it) loads."""
+    names = {i.argval for i in dis.get_instructions(code) if i.opname in ("LOAD_GLOBAL", "LOAD_NAME")}
+    for c in code.co_consts:
+        if isinstance(c, types.CodeType):
+            names |= _global_names(c)
+    return names
+
+
 def _reaches_package(py_func, seen=None) -> bool:
-    """Whether the globals of ``py_func`` hold a module or a function of the package, directly or in the
-    globals of the jitted functions (numba dispatchers) it holds: then its compiled code may inline laws."""
+    """Whether a global that ``py_func`` loads is a module or a function of the package, directly or through
+    the jitted functions (numba dispatchers) it calls: then its compiled code may inline laws. A global not
+    defined yet (a function further down its file) counts as reaching it."""
     seen = set() if seen is None else seen
     if id(py_func) in seen:
         return False
     seen.add(id(py_func))
-    for v in list(getattr(py_func, "__globals__", {}).values()):
+    code = getattr(py_func, "__code__", None)
+    if code is None:
+        return False
+    globs = getattr(py_func, "__globals__", {})
+    for name in _global_names(code):
+        if name not in globs:
+            if hasattr(builtins, name):
+                continue
+            return True
+        v = globs[name]
         if isinstance(v, types.ModuleType):
             if _of_package(v.__name__):
                 return True
