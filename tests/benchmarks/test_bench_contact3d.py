@@ -20,6 +20,7 @@ from dem_contact.dem.contact3d import batch_loop, contact_forces_serial, new_his
 from dem_contact.materials import STEEL, Material, Sphere, Wall
 from dem_contact.laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
 from dem_contact.dem.pairs import pair_table
+from dem_contact.laws import slots
 from dem_contact.laws.model import reference_speed
 
 N_CONTACTS = 100_000
@@ -106,10 +107,11 @@ def test_bench_pressed_like(benchmark, tangential):
 
 
 # The C references: Hertz + md and Hertz + mdr_adaptive (the default law), the arithmetic of
-# laws.vector and contact3d.contact_force transcribed line by line (hertz base b = 2).
+# laws.vector and contact3d.contact_force transcribed line by line (hertz base b = 2); the slots of the
+# parameter row are the generated ones (laws.slots), filled in by _c_source.
 C_SOURCE = r"""
 #include <math.h>
-enum {P_ESTAR = 0, P_GSTAR = 1, P_RSTAR = 2, P_MU = 4, P_NSPRING = 11};
+enum {P_ESTAR = @P_ESTAR@, P_GSTAR = @P_GSTAR@, P_RSTAR = @P_RSTAR@, P_MU = @P_MU@, P_NSPRING = @P_NSPRING@};
 enum {V_N = 0, V_A = 1, B = 2};
 enum {W_WORK = 0, W_X = 1, W_Y = 2, W_Z = 3, M_T = 4, M_TS = 5, M_TSS = 6, M_REGIME = 7, M_SIGN = 8, N_MD = 9,
       R_T1 = 4, R_T2 = 5, R_DX = 6, R_LAZY = 7, R_D1 = 8, R_D2 = 9, R_SV1 = 10, R_SV2 = 11, R_KS = 12, R_G0 = 13,
@@ -438,6 +440,16 @@ void batch(int law, long n, int nhist, int nparam, const double *params, const l
     }
 }
 """
+
+
+def _c_source():
+    """C_SOURCE with the slot numbers of the parameter row (``laws.slots``)."""
+    src = C_SOURCE
+    for name in ("P_ESTAR", "P_GSTAR", "P_RSTAR", "P_MU", "P_NSPRING"):
+        src = src.replace(f"@{name}@", str(getattr(slots, name)))
+    return src
+
+
 C_LAWS = {"md": 0, "mdr_adaptive": 1}
 
 
@@ -447,7 +459,7 @@ def c_batch(tmp_path_factory):
     if gcc is None:
         pytest.skip("gcc not found")
     d = tmp_path_factory.mktemp("cref")
-    (d / "ref.c").write_text(C_SOURCE)
+    (d / "ref.c").write_text(_c_source())
     lib = d / "libref.so"
     subprocess.run([gcc, "-O3", "-march=native", "-shared", "-fPIC", str(d / "ref.c"), "-o", str(lib), "-lm"],
                    check=True)
