@@ -10,7 +10,8 @@ plus one row here. The file declares:
   order, after ``declare.COMMON``), ``STATE`` (its history slots, by name); optional ``OPTIONS`` (the
   ``Scene`` settings it takes beyond the common ones, ``declare.Option``: name, unit, default, valid
   values; ``Scene``, the presets and the command line take them from here, and a setting given to laws
-  that do not take it is refused; default none);
+  that do not take it is refused; default none; ``TAKES_E_N`` is set here: whether ``declare.E_N`` is among
+  them);
 - optional ``configure(scene, p)``: sets its slots of the parameter row ``p`` from the scene (materials,
   e_n, v_ref, its options), raising ``InputError`` for what it cannot act on; optional
   ``describe(scene, p)``: the derived parameters for reports (defaults: nothing to set, nothing to report);
