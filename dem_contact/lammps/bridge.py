@@ -68,7 +68,8 @@ from ..errors import InputError, NumericalError
 from ..laws.slots import P_MSTAR, P_MU, P_RSTAR
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
-from ..walls import PlaneWall, pack  # noqa: F401  (PlaneWall: also dem_contact.lammps.bridge.PlaneWall, as before)
+from ..walls import pack
+from ..walls.plane import PlaneWall  # noqa: F401  (also dem_contact.lammps.bridge.PlaneWall, as before)
 from ..walls import table as WT
 from . import kernels as K
 from . import network
