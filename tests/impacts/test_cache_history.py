@@ -26,6 +26,7 @@ PAIRS = [
 WORKER = r"""
 import json, sys
 import numpy as np
+from dem_contact import impact
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.impacts.sweep import sweep_angles
 
@@ -103,7 +104,6 @@ follow_kernels(__file__)
 import numpy as np
 from numba import njit
 
-from dem_contact import impact
 from dem_contact.impacts.presets import preset_scene
 from dem_contact.laws.normal.hertz import hertz
 
