@@ -11,7 +11,7 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
 - materials per atom type: type k (1-based) is ``spheres[k - 1]`` of the ``PairTable``; every atom has its
   own radius (up to ``r_max``) and the mass of its radius and its type's density, and every contact the
   parameter row of its pair of types with its own R* and m*, for laws whose parameters depend on the sizes
-  through R* and m* only (checked at attach: ``_size_free``; other laws take atoms of their type's radius);
+  through R* and m* only (checked at attach: ``table_file.size_free``; other laws take atoms of their type's radius);
 - walls of the kinds of ``dem_contact.walls`` (``PlaneWall``, ``CylinderWall``, ``MeshWall``, each moving by
   a prescribed rigid motion; ``wall_loads()`` gives their forces, torques and power), each with
   a wall material of the table;
@@ -65,7 +65,7 @@ import weakref
 import numpy as np
 
 from ..errors import InputError, NumericalError
-from ..laws.slots import P_MSTAR, P_MU, P_RSTAR
+from ..laws.slots import P_MU
 from ..dem.contact3d import batch_loop
 from ..dem.pairs import PairTable
 from ..walls import pack
@@ -73,6 +73,7 @@ from ..walls.plane import PlaneWall  # noqa: F401  (also dem_contact.lammps.brid
 from ..walls import table as WT
 from . import kernels as K
 from . import network
+from .table_file import row_info, size_free
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
 #: and the array is kept zero)
@@ -526,59 +527,6 @@ def _excluded(pairs, typ, mask, molecule, tag, nspecial, special, zero_levels, r
     return out
 
 
-#: the sizes the laws' rows are checked at: the first body's radius times this, the second's times the next
-_SIZE_PROBE = (1.7, 0.6)
-
-
-def _size_free(table) -> tuple:
-    """(whether every row of the table takes atoms of any radius, why not): the parameter row of the pair of
-    types built for other radii (a Scene with the first body 1.7 times larger and the second 0.6 times) must
-    be the row with that pair's R* and m* (``kernels._contact_row``: the slots of ``kernels.SIZE_SLOTS``
-    scaled by powers of R*, the rest unchanged), and its contact time must scale as Hertz's
-    (``kernels.size_factor``)."""
-    from ..materials import Sphere
-
-    for row, sc in enumerate(table.scenes):
-        name = f"{sc.normal} + {sc.tangential}"
-        s2 = sc.body2
-        one = Sphere(sc.sphere.radius * _SIZE_PROBE[0], sc.sphere.material)
-        two = Sphere(s2.radius * _SIZE_PROBE[1], s2.material) if isinstance(s2, Sphere) else s2
-        try:
-            other = sc.replace(sphere=one, body2=two)
-        except InputError as e:
-            return False, f"{name} for other radii: {e}"
-        p, q = sc.params, other.params
-        expect = p.copy()
-        ratio = other.pair.R_star / sc.pair.R_star
-        expect[P_RSTAR] = other.pair.R_star
-        expect[P_MSTAR] = other.pair.m_star
-        for slot, power in K.SIZE_SLOTS:
-            expect[slot] = p[slot] * ratio**power
-        if not np.allclose(q, expect, rtol=1e-12, atol=0.0):
-            return False, f"the parameters of {name} depend on the radii otherwise than through R* and m*"
-        scale = (other.pair.m_star**2 / other.pair.R_star / (sc.pair.m_star**2 / sc.pair.R_star)) ** 0.2
-        v = 1.0
-        if not math.isclose(other.contact_time(v) / sc.contact_time(v), scale, rel_tol=1e-9):
-            return False, f"the contact time of {name} does not scale with the sizes as Hertz's"
-    return True, ""
-
-
-def _row_info(table, v_max) -> np.ndarray:
-    """float64[n_rows, kernels.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
-    its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), the overlap of a
-    head-on impact at v_max (the normal law's own), and a wall row's curvature (``materials.Wall.curvature``)."""
-    info = np.zeros((len(table.scenes), K.N_ROWINFO))
-    for row, sc in enumerate(table.scenes):
-        tc = sc.contact_time(v_max)
-        info[row, K.RI_RSTAR] = sc.pair.R_star
-        info[row, K.RI_Q] = sc.pair.m_star**2 / sc.pair.R_star
-        info[row, K.RI_TC] = tc
-        info[row, K.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
-        info[row, K.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
-        info[row, K.RI_CURV] = getattr(sc.body2, "curvature", 0.0)
-    return info
-
-
 class LammpsContacts:
     """The contact forces of a PairTable's laws, added to a LAMMPS instance every step.
 
@@ -651,7 +599,7 @@ class LammpsContacts:
         self.densities = np.array([s.material.rho for s in spheres])
         self._type_size = np.array([[s.radius, s.mass] for s in spheres])     # (the sizes of the table's rows)
         # atoms of any radius where the laws' rows depend on the sizes through R* and m* only (else each type's)
-        self.size_free, self._size_why = _size_free(table)
+        self.size_free, self._size_why = size_free(table)
         self._sized = self.size_free      # per-contact rows needed (set at every rebuild of the lists)
         if r_max is not None and not (isinstance(r_max, (int, float)) and math.isfinite(r_max)
                                       and r_max >= self.radii.max()):
@@ -680,7 +628,7 @@ class LammpsContacts:
                              f"it must be >= 2 r_max + skin = {need:.6g} m")
         # per pair row: R*, m*^2 / R*, the contact time at v_max and its exponent of the speed, the largest overlap
         # of a head-on impact at v_max (the normal law's own): what the checks scale to each contact's sizes
-        self._rowinfo = _row_info(table, self.v_max)
+        self._rowinfo = row_info(table, self.v_max)
         self.hs = table.history_size
         self._law = batch_loop(table.normal_id, table.tangential_id)     # the law family's serial loop
         # per-atom arrays: d2_<prefix> the keys and the statistics (read at every step: kept narrow),

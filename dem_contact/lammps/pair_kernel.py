@@ -1,0 +1,238 @@
+"""The contact work of ``pair_style dem/contact`` (the LAMMPS plugin) for one step, compiled by numba and
+called by the plugin's C++ pair style through a C function pointer (a numba ``cfunc``), once per step.
+
+The pair style walks LAMMPS's neighbour list, finds the touching pairs and their history rows (kept per atom by
+its fix, which moves them with the atoms), and hands them over in the canonical order of the bridge: the atom
+with the lower id is body 1. This kernel computes what ``kernels.gather_contacts`` computes for a sphere pair
+(normal, overlap, slip velocity with the full radii, per-contact R* and m* for atoms not of their type's size),
+runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
+returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
+models) and the overlap. The C++ side adds them to LAMMPS's forces and torques and tallies the virial.
+
+``attach`` is what the plugin calls (from its embedded or the running Python interpreter) when a table file is
+named by ``pair_coeff``: it reads the table (``dem.pairs.PairTable.load``), compiles the step for the table's
+tangential family, and writes the addresses the pair style needs into the C structure the pair style passes.
+"""
+from __future__ import annotations
+
+import ctypes
+import math
+import traceback
+
+import numpy as np
+from numba import carray, cfunc, njit, types
+
+from ..dem.contact3d import _LOOPS
+from ..laws.dispatch import uses_rate
+from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_TANGENTIAL_LAW
+from ..laws.vector import V_N, renamed
+from . import kernels as K
+
+#: the layout version of ``Attach`` (the plugin refuses another)
+ABI = 1
+
+#: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap
+OUT_F = 0
+OUT_TA = 3
+OUT_TB = 6
+OUT_DELTA = 9
+N_OUT = 10
+
+
+def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row, rowinfo, type_size, sized,
+          frame_spin, dt, out):
+    """The m = n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows
+    ``hrow`` (advanced in place; the caller passes copies where nothing may advance): the law's inputs as
+    ``kernels.gather_contacts`` lays them out, the tangential family's loop (``loop``, bound per family), and
+    ``out`` float64[n, N_OUT]. Returns the number of contacts whose force or torques are not finite."""
+    nid = int(params[0, P_NORMAL_LAW]) - 1
+    tid = int(params[0, P_TANGENTIAL_LAW]) - 1
+    normals = np.empty((n, 3))
+    velocities = np.empty((n, 3))
+    spins = np.empty((n, 3))
+    overlaps = np.empty(n)
+    wn = np.zeros(n)
+    prow = np.empty(n, dtype=np.int64)
+    pc = np.empty((params.shape[0] + (n if sized else 0), params.shape[1]))
+    pc[:params.shape[0]] = params
+    for k in range(n):
+        a = pairs[k, 0]
+        b = pairs[k, 1]
+        dx = x[b, 0] - x[a, 0]
+        dy = x[b, 1] - x[a, 1]
+        dz = x[b, 2] - x[a, 2]
+        r = math.sqrt(dx * dx + dy * dy + dz * dz)
+        rinv = 1.0 / r
+        nx = dx * rinv
+        ny = dy * rinv
+        nz = dz * rinv
+        ra = radius[a]
+        rb = radius[b]
+        wx = ra * omega[a, 0] + rb * omega[b, 0]
+        wy = ra * omega[a, 1] + rb * omega[b, 1]
+        wz = ra * omega[a, 2] + rb * omega[b, 2]
+        velocities[k, 0] = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
+        velocities[k, 1] = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
+        velocities[k, 2] = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
+        normals[k, 0] = nx
+        normals[k, 1] = ny
+        normals[k, 2] = nz
+        overlaps[k] = (ra + rb) - r
+        for d in range(3):
+            spins[k, d] = omega[a, d] - omega[b, d]
+        row = sphere_row[typ[a] - 1, typ[b] - 1]
+        prow[k] = row
+        if sized and (K._resized(radius, rmass, typ, type_size, a) or K._resized(radius, rmass, typ, type_size, b)):
+            rs, ms = K._effective(radius, rmass, a, b, rowinfo, row)
+            prow[k] = params.shape[0] + k
+            K._contact_row(params, row, pc, prow[k], rowinfo, rs, ms)
+        if frame_spin:
+            wn[k] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
+                           + (omega[a, 2] + omega[b, 2]) * nz)
+    if uses_rate(nid):
+        # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
+        for k in range(n):
+            a = pairs[k, 0]
+            b = pairs[k, 1]
+            kick = 0.5 * dt * H[hrow[k], V_N] * (1.0 / rmass[a] + 1.0 / rmass[b])
+            for d in range(3):
+                velocities[k, d] -= kick * normals[k, d]
+    forces = np.empty((n, 3))
+    tforces = np.empty((n, 3))
+    torques = np.zeros((n, 3))
+    loop(nid, tid, pc, prow, H, hrow, normals, overlaps, velocities, spins, wn, dt, forces, tforces,  # noqa: F821
+         torques)
+    bad = 0
+    for k in range(n):
+        a = pairs[k, 0]
+        b = pairs[k, 1]
+        nx = normals[k, 0]
+        ny = normals[k, 1]
+        nz = normals[k, 2]
+        tx = tforces[k, 0]
+        ty = tforces[k, 1]
+        tz = tforces[k, 2]
+        cx = ny * tz - nz * ty
+        cy = nz * tx - nx * tz
+        cz = nx * ty - ny * tx
+        delta = overlaps[k]
+        # torque on a sphere: (R - delta/2) n x Ft on both bodies of the pair
+        arm_a = radius[a] - 0.5 * delta
+        arm_b = radius[b] - 0.5 * delta
+        out[k, OUT_F] = forces[k, 0]
+        out[k, OUT_F + 1] = forces[k, 1]
+        out[k, OUT_F + 2] = forces[k, 2]
+        out[k, OUT_TA] = arm_a * cx + torques[k, 0]
+        out[k, OUT_TA + 1] = arm_a * cy + torques[k, 1]
+        out[k, OUT_TA + 2] = arm_a * cz + torques[k, 2]
+        out[k, OUT_TB] = arm_b * cx - torques[k, 0]
+        out[k, OUT_TB + 1] = arm_b * cy - torques[k, 1]
+        out[k, OUT_TB + 2] = arm_b * cz - torques[k, 2]
+        out[k, OUT_DELTA] = delta
+        ok = True
+        for d in range(9):
+            ok = ok and math.isfinite(out[k, d])
+        if not ok:
+            bad += 1
+    return bad
+
+
+def _entry(n, pairs, hrow, H, h_rows, hs, x, v, omega, radius, rmass, typ, nall, params, n_rows, sphere_row,
+           n_types, rowinfo, type_size, sized, frame_spin, dt, out):
+    """The C entry of ``_step``: raw pointers of the pair style's buffers and LAMMPS's per-atom arrays."""
+    return step(n, carray(pairs, (n, 2)), carray(hrow, (n,)), carray(H, (h_rows, hs)),  # noqa: F821
+                carray(x, (nall, 3)), carray(v, (nall, 3)), carray(omega, (nall, 3)), carray(radius, (nall,)),
+                carray(rmass, (nall,)), carray(typ, (nall,)), carray(params, (n_rows, N_PARAMS)),
+                carray(sphere_row, (n_types, n_types)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
+                carray(type_size, (n_types, 2)), sized != 0, frame_spin != 0, dt, carray(out, (n, N_OUT)))
+
+
+_I64P = types.CPointer(types.int64)
+_F64P = types.CPointer(types.float64)
+#: the C signature of the step (``pair_dem_contact.cpp``, ``StepFn``)
+SIGNATURE = types.int64(types.int64, _I64P, _I64P, _F64P, types.int64, types.int64, _F64P, _F64P, _F64P, _F64P,
+                        _F64P, types.CPointer(types.int32), types.int64, _F64P, types.int64, _I64P, types.int64,
+                        _F64P, _F64P, types.int64, types.int64, types.float64, _F64P)
+
+_CFUNCS = {}
+
+
+def step_function(tid: int):
+    """The compiled C entry of the step for tangential family ``tid`` (a numba cfunc; compiled once per
+    process, cached on disk as the package's kernels)."""
+    if tid not in _CFUNCS:
+        name = f"lammps_step_{tid}"
+        step = njit(cache=True)(renamed(_step, name, loop=_LOOPS[tid][0]))
+        _CFUNCS[tid] = cfunc(SIGNATURE, cache=True)(renamed(_entry, f"{name}_entry", step=step))
+    return _CFUNCS[tid]
+
+
+class Attach(ctypes.Structure):
+    """What the pair style reads after ``attach`` (the C struct ``DemContactAttach`` of
+    ``pair_dem_contact.h``, field for field)."""
+
+    _fields_ = [
+        ("abi", ctypes.c_int64),
+        ("error", ctypes.c_char * 2048),
+        ("step", ctypes.c_void_p),
+        ("params", ctypes.c_void_p),
+        ("n_rows", ctypes.c_int64),
+        ("sphere_row", ctypes.c_void_p),
+        ("n_types", ctypes.c_int64),
+        ("rowinfo", ctypes.c_void_p),
+        ("type_size", ctypes.c_void_p),
+        ("size_free", ctypes.c_int64),
+        ("history_size", ctypes.c_int64),
+        ("r_max", ctypes.c_double),
+        ("tc_unit", ctypes.c_void_p),
+        ("alpha", ctypes.c_void_p),
+        ("laws", ctypes.c_char * 512),
+    ]
+
+
+#: the arrays the pair styles of this process read, by the address of their Attach (kept alive here; a pair
+#: style made later at the same address replaces them)
+_KEPT = {}
+
+
+def attach(path: str, n_types: int, address: int) -> None:
+    """Read the table file ``path`` for a LAMMPS run with ``n_types`` atom types and fill the Attach at
+    ``address``; any failure is written to its ``error`` field (the pair style stops with it)."""
+    out = Attach.from_address(address)
+    try:
+        _attach(path, n_types, out, address)
+    except Exception as e:      # (every failure reaches LAMMPS as its error message)
+        from ..errors import InputError
+        text = str(e) if isinstance(e, InputError) else f"{type(e).__name__}: {e}\n{traceback.format_exc()}"
+        out.error = text.encode()[:2047]
+
+
+def _attach(path, n_types, out, address):
+    from ..errors import InputError
+    from . import table_file
+
+    if out.abi != ABI:
+        raise InputError(f"the plugin was built for another version of dem_contact (interface {out.abi}, this "
+                         f"package's is {ABI}): build it again with `dem-contact lammps-plugin --rebuild`")
+    saved = table_file.load(path)
+    table = saved.table
+    nt = table.sphere_row.shape[0]
+    if nt != n_types:
+        raise InputError(f"the table file {path} is for {nt} atom types, the LAMMPS box has {n_types}: write "
+                         f"it for the box's types (PairTable.save)")
+    arrays = dict(params=table.params, sphere_row=table.sphere_row, rowinfo=np.ascontiguousarray(saved.rowinfo),
+                  type_size=np.ascontiguousarray(saved.type_size), tc_unit=np.ascontiguousarray(saved.tc_unit),
+                  alpha=np.ascontiguousarray(saved.alpha))
+    fn = step_function(table.tangential_id)
+    _KEPT[address] = (arrays, fn)
+    out.step = fn.address
+    for name, a in arrays.items():
+        setattr(out, name, a.ctypes.data)
+    out.n_rows = table.params.shape[0]
+    out.n_types = nt
+    out.size_free = int(saved.size_free)
+    out.history_size = table.history_size
+    out.r_max = float(saved.type_size[:, 0].max())
+    out.laws = saved.laws.encode()[:511]
+    out.error = b""
+

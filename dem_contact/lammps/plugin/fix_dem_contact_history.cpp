@@ -1,0 +1,111 @@
+#include "fix_dem_contact_history.h"
+
+#include "atom.h"
+#include "error.h"
+#include "memory.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+// fix ID all DEM/CONTACT/HISTORY slots history_size (made by pair_style dem/contact)
+FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr)
+{
+  if (narg != 5) error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact only");
+  slots = utils::inumeric(FLERR, arg[3], false, lmp);
+  history_size = utils::inumeric(FLERR, arg[4], false, lmp);
+  if (slots < 1 || history_size < 1) error->all(FLERR, "fix DEM/CONTACT/HISTORY: bad sizes");
+  restart_peratom = 1;
+  create_attribute = 1;
+  maxexchange = per_atom();
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nmax; i++) set_arrays(i);
+}
+
+FixDemContactHistory::~FixDemContactHistory()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(keys);
+  memory->sfree(hist);
+  memory->destroy(saved);
+}
+
+int FixDemContactHistory::setmask() { return 0; }
+
+double FixDemContactHistory::memory_usage()
+{
+  return (double) atom->nmax * per_atom() * sizeof(double);
+}
+
+void FixDemContactHistory::grow_arrays(int nmax)
+{
+  memory->grow(keys, nmax, slots, "dem/contact:keys");
+  hist = (double *) memory->srealloc(hist, sizeof(double) * nmax * slots * history_size, "dem/contact:hist");
+  memory->grow(saved, nmax, (int) N_SAVED, "dem/contact:saved");
+}
+
+void FixDemContactHistory::copy_arrays(int i, int j, int /*delflag*/)
+{
+  std::memcpy(keys[j], keys[i], sizeof(double) * slots);
+  std::memcpy(hist + (size_t) j * slots * history_size, hist + (size_t) i * slots * history_size,
+              sizeof(double) * slots * history_size);
+  std::memcpy(saved[j], saved[i], sizeof(double) * N_SAVED);
+}
+
+void FixDemContactHistory::set_arrays(int i)
+{
+  std::memset(keys[i], 0, sizeof(double) * slots);
+  std::memset(hist + (size_t) i * slots * history_size, 0, sizeof(double) * slots * history_size);
+  std::memset(saved[i], 0, sizeof(double) * N_SAVED);
+}
+
+int FixDemContactHistory::pack_exchange(int i, double *buf)
+{
+  int m = 0;
+  for (int s = 0; s < slots; s++) buf[m++] = keys[i][s];
+  const double *h = hist + (size_t) i * slots * history_size;
+  for (int q = 0; q < slots * history_size; q++) buf[m++] = h[q];
+  for (int q = 0; q < N_SAVED; q++) buf[m++] = saved[i][q];
+  return m;
+}
+
+int FixDemContactHistory::unpack_exchange(int i, double *buf)
+{
+  int m = 0;
+  for (int s = 0; s < slots; s++) keys[i][s] = buf[m++];
+  double *h = hist + (size_t) i * slots * history_size;
+  for (int q = 0; q < slots * history_size; q++) h[q] = buf[m++];
+  for (int q = 0; q < N_SAVED; q++) saved[i][q] = buf[m++];
+  return m;
+}
+
+// restart data of an atom: its count, slots, history_size, then as pack_exchange
+int FixDemContactHistory::pack_restart(int i, double *buf)
+{
+  buf[1] = slots;
+  buf[2] = history_size;
+  int m = 3 + pack_exchange(i, buf + 3);
+  buf[0] = m;
+  return m;
+}
+
+void FixDemContactHistory::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  if ((int) extra[nlocal][m + 1] != slots || (int) extra[nlocal][m + 2] != history_size)
+    error->one(FLERR,
+               "pair dem/contact: the restart file's contact rows have {} slots of {} values, this run's {} of {}: "
+               "give pair_style dem/contact the slots of the run that wrote it and the same table file",
+               (int) extra[nlocal][m + 1], (int) extra[nlocal][m + 2], slots, history_size);
+  unpack_exchange(nlocal, &extra[nlocal][m + 3]);
+}
+
+int FixDemContactHistory::size_restart(int /*nlocal*/) { return 3 + per_atom(); }
+
+int FixDemContactHistory::maxsize_restart() { return 3 + per_atom(); }

@@ -1,0 +1,47 @@
+/* Per-atom contact rows of pair_style dem/contact, which move with their atom: between ranks (exchange),
+   through atom sorting, and into and out of restart files.
+
+   Every atom has `slots` rows. Row s of atom i: its key keys[i][s] (the partner's atom id; 0: free) and the
+   law's history hist[(i * slots + s) * history_size ...] (dem_contact's 3D history row). A contact of two
+   atoms has a row in each; the pair style keeps them equal. Per atom also the contact force and torque of the
+   last step and the state they were computed at (saved[i][...]), which the next run's set-up reapplies when
+   nothing has changed. */
+#ifndef DEM_CONTACT_FIX_HISTORY_H
+#define DEM_CONTACT_FIX_HISTORY_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixDemContactHistory : public Fix {
+ public:
+  // columns of saved: force (3), torque (3), then the state: x (3), v (3), omega (3), radius, rmass
+  enum { SF_F = 0, SF_T = 3, SF_X = 6, SF_V = 9, SF_W = 12, SF_R = 15, SF_M = 16, N_SAVED = 17 };
+
+  FixDemContactHistory(class LAMMPS *, int, char **);
+  ~FixDemContactHistory() override;
+  int setmask() override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+  int slots, history_size;
+  double **keys;     // [nmax][slots]
+  double *hist;      // [nmax * slots * history_size]
+  double **saved;    // [nmax][N_SAVED]
+
+ private:
+  int per_atom() const { return slots * (1 + history_size) + N_SAVED; }
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,468 @@
+#include "pair_dem_contact.h"
+
+#include "fix_dem_contact_history.h"
+#include "python_link.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+namespace {
+// the compiled step (pair_kernel.SIGNATURE): per-contact force on body 1, torques on both bodies, overlap
+typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, int64_t h_rows, int64_t hs,
+                          double *x, double *v, double *omega, double *radius, double *rmass, int *type,
+                          int64_t nall, const double *params, int64_t n_rows, const int64_t *sphere_row,
+                          int64_t n_types, const double *rowinfo, const double *type_size, int64_t sized,
+                          int64_t frame_spin, double dt, double *out);
+const int N_OUT = 10;    // pair_kernel.N_OUT
+const int ABI = 1;       // pair_kernel.ABI
+const char *FIX_ID = "DEM_CONTACT_HISTORY";
+// the time step must give at least this many steps per elastic contact time of the stiffest pair
+const double MIN_STEPS_PER_CONTACT = 10.0;
+// tolerance on an atom's radius and mass against its type's (relative)
+const double SIZE_TOL = 1e-9;
+
+// a Python literal of any text
+std::string python_text(const std::string &s)
+{
+  std::string hex;
+  char b[3];
+  for (unsigned char c : s) {
+    std::snprintf(b, sizeof(b), "%02x", c);
+    hex += b;
+  }
+  return "bytes.fromhex('" + hex + "').decode()";
+}
+}    // namespace
+
+PairDemContact::PairDemContact(LAMMPS *lmp) :
+    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), fix(nullptr), epoch(0), saved_step(-1)
+{
+  single_enable = 0;
+  restartinfo = 0;
+  one_coeff = 1;
+  finitecutflag = 1;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  std::memset(&kernel, 0, sizeof(kernel));
+}
+
+PairDemContact::~PairDemContact()
+{
+  // (the arrays attach() keeps for this pair style stay with the Python process: a pair style made later at
+  // the same address replaces them; no Python call here, which may run while the interpreter finalizes)
+  if (fix && modify->get_fix_by_id(FIX_ID)) modify->delete_fix(FIX_ID);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+  }
+}
+
+void PairDemContact::allocate()
+{
+  allocated = 1;
+  int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+}
+
+// pair_style dem/contact vmax V [slots N] [frame_spin yes|no]
+void PairDemContact::settings(int narg, char **arg)
+{
+  vmax = 0.0;
+  for (int k = 0; k < narg; k += 2) {
+    std::string key = arg[k];
+    if (k + 1 >= narg) error->all(FLERR, "pair_style dem/contact: keyword {} needs a value", key);
+    if (key == "vmax")
+      vmax = utils::numeric(FLERR, arg[k + 1], false, lmp);
+    else if (key == "slots")
+      slots = utils::inumeric(FLERR, arg[k + 1], false, lmp);
+    else if (key == "frame_spin")
+      frame_spin = utils::logical(FLERR, arg[k + 1], false, lmp);
+    else
+      error->all(FLERR, "pair_style dem/contact: unknown keyword {} (valid: vmax, slots, frame_spin)", key);
+  }
+  if (!(vmax > 0.0) || !std::isfinite(vmax))
+    error->all(FLERR,
+               "pair_style dem/contact needs vmax V: the largest normal impact speed of the run [m/s], finite and "
+               "> 0 (the time step is checked against the contact time at that speed)");
+  if (slots < 1 || slots > 1000)
+    error->all(FLERR, "pair_style dem/contact: slots (history rows per atom) must be in [1, 1000], got {}", slots);
+}
+
+void PairDemContact::attach_table(const char *path)
+{
+  std::memset(&kernel, 0, sizeof(kernel));
+  kernel.abi = ABI;
+  std::string code = "import dem_contact.lammps.pair_kernel as k\nk.attach(" + python_text(path) + ", " +
+      std::to_string(atom->ntypes) + ", " + std::to_string((uintptr_t) &kernel) + ")\n";
+  std::string failed = DemContact::run_python(code);
+  if (!failed.empty())
+    error->one(FLERR, "pair dem/contact: dem_contact cannot be reached from this LAMMPS: {}", failed);
+  if (kernel.error[0]) error->all(FLERR, "pair dem/contact: {}", kernel.error);
+  attached = true;
+}
+
+// pair_coeff * * TABLE_FILE
+void PairDemContact::coeff(int narg, char **arg)
+{
+  if (narg != 3 || strcmp(arg[0], "*") != 0 || strcmp(arg[1], "*") != 0)
+    error->all(FLERR, "pair_coeff for dem/contact is: pair_coeff * * TABLE_FILE (one table for every pair of types)");
+  if (!allocated) allocate();
+  table_path = arg[2];
+  attach_table(arg[2]);
+  int n = atom->ntypes;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 1;
+  if (comm->me == 0) utils::logmesg(lmp, "pair dem/contact: {} from {}\n", kernel.laws, table_path);
+}
+
+void PairDemContact::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR,
+               "pair dem/contact needs atoms with radius, per-atom mass, spin and torque: use atom_style sphere");
+  if (strcmp(update->unit_style, "si") != 0)
+    error->all(FLERR, "pair dem/contact works in SI units: use units si (not {})", update->unit_style);
+  if (!comm->ghost_velocity)
+    error->all(FLERR, "pair dem/contact needs the velocities of ghost atoms: add comm_modify vel yes");
+  if (!attached) error->all(FLERR, "pair dem/contact: no table file; give pair_coeff * * TABLE_FILE");
+
+  neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_NEWTON_OFF);
+
+  auto existing = modify->get_fix_by_id(FIX_ID);
+  if (existing) {
+    fix = dynamic_cast<FixDemContactHistory *>(existing);
+    if (!fix || fix->slots != slots || fix->history_size != kernel.history_size)
+      error->all(FLERR, "pair dem/contact: fix {} exists with other sizes; define pair_style dem/contact once", FIX_ID);
+  } else {
+    fix = dynamic_cast<FixDemContactHistory *>(modify->add_fix(
+        fmt::format("{} all DEM/CONTACT/HISTORY {} {}", FIX_ID, slots, kernel.history_size)));
+  }
+
+  check_atoms();
+  check_time_step();
+}
+
+// every atom has its type's density (and its type's radius, where the laws do not take other sizes)
+void PairDemContact::check_atoms()
+{
+  int nlocal = atom->nlocal, ntypes = atom->ntypes;
+  double *radius = atom->radius, *rmass = atom->rmass;
+  int *type = atom->type;
+  int bad = 0, bad_type = 0;
+  double bad_r = 0.0, bad_m = 0.0;
+  std::vector<double> local_max(ntypes + 1, 0.0);
+  for (int i = 0; i < nlocal; i++) {
+    int t = type[i] - 1;
+    double r0 = kernel.type_size[2 * t], m0 = kernel.type_size[2 * t + 1];
+    double rho = 3.0 * m0 / (4.0 * M_PI * r0 * r0 * r0);
+    double m = rho * 4.0 / 3.0 * M_PI * radius[i] * radius[i] * radius[i];
+    bool wrong_r = !kernel.size_free && std::fabs(radius[i] - r0) > SIZE_TOL * r0;
+    if (wrong_r || !(std::fabs(rmass[i] - m) <= SIZE_TOL * m)) {
+      if (!bad) {
+        bad_type = t + 1;
+        bad_r = radius[i];
+        bad_m = rmass[i];
+      }
+      bad++;
+    }
+    local_max[t + 1] = std::max(local_max[t + 1], radius[i]);
+  }
+  int all_bad;
+  MPI_Allreduce(&bad, &all_bad, 1, MPI_INT, MPI_SUM, world);
+  if (bad)
+    error->one(FLERR,
+               "pair dem/contact: {} atoms here are not of their type's material and size (one of type {}: radius {} "
+               "m, mass {} kg); type k is the table's sphere k: its density{}. Set the masses from the density "
+               "(set type k density RHO) or write the table for these atoms",
+               bad, bad_type, bad_r, bad_m,
+               kernel.size_free ? "" : " and radius (the laws of this table take no other radius)");
+  if (all_bad) error->all(FLERR, "pair dem/contact: atoms not of their type's material and size on another rank");
+  type_rmax.assign(ntypes + 1, 0.0);
+  MPI_Allreduce(local_max.data(), type_rmax.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  for (int t = 1; t <= ntypes; t++) {
+    type_rmax[t] = std::max(type_rmax[t], kernel.type_size[2 * (t - 1)]);
+    // atoms a fix inserts (fix pour, fix deposit) reach the radius it reports
+    for (auto &f : modify->get_fix_list()) {
+      int dim;
+      auto r = (double *) f->extract("radius", dim);
+      if (r && dim == 0) type_rmax[t] = std::max(type_rmax[t], *r);
+    }
+  }
+}
+
+// dt <= t_c / MIN_STEPS_PER_CONTACT for the stiffest pair of types at vmax, with the smallest atoms of each type
+void PairDemContact::check_time_step()
+{
+  int ntypes = atom->ntypes, nlocal = atom->nlocal;
+  std::vector<double> small(2 * ntypes, INFINITY), all(2 * ntypes);
+  for (int i = 0; i < nlocal; i++) {
+    int t = atom->type[i] - 1;
+    small[2 * t] = std::min(small[2 * t], atom->radius[i]);
+    small[2 * t + 1] = std::min(small[2 * t + 1], atom->rmass[i]);
+  }
+  MPI_Allreduce(small.data(), all.data(), 2 * ntypes, MPI_DOUBLE, MPI_MIN, world);
+  double tc_min = INFINITY;
+  int worst_a = 0, worst_b = 0;
+  for (int a = 0; a < ntypes; a++)
+    for (int b = a; b < ntypes; b++) {
+      int row = (int) kernel.sphere_row[a * ntypes + b];
+      double ra = std::min(all[2 * a], kernel.type_size[2 * a]), rb = std::min(all[2 * b], kernel.type_size[2 * b]);
+      double ma = std::min(all[2 * a + 1], kernel.type_size[2 * a + 1]);
+      double mb = std::min(all[2 * b + 1], kernel.type_size[2 * b + 1]);
+      double rs = ra * rb / (ra + rb), ms = ma * mb / (ma + mb);
+      double q_row = kernel.rowinfo[row * 6 + 1];    // kernels.RI_Q
+      double tc = kernel.tc_unit[row] * std::pow(vmax, -kernel.alpha[row]) * std::pow(ms * ms / rs / q_row, 0.2);
+      if (tc < tc_min) {
+        tc_min = tc;
+        worst_a = a + 1;
+        worst_b = b + 1;
+      }
+    }
+  if (update->dt > tc_min / MIN_STEPS_PER_CONTACT)
+    error->all(FLERR,
+               "pair dem/contact: the time step {} s gives {:.3g} steps per contact time of types {} and {} at vmax = "
+               "{} m/s ({:.4g} s), fewer than {}: use timestep {:.4g} or smaller",
+               update->dt, tc_min / update->dt, worst_a, worst_b, vmax, tc_min, MIN_STEPS_PER_CONTACT,
+               tc_min / MIN_STEPS_PER_CONTACT);
+}
+
+double PairDemContact::init_one(int i, int j)
+{
+  if (!allocated || setflag[i][j] == 0)
+    error->all(FLERR, "pair dem/contact: no table file; give pair_coeff * * TABLE_FILE");
+  double cut = type_rmax[i] + type_rmax[j];
+  return cut;
+}
+
+// the row of atom i keyed `key`, else a free row taken (zeroed), else -1
+int PairDemContact::find_row(int i, double key)
+{
+  double *k = fix->keys[i];
+  int free_row = -1;
+  for (int s = 0; s < slots; s++) {
+    if (k[s] == key) return s;
+    if (free_row < 0 && k[s] == 0.0) free_row = s;
+  }
+  if (free_row >= 0) {
+    k[free_row] = key;
+    std::memset(fix->hist + ((size_t) i * slots + free_row) * kernel.history_size, 0,
+                sizeof(double) * kernel.history_size);
+  }
+  return free_row;
+}
+
+// at a run's set-up: the forces of the last step again, where no atom changed since (then a run continued
+// in pieces is the one run); false where any did, on any rank
+bool PairDemContact::reapply_saved()
+{
+  int nlocal = atom->nlocal;
+  int ok = saved_step == update->ntimestep;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega, *radius = atom->radius, *rmass = atom->rmass;
+  typedef FixDemContactHistory F;
+  for (int i = 0; ok && i < nlocal; i++) {
+    const double *s = fix->saved[i];
+    for (int d = 0; d < 3; d++)
+      ok = ok && s[F::SF_X + d] == x[i][d] && s[F::SF_V + d] == v[i][d] && s[F::SF_W + d] == omega[i][d];
+    ok = ok && s[F::SF_R] == radius[i] && s[F::SF_M] == rmass[i];
+  }
+  int all;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, world);
+  return all != 0;
+}
+
+void PairDemContact::save_forces(int nlocal)
+{
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  typedef FixDemContactHistory F;
+  for (int i = 0; i < nlocal; i++) {
+    double *s = fix->saved[i];
+    for (int d = 0; d < 6; d++) s[d] = acc[6 * i + d];
+    for (int d = 0; d < 3; d++) {
+      s[F::SF_X + d] = x[i][d];
+      s[F::SF_V + d] = v[i][d];
+      s[F::SF_W + d] = omega[i][d];
+    }
+    s[F::SF_R] = atom->radius[i];
+    s[F::SF_M] = atom->rmass[i];
+  }
+  saved_step = update->ntimestep;
+}
+
+void PairDemContact::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const int hs = (int) kernel.history_size;
+  const bool setup = update->setupflag != 0;
+  tagint *tag = atom->tag;
+  double **x = atom->x, *radius = atom->radius;
+  double **f = atom->f, **torque = atom->torque;
+  double *special_lj = force->special_lj;
+  const bool reapply = setup && reapply_saved();
+
+  epoch++;
+  if ((int) seen.size() < nlocal * slots) seen.assign((size_t) 2 * nlocal * slots + 16, 0);
+  pairs.clear();
+  hrow.clear();
+  second.clear();
+  int overflow = -1;
+  tagint self_image = 0, twice = 0;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      if (special_lj[sbmask(j)] == 0.0) continue;    // excluded pairs (special_bonds lj 0), as pair granular
+      j &= NEIGHMASK;
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double rs = radius[i] + radius[j];
+      if (dx * dx + dy * dy + dz * dz >= rs * rs) continue;
+      if (tag[i] == tag[j]) {
+        self_image = tag[i];
+        continue;
+      }
+      const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
+      // the row that keeps the history: the lower id's where both atoms are here, else the local atom's
+      const int p = a < nlocal ? a : b, q = a < nlocal ? b : a;
+      int r = find_row(p, (double) tag[q]);
+      if (r < 0) {
+        overflow = tag[p];
+        continue;
+      }
+      int64_t row = (int64_t) p * slots + r;
+      if (seen[row] == epoch) {
+        twice = tag[p];
+        continue;
+      }
+      seen[row] = epoch;
+      int64_t other = -1;
+      if (q < nlocal) {
+        int s = find_row(q, (double) tag[p]);
+        if (s < 0) {
+          overflow = tag[q];
+          continue;
+        }
+        other = (int64_t) q * slots + s;
+        seen[other] = epoch;
+      }
+      pairs.push_back(a);
+      pairs.push_back(b);
+      hrow.push_back(row);
+      second.push_back(other);
+    }
+  }
+  if (overflow >= 0)
+    error->one(FLERR,
+               "pair dem/contact: atom {} has more than {} contacts at once: give pair_style dem/contact a larger "
+               "slots N (history rows per atom)",
+               overflow, slots);
+  if (self_image || twice)
+    error->one(FLERR,
+               "pair dem/contact: atom {} touches {} through a periodic boundary: the box is narrower than two "
+               "diameters along a periodic direction; make it wider",
+               self_image ? self_image : twice, self_image ? "itself" : "two images of one partner");
+
+  // rows of local atoms whose contact ended: freed
+  for (int i = 0; i < nlocal; i++) {
+    double *k = fix->keys[i];
+    for (int s = 0; s < slots; s++)
+      if (k[s] != 0.0 && seen[(size_t) i * slots + s] != epoch) {
+        k[s] = 0.0;
+        std::memset(fix->hist + ((size_t) i * slots + s) * hs, 0, sizeof(double) * hs);
+      }
+  }
+
+  const int64_t n = (int64_t) hrow.size();
+  out.resize((size_t) N_OUT * n + 1);
+  double *H = fix->hist;
+  int64_t h_rows = (int64_t) nlocal * slots;
+  int64_t *rows = hrow.data();
+  double dt = update->dt;
+  if (setup) {
+    // a set-up advances nothing: the law works on copies of the histories, with no time passing
+    scratch.resize((size_t) n * hs + 1);
+    scratch_rows.resize(n + 1);
+    for (int64_t k = 0; k < n; k++) {
+      std::memcpy(scratch.data() + k * hs, H + hrow[k] * hs, sizeof(double) * hs);
+      scratch_rows[k] = k;
+    }
+    H = scratch.data();
+    h_rows = n;
+    rows = scratch_rows.data();
+    dt = 0.0;
+  }
+  auto step = (StepFn) kernel.step;
+  int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, x[0], atom->v[0], atom->omega[0], radius, atom->rmass,
+                         atom->type, nall, kernel.params, kernel.n_rows, kernel.sphere_row, kernel.n_types,
+                         kernel.rowinfo, kernel.type_size, kernel.size_free, frame_spin, dt, out.data())
+                  : 0;
+  if (bad)
+    error->one(FLERR,
+               "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
+               "a time step too long for the contacts, or atoms placed inside each other)",
+               bad, update->ntimestep);
+  if (!setup)
+    for (int64_t k = 0; k < n; k++)
+      if (second[k] >= 0) std::memcpy(H + second[k] * hs, H + hrow[k] * hs, sizeof(double) * hs);
+
+  acc.assign((size_t) 6 * nlocal + 1, 0.0);
+  for (int64_t k = 0; k < n; k++) {
+    const int a = (int) pairs[2 * k], b = (int) pairs[2 * k + 1];
+    const double *o = out.data() + N_OUT * k;
+    if (a < nlocal) {
+      double *c = acc.data() + 6 * a;
+      for (int d = 0; d < 3; d++) {
+        c[d] += o[d];
+        c[3 + d] += o[3 + d];
+      }
+    }
+    if (b < nlocal) {
+      double *c = acc.data() + 6 * b;
+      for (int d = 0; d < 3; d++) {
+        c[d] -= o[d];
+        c[3 + d] += o[6 + d];
+      }
+    }
+    if (evflag)
+      ev_tally_xyz(a, b, nlocal, 0, 0.0, 0.0, o[0], o[1], o[2], x[a][0] - x[b][0], x[a][1] - x[b][1],
+                   x[a][2] - x[b][2]);
+  }
+  if (reapply) {
+    for (int i = 0; i < nlocal; i++)
+      for (int d = 0; d < 6; d++) acc[6 * i + d] = fix->saved[i][d];
+  }
+  for (int i = 0; i < nlocal; i++) {
+    for (int d = 0; d < 3; d++) {
+      f[i][d] += acc[6 * i + d];
+      torque[i][d] += acc[6 * i + 3 + d];
+    }
+  }
+  if (!setup) save_forces(nlocal);
+}
+
+double PairDemContact::memory_usage()
+{
+  return (double) (seen.capacity() + pairs.capacity() + hrow.capacity() + second.capacity()) * sizeof(int64_t) +
+      (double) (out.capacity() + scratch.capacity() + acc.capacity()) * sizeof(double);
+}

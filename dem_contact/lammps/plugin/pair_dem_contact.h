@@ -1,0 +1,87 @@
+/* pair_style dem/contact: dem_contact's contact laws for spheres (atom_style sphere, units si) in LAMMPS's own
+   pair loop.
+
+     pair_style dem/contact vmax V [slots N] [frame_spin yes|no]
+
+   (frame_spin: pass the spin of the contact frame about the normal to the tangential law, as the bridge does by
+   default; no: keep the tangential history fixed in space, as LAMMPS's granular models)
+     pair_coeff * * TABLE_FILE
+
+   The table file (dem_contact.lammps.table_file.save) holds the parameter rows of every pair of atom types and
+   their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
+   both, in one canonical order, body 1 the lower atom id, from the same inputs, so both copies of its history
+   stay equal and no history is communicated), keeps each contact's history rows in the per-atom rows of its fix
+   (FixDemContactHistory), and hands the touching pairs to the package's compiled step once per step
+   (dem_contact/lammps/pair_kernel.py), reached through Python (python_link.h). It adds the returned forces and
+   torques to the local atoms and tallies the virial. */
+#ifdef PAIR_CLASS
+#else
+#ifndef DEM_CONTACT_PAIR_H
+#define DEM_CONTACT_PAIR_H
+
+#include "pair.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+// what dem_contact.lammps.pair_kernel.attach writes (its class Attach, field for field)
+struct DemContactAttach {
+  int64_t abi;
+  char error[2048];
+  void *step;
+  const double *params;
+  int64_t n_rows;
+  const int64_t *sphere_row;
+  int64_t n_types;
+  const double *rowinfo;
+  const double *type_size;
+  int64_t size_free;
+  int64_t history_size;
+  double r_max;
+  const double *tc_unit;
+  const double *alpha;
+  char laws[512];
+};
+
+namespace LAMMPS_NS {
+
+class FixDemContactHistory;
+
+class PairDemContact : public Pair {
+ public:
+  PairDemContact(class LAMMPS *);
+  ~PairDemContact() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  double memory_usage() override;
+
+ private:
+  double vmax;
+  int slots, frame_spin;
+  std::string table_path;
+  DemContactAttach kernel;
+  bool attached;
+  FixDemContactHistory *fix;
+  std::vector<double> type_rmax;
+  int64_t epoch;
+  std::vector<int64_t> seen, pairs, hrow, second, scratch_rows;
+  std::vector<double> out, scratch, acc;
+  bigint saved_step;
+
+  void allocate();
+  void attach_table(const char *path);
+  void check_atoms();
+  void check_time_step();
+  int find_row(int i, double key);
+  bool reapply_saved();
+  void save_forces(int nlocal);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
