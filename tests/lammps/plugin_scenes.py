@@ -1,0 +1,238 @@
+"""Run by test_plugin.py as ``[mpirun -np N] python tests/lammps/plugin_scenes.py SCENE ENGINE DIR [options]``:
+one scene run by one engine, rank 0 printing one JSON object (the atoms' x, v, omega, f, torque by atom id,
+and what the scene reports).
+
+Engines: ``plugin`` (pair_style dem/contact), ``bridge`` (LammpsContacts), ``native`` (LAMMPS's own
+``pair granular``, from ``native_commands``). Laws: hertz + mindlin_total (LAMMPS's hertz/material + mindlin)
+without the frame spin, with --sds LAMMPS's twisting and rolling sds models too.
+
+Scenes (SI units, soft grains of 1 and 1.25 mm radius):
+
+- pair: two spheres pressed, sliding and spinning (--steps steps);
+- pour: spheres of two types falling under gravity onto a bed of fixed spheres, periodic in x and y (x split
+  between the ranks: contacts cross the subdomains and atoms change rank). --restart-write N: run N steps and
+  write DIR/pour.restart; --restart-read: read it (on any number of ranks) and run the rest; --pieces K: the
+  run in K runs.
+
+Options: --newton on|off, --steps N.
+"""
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+from dem_contact.dem.pairs import pair_table
+from dem_contact.lammps import LammpsContacts, native_commands, new_lammps
+from dem_contact.lammps import plugin_build, table_file
+from dem_contact.laws.model import reference_speed
+from dem_contact.materials import Material, Sphere
+
+GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
+POLYMER = Material(E=2e7, nu=0.4, rho=1100.0)
+R1, R2 = 1.0e-3, 1.25e-3
+V_MAX = 1.0
+
+
+def table(sds, types=2):
+    spheres = [Sphere(R1, GLASS), Sphere(R2, POLYMER)][:types]
+    extra = dict(twist="sds", rolling="sds", k_twist=1e-5, gamma_twist=4e-9, mu_twist=1e-4, k_roll=50.0,
+                 gamma_roll=1e-2, mu_roll=0.1) if sds else {}
+    return pair_table(spheres, [], mu=0.5, normal="hertz", tangential="mindlin_total",
+                      v_ref=reference_speed(1.0), **extra)
+
+
+def gather(lmp, name):
+    return np.array(lmp.gather_atoms(name, 1, 3)).reshape(-1, 3).tolist()
+
+
+def state(lmp):
+    return {k: gather(lmp, k) for k in ("x", "v", "omega", "f", "torque")}
+
+
+def forces_on(lmp, engine, t, out, frame_spin):
+    """The contact forces of the engine: (the bridge, or None)."""
+    if engine == "native":
+        for c in native_commands(t):
+            lmp.command(c)
+        return None
+    if engine == "plugin":
+        # (a file per rank: the ranks write at once)
+        path = table_file.save(t, os.path.join(out, f"table_{lmp.extract_setting('world_rank')}.json"))
+        lmp.command(f"plugin load {plugin_build.plugin_path()}")
+        lmp.command(f"pair_style dem/contact vmax {V_MAX!r} frame_spin {'yes' if frame_spin else 'no'}")
+        lmp.command(f"pair_coeff * * {path}")
+        return None
+    lmp.command("pair_style zero 0.004")
+    lmp.command("pair_coeff * *")
+    return LammpsContacts(lmp, t, v_max=V_MAX, frame_spin=frame_spin)
+
+
+def run(lmp, bridge, n):
+    if bridge is not None:
+        bridge.run(n)
+    else:
+        lmp.command(f"run {n}")
+
+
+def pair(a):
+    t = table(a.sds, types=1)
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    for c in ("units si", "atom_style sphere", "atom_modify map array sort 0 0.0", f"newton {a.newton}",
+              "boundary f f f", "processors * 1 1", "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
+              "create_box 1 box", "create_atoms 1 single -0.00097 0 0", "create_atoms 1 single 0.00097 0.0002 0.0001",
+              f"set type 1 diameter {2 * R1!r}", f"set type 1 mass {t.scenes[0].sphere.mass!r}",
+              "set atom 1 vx 0.05", "set atom 2 vy 0.03", "set atom 1 omega 3 5 10", "set atom 2 omega -2 0 4",
+              "timestep 1e-6", "fix 1 all nve/sphere", "neighbor 0.0003 bin", "neigh_modify delay 0 every 1 check yes",
+              "comm_modify vel yes"):
+        lmp.command(c)
+    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    run(lmp, bridge, a.steps)
+    return lmp, state(lmp)
+
+
+def pour_box(lmp, a, t):
+    """The pour's atoms: a bed of fixed type-1 spheres at the floor, and a lattice of both types above."""
+    k = 6                          # bed spheres per side
+    s = 2.02 * R1
+    L = k * s
+    top = 0.03
+    for c in ("units si", "atom_style sphere", "atom_modify map array sort 0 0.0", f"newton {a.newton}",
+              "boundary p p f", "processors * 1 1", f"region box block 0 {L!r} 0 {L!r} 0 {top!r}", "create_box 2 box"):
+        lmp.command(c)
+    for i in range(k):
+        for j in range(k):
+            lmp.command(f"create_atoms 1 single {(i + 0.5) * s!r} {(j + 0.5) * s!r} {R1!r}")
+    rng = np.random.default_rng(7)
+    m = 4                          # falling spheres per side, layers of them
+    g = L / m
+    n = 0
+    for layer in range(3):
+        for i in range(m):
+            for j in range(m):
+                typ = 1 + (n % 2)
+                z = 2.0 * R1 + R2 + 1e-4 + layer * 2.2 * R2
+                x, y = float((i + 0.5) * g + rng.uniform(-1e-4, 1e-4)), float((j + 0.5) * g + rng.uniform(-1e-4, 1e-4))
+                lmp.command(f"create_atoms {typ} single {x!r} {y!r} {z!r}")
+                n += 1
+    lmp.command(f"group bed id <= {k * k}")
+    lmp.command("group grains subtract all bed")
+    for typ, sph in ((1, t.scenes[t.sphere_row[0, 0]].sphere), (2, t.scenes[t.sphere_row[1, 1]].sphere)):
+        lmp.command(f"set type {typ} diameter {2 * sph.radius!r}")
+        lmp.command(f"set type {typ} mass {sph.mass!r}")
+    lmp.command("velocity grains create 0.0 1 loop geom")
+    vel = rng.normal(0.0, 0.2, (n, 3)).tolist()
+    for q in range(n):
+        lmp.command(f"set atom {k * k + q + 1} vx {vel[q][0]!r} vy {vel[q][1]!r} vz {vel[q][2] - 0.6!r} "
+                    f"omega {vel[q][1] * 300!r} {vel[q][2] * 300!r} {vel[q][0] * 300!r}")
+
+
+def touching(lmp):
+    """The number of touching pairs (periodic images included)."""
+    x = np.array(gather(lmp, "x"))
+    r = np.array(lmp.gather_atoms("radius", 1, 1))
+    L = np.array(lmp.extract_box()[1]) - np.array(lmp.extract_box()[0])
+    d = x[:, None, :] - x[None, :, :]
+    periodic = np.array(lmp.extract_box()[5], dtype=bool)
+    d[..., periodic] -= L[periodic] * np.round(d[..., periodic] / L[periodic])
+    gap = np.sqrt((d**2).sum(-1)) - (r[:, None] + r[None, :])
+    return int(np.triu(gap < 0, 1).sum())
+
+
+def pour_settings(lmp):
+    for c in ("timestep 2e-6", "fix 1 grains nve/sphere", "fix 2 grains gravity 9.81 vector 0 0 -1",
+              "neighbor 0.0004 bin", "neigh_modify delay 0 every 1 check yes", "comm_modify vel yes"):
+        lmp.command(c)
+
+
+def pour(a):
+    t = table(a.sds)
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    restart = os.path.join(a.dir, "pour.restart")
+    if a.restart_read:
+        lmp.command(f"newton {a.newton}")
+        lmp.command("processors * 1 1")
+        lmp.command(f"read_restart {restart}")
+        pour_settings(lmp)
+    else:
+        pour_box(lmp, a, t)
+        pour_settings(lmp)
+    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    steps = a.restart_write or a.steps
+    for _ in range(a.pieces):
+        run(lmp, bridge, steps // a.pieces)
+    if a.restart_write:
+        lmp.command(f"write_restart {restart}")
+    out = state(lmp)
+    out["touching"] = touching(lmp)
+    return lmp, out
+
+
+def pack_box(lmp, a, t, k=4):
+    """k^3 type-1 spheres on a cubic lattice 1% closer than touching, periodic, with random velocities and spins:
+    every sphere keeps its six contacts, sliding and rolling."""
+    s = 2.0 * R1 * 0.99
+    L = k * s
+    for c in ("units si", "atom_style sphere", "atom_modify map array sort 0 0.0", f"newton {a.newton}",
+              "boundary p p p", "processors * 1 1", f"region box block 0 {L!r} 0 {L!r} 0 {L!r}", "create_box 1 box",
+              ):
+        lmp.command(c)
+    # (one by one: atom ids that do not depend on the ranks)
+    for i in range(k):
+        for j in range(k):
+            for m in range(k):
+                lmp.command(f"create_atoms 1 single {(i + 0.5) * s!r} {(j + 0.5) * s!r} {(m + 0.5) * s!r}")
+    lmp.command(f"set type 1 diameter {2 * R1!r}")
+    lmp.command(f"set type 1 mass {t.scenes[0].sphere.mass!r}")
+    rng = np.random.default_rng(3)
+    vel = rng.normal(0.0, 0.02, (k**3, 6)).tolist()
+    for q in range(k**3):
+        lmp.command(f"set atom {q + 1} vx {vel[q][0]!r} vy {vel[q][1]!r} vz {vel[q][2]!r} "
+                    f"omega {vel[q][3] * 50!r} {vel[q][4] * 50!r} {vel[q][5] * 50!r}")
+
+
+def pack(a):
+    t = table(a.sds, types=1)
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    restart = os.path.join(a.dir, "pack.restart")
+    if a.restart_read:
+        for c in (f"newton {a.newton}", "processors * 1 1", f"read_restart {restart}"):
+            lmp.command(c)
+    else:
+        pack_box(lmp, a, t)
+    for c in ("timestep 2e-6", "fix 1 all nve/sphere", "neighbor 0.0004 bin", "neigh_modify delay 0 every 1 check yes",
+              "comm_modify vel yes"):
+        lmp.command(c)
+    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    steps = a.restart_write or a.steps
+    for _ in range(a.pieces):
+        run(lmp, bridge, steps // a.pieces)
+    if a.restart_write:
+        lmp.command(f"write_restart {restart}")
+    out = state(lmp)
+    out["touching"] = touching(lmp)
+    return lmp, out
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("scene", choices=("pair", "pour", "pack"))
+    p.add_argument("engine", choices=("plugin", "bridge", "native"))
+    p.add_argument("dir")
+    p.add_argument("--newton", choices=("on", "off"), default="on")
+    p.add_argument("--steps", type=int, default=400)
+    p.add_argument("--sds", action="store_true")
+    p.add_argument("--frame-spin", action="store_true")
+    p.add_argument("--pieces", type=int, default=1)
+    p.add_argument("--restart-write", type=int, default=0)
+    p.add_argument("--restart-read", action="store_true")
+    a = p.parse_args()
+    lmp, out = dict(pair=pair, pour=pour, pack=pack)[a.scene](a)
+    if lmp.extract_setting("world_rank") == 0:
+        print(json.dumps(out))
+    lmp.close()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
