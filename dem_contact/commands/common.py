@@ -17,9 +17,10 @@ from ..materials import STEEL
 
 
 def add_command(sub, module):
-    """The subparser of a command module: its name (the module's), ``HELP``, ``DESCRIPTION``, the options of
-    ``add_options(p)`` and ``run``."""
-    p = sub.add_parser(module.__name__.rsplit(".", 1)[-1], help=module.HELP, description=module.DESCRIPTION)
+    """The subparser of a command module: its name (the module's, with hyphens for underscores), ``HELP``,
+    ``DESCRIPTION``, the options of ``add_options(p)`` and ``run``."""
+    name = module.__name__.rsplit(".", 1)[-1].replace("_", "-")
+    p = sub.add_parser(name, help=module.HELP, description=module.DESCRIPTION)
     module.add_options(p)
     p.set_defaults(run=module.run)
     return p

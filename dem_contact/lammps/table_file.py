@@ -21,7 +21,7 @@ from .. import __version__
 from ..dem.pairs import PairTable
 from ..errors import InputError
 from ..laws import table as LT
-from ..laws.slots import P_MSTAR, P_NORMAL_LAW, P_ROLLING_LAW, P_RSTAR, P_TANGENTIAL_LAW, P_TWIST_LAW
+from ..laws.slots import N_PARAMS, P_MSTAR, P_NORMAL_LAW, P_ROLLING_LAW, P_RSTAR, P_TANGENTIAL_LAW, P_TWIST_LAW
 from . import kernels as K
 
 #: the file's format name
@@ -183,8 +183,7 @@ def load(path) -> TableFile:
             if name is not None and name not in known:
                 raise InputError(f"the table file {path} needs the {family} law {name!r} (row {r}), which "
                                  f"dem_contact {__version__} lacks (it has {', '.join(known)})")
-    n_params = len(doc.get("params", [[]])[0]) if doc.get("params") else 0
-    params = _array(doc, "params", float, (len(laws), n_params), path)
+    params = _array(doc, "params", float, (len(laws), N_PARAMS), path)
     # the law ids of the rows are those of this version's names
     for r, names in enumerate(laws):
         for family, slot in _LAW_SLOTS:

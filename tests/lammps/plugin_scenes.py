@@ -1,6 +1,6 @@
-"""Run by test_plugin.py as ``[mpirun -np N] python tests/lammps/plugin_scenes.py SCENE ENGINE DIR [options]``:
-one scene run by one engine, rank 0 printing one JSON object (the atoms' x, v, omega, f, torque by atom id,
-and what the scene reports).
+"""Run by test_plugin.py as ``[mpirun -np N] python tests/lammps/plugin_scenes.py SCENE ENGINES DIR [options]``:
+one scene run by each engine in turn, rank 0 printing one JSON object: per engine the atoms' x, v, omega, f,
+torque by atom id (and for pour and pack the number of touching pairs at the end).
 
 Engines: ``plugin`` (pair_style dem/contact), ``bridge`` (LammpsContacts), ``native`` (LAMMPS's own
 ``pair granular``, from ``native_commands``). Laws: hertz + mindlin_total (LAMMPS's hertz/material + mindlin)
@@ -10,11 +10,13 @@ Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 
 - pair: two spheres pressed, sliding and spinning (--steps steps);
 - pour: spheres of two types falling under gravity onto a bed of fixed spheres, periodic in x and y (x split
-  between the ranks: contacts cross the subdomains and atoms change rank). --restart-write N: run N steps and
-  write DIR/pour.restart; --restart-read: read it (on any number of ranks) and run the rest; --pieces K: the
-  run in K runs.
+  between the ranks: contacts cross the subdomains and atoms change rank);
+- pack: 64 spheres on a cubic lattice 1% closer than touching, periodic, with random velocities and spins (six
+  lasting contacts each, many across the subdomains and the periodic boundaries).
 
-Options: --newton on|off, --steps N.
+Options: --restart-write N: run N steps and write DIR/SCENE.restart; --restart-read: read it (on any number of
+ranks) and run --steps more; --pieces K: the run in K runs; --sds; --frame-spin.
+--newton on|off, --steps N.
 """
 import argparse
 import json
@@ -218,7 +220,7 @@ def pack(a):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("scene", choices=("pair", "pour", "pack"))
-    p.add_argument("engine", choices=("plugin", "bridge", "native"))
+    p.add_argument("engines", help="comma-separated: plugin, bridge, native (each run in turn)")
     p.add_argument("dir")
     p.add_argument("--newton", choices=("on", "off"), default="on")
     p.add_argument("--steps", type=int, default=400)
@@ -228,10 +230,14 @@ def main():
     p.add_argument("--restart-write", type=int, default=0)
     p.add_argument("--restart-read", action="store_true")
     a = p.parse_args()
-    lmp, out = dict(pair=pair, pour=pour, pack=pack)[a.scene](a)
-    if lmp.extract_setting("world_rank") == 0:
-        print(json.dumps(out))
-    lmp.close()
+    result = {}
+    for engine in a.engines.split(","):
+        a.engine = engine
+        lmp, result[engine] = dict(pair=pair, pour=pour, pack=pack)[a.scene](a)
+        rank = lmp.extract_setting("world_rank")
+        lmp.close()
+    if rank == 0:
+        print(json.dumps(result))
 
 
 if __name__ == "__main__":

@@ -1,6 +1,10 @@
 // Registers pair_style dem/contact and its history fix with LAMMPS (PLUGIN package: plugin load, or a
 // *plugin.so on LAMMPS_PLUGIN_PATH).
 #include "lammpsplugin.h"
+#include "library.h"
+
+#include "error.h"
+#include "lammps.h"
 
 #include "fix_dem_contact_history.h"
 #include "pair_dem_contact.h"
@@ -8,6 +12,11 @@
 #ifndef DEM_CONTACT_LAMMPS_VERSION
 #error "DEM_CONTACT_LAMMPS_VERSION (the LAMMPS version string the plugin is built for) must be defined"
 #endif
+#ifndef DEM_CONTACT_LAMMPS_VERSION_NUMBER
+#error "DEM_CONTACT_LAMMPS_VERSION_NUMBER (as lammps_version(): 20250722) must be defined"
+#endif
+
+#include <string>
 
 using namespace LAMMPS_NS;
 
@@ -20,6 +29,16 @@ static Fix *history_creator(LAMMPS *lmp, int argc, char **argv)
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
+  // LAMMPS loads a plugin of another version (with a warning only): its classes may not match this one's
+  int version = lammps_version(lmp);
+  if (version != DEM_CONTACT_LAMMPS_VERSION_NUMBER) {
+    std::string text = "the dem_contact plugin was built for LAMMPS " DEM_CONTACT_LAMMPS_VERSION " (" +
+        std::to_string(DEM_CONTACT_LAMMPS_VERSION_NUMBER) + "), this LAMMPS is " + std::to_string(version) +
+        ": build it for this LAMMPS (dem-contact lammps-plugin --rebuild in its Python environment, or CMake "
+        "against its headers)";
+    ((LAMMPS *) lmp)->error->all(FLERR, text);    // (every rank loads the plugin)
+    return;
+  }
   lammpsplugin_t plugin;
   auto register_plugin = (lammpsplugin_regfunc) regfunc;
   plugin.version = DEM_CONTACT_LAMMPS_VERSION;

