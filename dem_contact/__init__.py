@@ -6,7 +6,7 @@ from .impacts.impact import DEFAULT_STEPS_PER_CONTACT, EnergyBudget, ImpactResul
 from .materials import STEEL, Material, PairProperties, Sphere, Wall, pair_properties
 from .laws.model import NORMAL_LAWS, TANGENTIAL_LAWS, Scene, reference_speed
 
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "DEFAULT_STEPS_PER_CONTACT", "EnergyBudget", "ImpactResult", "InputError", "Material",

@@ -14,6 +14,7 @@ PKG = pathlib.Path(dem_contact.__file__).parent
 #: What each room may import from the package (besides itself). Lazy imports inside functions count too.
 ALLOWED = {
     "errors": set(),
+    "version": set(),
     "kernel_cache": set(),
     "materials": {"errors"},
     "laws": {"errors", "materials"},
@@ -24,10 +25,11 @@ ALLOWED = {
     "impacts": {"errors", "materials", "laws", "dem"},
     "plots": {"errors", "rebound"},
     "studies": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "dem"},
-    "lammps": {"errors", "materials", "laws", "dem", "walls"},
-    "commands": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "studies", "dem"},
+    "lammps": {"errors", "version", "materials", "laws", "dem", "walls"},
+    "commands": {"errors", "materials", "laws", "reference", "impacts", "rebound", "plots", "studies", "dem",
+                 "lammps"},
     "cli": {"errors", "commands"},
-    "__init__": {"kernel_cache", "errors", "materials", "laws", "impacts"},
+    "__init__": {"kernel_cache", "version", "errors", "materials", "laws", "impacts"},
     "__main__": {"cli"},
 }
 

@@ -14,7 +14,7 @@ def add_options(p):
     from .common import add_torque_options, law_options
     from ..laws.model import NORMAL_LAWS, TANGENTIAL_LAWS
 
-    p.add_argument("--out", required=True, help="the table file to write (JSON)")
+    p.add_argument("--out", required=True, help="the table file to write (.json)")
     p.add_argument("--sphere", nargs=4, action="append", required=True, metavar=("RADIUS", "E", "NU", "RHO"),
                    help="an atom type: radius [m], Young's modulus [Pa], Poisson ratio, density [kg/m^3] "
                         "(repeat for types 1, 2, ...)")
@@ -31,12 +31,13 @@ def add_options(p):
 
 
 def run(args) -> int:
-    from .common import dest, law_options, torque_laws
+    from .common import check_output_file, dest, law_options, torque_laws
     from ..dem.pairs import pair_table
     from ..errors import InputError
     from ..lammps import table_file
     from ..materials import Material, Sphere
 
+    check_output_file("--out", args.out, (".json",))
     spheres = []
     for k, words in enumerate(args.sphere, start=1):
         try:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import __version__
+from ..version import __version__
 from ..dem.pairs import PairTable
 from ..errors import InputError
 from ..laws import table as LT

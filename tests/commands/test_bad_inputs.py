@@ -174,6 +174,8 @@ OUTPUT_CASES = {
     ("validate", "--out"): ([], "blocker/sub", ("dem_contact.studies.wu2009", "run_validation")),
     ("benchmark", "--plot"): (["chung-ooi"], "blocker/sub", ("dem_contact.studies.chung_ooi", "run_suite")),
     ("benchmark", "--report"): (["chung-ooi"], "missing/r.md", ("dem_contact.studies.chung_ooi", "run_suite")),
+    ("lammps-table", "--out"): (["--sphere", "0.001", "5e7", "0.25", "2500"], "missing/t.json",
+                                ("dem_contact.dem.pairs", "pair_table")),
 }
 
 

