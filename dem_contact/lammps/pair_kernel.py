@@ -39,22 +39,33 @@ OUT_DELTA = 9
 N_OUT = 10
 
 
+#: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's inputs and outputs,
+#: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn: n)
+N_WORK = 20
+
+
 def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row, rowinfo, type_size, sized,
-          frame_spin, dt, out):
+          frame_spin, dt, out, work, prow, pc):
     """The m = n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows
     ``hrow`` (advanced in place; the caller passes copies where nothing may advance): the law's inputs as
     ``kernels.gather_contacts`` lays them out, the tangential family's loop (``loop``, bound per family), and
-    ``out`` float64[n, N_OUT]. Returns the number of contacts whose force or torques are not finite."""
+    ``out`` float64[n, N_OUT]. work float64[N_WORK * n], prow int64[n]: scratch; pc float64[n_rows + n,
+    N_PARAMS] (only where ``sized``: atoms not of their type's size get their own rows there). Returns the
+    number of contacts whose force or torques are not finite."""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
-    normals = np.empty((n, 3))
-    velocities = np.empty((n, 3))
-    spins = np.empty((n, 3))
-    overlaps = np.empty(n)
-    wn = np.zeros(n)
-    prow = np.empty(n, dtype=np.int64)
-    pc = np.empty((params.shape[0] + (n if sized else 0), params.shape[1]))
-    pc[:params.shape[0]] = params
+    normals = work[0:3 * n].reshape((n, 3))
+    velocities = work[3 * n:6 * n].reshape((n, 3))
+    spins = work[6 * n:9 * n].reshape((n, 3))
+    forces = work[9 * n:12 * n].reshape((n, 3))
+    tforces = work[12 * n:15 * n].reshape((n, 3))
+    torques = work[15 * n:18 * n].reshape((n, 3))
+    overlaps = work[18 * n:19 * n]
+    wn = work[19 * n:20 * n]
+    rows = params
+    if sized:
+        pc[:params.shape[0]] = params
+        rows = pc
     for k in range(n):
         a = pairs[k, 0]
         b = pairs[k, 1]
@@ -80,12 +91,14 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
         overlaps[k] = (ra + rb) - r
         for d in range(3):
             spins[k, d] = omega[a, d] - omega[b, d]
+            torques[k, d] = 0.0
         row = sphere_row[typ[a] - 1, typ[b] - 1]
         prow[k] = row
         if sized and (K._resized(radius, rmass, typ, type_size, a) or K._resized(radius, rmass, typ, type_size, b)):
             rs, ms = K._effective(radius, rmass, a, b, rowinfo, row)
             prow[k] = params.shape[0] + k
             K._contact_row(params, row, pc, prow[k], rowinfo, rs, ms)
+        wn[k] = 0.0
         if frame_spin:
             wn[k] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
                            + (omega[a, 2] + omega[b, 2]) * nz)
@@ -97,10 +110,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
             kick = 0.5 * dt * H[hrow[k], V_N] * (1.0 / rmass[a] + 1.0 / rmass[b])
             for d in range(3):
                 velocities[k, d] -= kick * normals[k, d]
-    forces = np.empty((n, 3))
-    tforces = np.empty((n, 3))
-    torques = np.zeros((n, 3))
-    loop(nid, tid, pc, prow, H, hrow, normals, overlaps, velocities, spins, wn, dt, forces, tforces,  # noqa: F821
+    loop(nid, tid, rows, prow, H, hrow, normals, overlaps, velocities, spins, wn, dt, forces, tforces,  # noqa: F821
          torques)
     bad = 0
     for k in range(n):
@@ -138,13 +148,14 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
 
 
 def _entry(n, pairs, hrow, H, h_rows, hs, x, v, omega, radius, rmass, typ, nall, params, n_rows, sphere_row,
-           n_types, rowinfo, type_size, sized, frame_spin, dt, out):
+           n_types, rowinfo, type_size, sized, frame_spin, dt, out, work, prow, pc):
     """The C entry of ``_step``: raw pointers of the pair style's buffers and LAMMPS's per-atom arrays."""
     return step(n, carray(pairs, (n, 2)), carray(hrow, (n,)), carray(H, (h_rows, hs)),  # noqa: F821
                 carray(x, (nall, 3)), carray(v, (nall, 3)), carray(omega, (nall, 3)), carray(radius, (nall,)),
                 carray(rmass, (nall,)), carray(typ, (nall,)), carray(params, (n_rows, N_PARAMS)),
                 carray(sphere_row, (n_types, n_types)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
-                carray(type_size, (n_types, 2)), sized != 0, frame_spin != 0, dt, carray(out, (n, N_OUT)))
+                carray(type_size, (n_types, 2)), sized != 0, frame_spin != 0, dt, carray(out, (n, N_OUT)),
+                carray(work, (N_WORK * n,)), carray(prow, (n,)), carray(pc, (n_rows + (n if sized else 0), N_PARAMS)))
 
 
 _I64P = types.CPointer(types.int64)
@@ -152,7 +163,7 @@ _F64P = types.CPointer(types.float64)
 #: the C signature of the step (``pair_dem_contact.cpp``, ``StepFn``)
 SIGNATURE = types.int64(types.int64, _I64P, _I64P, _F64P, types.int64, types.int64, _F64P, _F64P, _F64P, _F64P,
                         _F64P, types.CPointer(types.int32), types.int64, _F64P, types.int64, _I64P, types.int64,
-                        _F64P, _F64P, types.int64, types.int64, types.float64, _F64P)
+                        _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _I64P, _F64P)
 
 _CFUNCS = {}
 

@@ -26,8 +26,10 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           double *x, double *v, double *omega, double *radius, double *rmass, int *type,
                           int64_t nall, const double *params, int64_t n_rows, const int64_t *sphere_row,
                           int64_t n_types, const double *rowinfo, const double *type_size, int64_t sized,
-                          int64_t frame_spin, double dt, double *out);
+                          int64_t frame_spin, double dt, double *out, double *work, int64_t *prow, double *pc);
 const int N_OUT = 10;    // pair_kernel.N_OUT
+const int N_WORK = 20;   // pair_kernel.N_WORK
+const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 const int ABI = 1;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
@@ -49,7 +51,7 @@ std::string python_text(const std::string &s)
 }    // namespace
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
-    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false), fix(nullptr), epoch(0), saved_step(-1)
+    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false), sized(false), fix(nullptr), epoch(0), saved_step(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -465,10 +467,17 @@ void PairDemContact::compute(int eflag, int vflag)
     rows = scratch_rows.data();
     dt = 0.0;
   }
+  // per-contact parameter rows only where an atom here is not of its type's size (sizes change where LAMMPS
+  // rebuilds its lists, or at a run's set-up)
+  if (setup || neighbor->ago == 0) sized = kernel.size_free && any_resized(nall);
+  if ((int64_t) work.size() < N_WORK * n + 1) work.resize(2 * N_WORK * n + 64);
+  if ((int64_t) prow.size() < n + 1) prow.resize(2 * n + 16);
+  if (sized && (int64_t) pc.size() < (kernel.n_rows + n) * N_PARAMS) pc.resize((kernel.n_rows + 2 * n + 16) * N_PARAMS);
   auto step = (StepFn) kernel.step;
   int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, x[0], atom->v[0], atom->omega[0], radius, atom->rmass,
                          atom->type, nall, kernel.params, kernel.n_rows, kernel.sphere_row, kernel.n_types,
-                         kernel.rowinfo, kernel.type_size, kernel.size_free, frame_spin, dt, out.data())
+                         kernel.rowinfo, kernel.type_size, sized, frame_spin, dt, out.data(), work.data(),
+                         prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params))
                   : 0;
   if (bad)
     error->one(FLERR,
@@ -511,7 +520,19 @@ void PairDemContact::compute(int eflag, int vflag)
       torque[i][d] += acc[6 * i + 3 + d];
     }
   }
-  if (!setup) save_forces(nlocal);
+  // (the forces a next run's set-up reapplies: at a run's last step)
+  if (!setup && update->ntimestep == update->laststep) save_forces(nlocal);
+}
+
+// whether any of the nall atoms (local and ghost) has not its type's radius and mass (to 1e-12, as the kernel)
+bool PairDemContact::any_resized(int nall)
+{
+  for (int i = 0; i < nall; i++) {
+    int t = atom->type[i] - 1;
+    double r0 = kernel.type_size[2 * t], m0 = kernel.type_size[2 * t + 1];
+    if (std::fabs(atom->radius[i] - r0) > 1e-12 * r0 || std::fabs(atom->rmass[i] - m0) > 1e-12 * m0) return true;
+  }
+  return false;
 }
 
 double PairDemContact::memory_usage()

@@ -66,12 +66,12 @@ class PairDemContact : public Pair {
   int slots, frame_spin;
   std::string table_path;
   DemContactAttach kernel;
-  bool attached, warned_onset;
+  bool attached, warned_onset, sized;
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
   int64_t epoch;
-  std::vector<int64_t> seen, pairs, hrow, second, scratch_rows;
-  std::vector<double> out, scratch, acc;
+  std::vector<int64_t> seen, pairs, hrow, second, scratch_rows, prow;
+  std::vector<double> out, scratch, acc, work, pc;
   bigint saved_step;
 
   void allocate();
@@ -83,6 +83,7 @@ class PairDemContact : public Pair {
   void check_onset(double vn, int a, int b);
   bool reapply_saved();
   void save_forces(int nlocal);
+  bool any_resized(int nall);
 };
 
 }    // namespace LAMMPS_NS
