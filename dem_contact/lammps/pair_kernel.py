@@ -7,7 +7,7 @@ with the lower id is body 1. This kernel computes what ``kernels.gather_contacts
 (normal, overlap, slip velocity with the full radii, per-contact R* and m* for atoms not of their type's size),
 runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
 returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
-models) and the overlap. The C++ side adds them to LAMMPS's forces and torques and tallies the virial.
+models), the overlap, the tangential force and the normal. The C++ side adds them to LAMMPS's forces and torques and tallies the virial.
 
 ``attach`` is what the plugin calls (from its embedded or the running Python interpreter) when a table file is
 named by ``pair_coeff``: it reads the table (``dem.pairs.PairTable.load``), compiles the step for the table's
@@ -31,12 +31,15 @@ from . import kernels as K
 #: the layout version of ``Attach`` (the plugin refuses another)
 ABI = 1
 
-#: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap
+#: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
+#: tangential force on body 1 (3), unit normal from body 1 to body 2 (3)
 OUT_F = 0
 OUT_TA = 3
 OUT_TB = 6
 OUT_DELTA = 9
-N_OUT = 10
+OUT_FT = 10
+OUT_N = 13
+N_OUT = 16
 
 
 #: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's inputs and outputs,
@@ -139,6 +142,9 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
         out[k, OUT_TB + 1] = arm_b * cy - torques[k, 1]
         out[k, OUT_TB + 2] = arm_b * cz - torques[k, 2]
         out[k, OUT_DELTA] = delta
+        for d in range(3):
+            out[k, OUT_FT + d] = tforces[k, d]
+            out[k, OUT_N + d] = normals[k, d]
         ok = True
         for d in range(9):
             ok = ok and math.isfinite(out[k, d])

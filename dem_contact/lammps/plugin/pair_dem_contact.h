@@ -52,6 +52,9 @@ class FixDemContactHistory;
 
 class PairDemContact : public Pair {
  public:
+  // columns of the per-contact output of a step (dem_contact/lammps/pair_kernel.py, OUT_...)
+  enum { OUT_F = 0, OUT_TA = 3, OUT_TB = 6, OUT_DELTA = 9, OUT_FT = 10, OUT_N = 13, N_OUT = 16 };
+
   PairDemContact(class LAMMPS *);
   ~PairDemContact() override;
   void compute(int, int) override;
@@ -60,6 +63,14 @@ class PairDemContact : public Pair {
   void init_style() override;
   double init_one(int, int) override;
   double memory_usage() override;
+
+  // the contacts of the last step evaluated (not a run's set-up): its number (-1: none), the contacts'
+  // atoms (local indices, body 1 the lower id; valid until atoms move between ranks or are sorted) and
+  // their rows of N_OUT values
+  bigint evaluated_step;
+  int64_t contact_count() const { return (int64_t) hrow.size(); }
+  const int64_t *contact_atoms() const { return pairs.data(); }
+  const double *contact_values() const { return out.data(); }
 
  private:
   double vmax;

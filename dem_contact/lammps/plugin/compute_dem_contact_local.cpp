@@ -1,0 +1,79 @@
+#include "compute_dem_contact_local.h"
+
+#include "pair_dem_contact.h"
+
+#include "atom.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+
+namespace {
+const int N_COLUMNS = 12;
+PairDemContact *our_pair(LAMMPS *lmp)
+{
+  return dynamic_cast<PairDemContact *>(lmp->force->pair_match("dem/contact", 1));
+}
+}    // namespace
+
+ComputeDemContactLocal::ComputeDemContactLocal(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg), nmax(0), rows(nullptr)
+{
+  if (narg != 3) error->all(FLERR, "compute dem/contact/local takes no arguments: compute ID all dem/contact/local");
+  local_flag = 1;
+  size_local_cols = N_COLUMNS;
+  size_local_rows = 0;
+}
+
+ComputeDemContactLocal::~ComputeDemContactLocal() { memory->destroy(rows); }
+
+void ComputeDemContactLocal::init()
+{
+  if (!our_pair(lmp)) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
+}
+
+void ComputeDemContactLocal::compute_local()
+{
+  invoked_local = update->ntimestep;
+  PairDemContact *pair = our_pair(lmp);
+  if (!pair) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
+  if (pair->evaluated_step != update->ntimestep)
+    error->all(FLERR,
+               "compute dem/contact/local: the pair style has no contacts of step {} (it has those of step {}): "
+               "dump or use it at the steps of a run, not before the first",
+               update->ntimestep, pair->evaluated_step);
+  const int nlocal = atom->nlocal;
+  const int64_t n = pair->contact_count();
+  const int64_t *ab = pair->contact_atoms();
+  const double *out = pair->contact_values();
+  tagint *tag = atom->tag;
+  int m = 0;
+  for (int64_t k = 0; k < n; k++)
+    if (ab[2 * k] < nlocal) m++;
+  if (m > nmax) {
+    memory->destroy(rows);
+    nmax = m;
+    memory->create(rows, nmax, N_COLUMNS, "dem/contact/local:rows");
+    array_local = rows;
+  }
+  size_local_rows = m;
+  m = 0;
+  for (int64_t k = 0; k < n; k++) {
+    const int a = (int) ab[2 * k], b = (int) ab[2 * k + 1];
+    if (a >= nlocal) continue;    // (reported by the rank that owns atom a)
+    const double *o = out + PairDemContact::N_OUT * k;
+    double *r = rows[m++];
+    r[0] = tag[a];
+    r[1] = tag[b];
+    for (int d = 0; d < 3; d++) {
+      r[2 + d] = o[PairDemContact::OUT_F + d];
+      r[5 + d] = o[PairDemContact::OUT_FT + d];
+      r[8 + d] = o[PairDemContact::OUT_N + d];
+    }
+    r[11] = o[PairDemContact::OUT_DELTA];
+  }
+}
+
+double ComputeDemContactLocal::memory_usage() { return (double) nmax * N_COLUMNS * sizeof(double); }

@@ -1,0 +1,34 @@
+/* compute ID all dem/contact/local: the contacts of pair_style dem/contact at the step, one row each (each contact
+   once over the ranks: a pair by the rank that owns its atom of lower id), for dump local:
+
+     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap
+
+   id1 < id2 (atom ids); (fx, fy, fz) the contact force on atom id1 [N] (atom id2 takes the opposite), (ftx,
+   fty, ftz) its tangential part [N], (nx, ny, nz) the unit normal from id1 to id2, overlap [m]. The normal
+   force, positive when pushing apart, is -(f - ft) . n. */
+#ifdef COMPUTE_CLASS
+#else
+#ifndef DEM_CONTACT_COMPUTE_LOCAL_H
+#define DEM_CONTACT_COMPUTE_LOCAL_H
+
+#include "compute.h"
+
+namespace LAMMPS_NS {
+
+class ComputeDemContactLocal : public Compute {
+ public:
+  ComputeDemContactLocal(class LAMMPS *, int, char **);
+  ~ComputeDemContactLocal() override;
+  void init() override;
+  void compute_local() override;
+  double memory_usage() override;
+
+ private:
+  int nmax;
+  double **rows;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
