@@ -41,6 +41,12 @@ OUT_FT = 10
 OUT_N = 13
 N_OUT = 16
 
+#: what the pair style asks of a step (its flags argument, bits): the per-contact output, the forces and
+#: torques added to LAMMPS's, the global virial
+WRITE_OUT = 1
+SCATTER = 2
+VIRIAL = 4
+
 
 #: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's inputs and outputs,
 #: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn: n)
@@ -48,13 +54,15 @@ N_WORK = 20
 
 
 def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row, rowinfo, type_size, sized,
-          frame_spin, dt, out, work, prow, pc):
+          frame_spin, dt, out, work, prow, pc, nlocal, f, torque, write_out, scatter, with_virial, virial):
     """The m = n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows
     ``hrow`` (advanced in place; the caller passes copies where nothing may advance): the law's inputs as
     ``kernels.gather_contacts`` lays them out, the tangential family's loop (``loop``, bound per family), and
-    ``out`` float64[n, N_OUT]. work float64[N_WORK * n], prow int64[n]: scratch; pc float64[n_rows + n,
-    N_PARAMS] (only where ``sized``: atoms not of their type's size get their own rows there). Returns the
-    number of contacts whose force or torques are not finite."""
+    what the pair style asks: ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and
+    torques added to f, torque float64[nall, 3] for the first ``nlocal`` atoms, with the virial's six
+    components added to ``virial`` (``with_virial``). work float64[N_WORK * n], prow int64[n]: scratch; pc
+    float64[n_rows + n, N_PARAMS] (only where ``sized``: atoms not of their type's size get their own rows
+    there). Returns the number of contacts whose force or torques are not finite."""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
     normals = work[0:3 * n].reshape((n, 3))
@@ -132,36 +140,75 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
         # torque on a sphere: (R - delta/2) n x Ft on both bodies of the pair
         arm_a = radius[a] - 0.5 * delta
         arm_b = radius[b] - 0.5 * delta
-        out[k, OUT_F] = forces[k, 0]
-        out[k, OUT_F + 1] = forces[k, 1]
-        out[k, OUT_F + 2] = forces[k, 2]
-        out[k, OUT_TA] = arm_a * cx + torques[k, 0]
-        out[k, OUT_TA + 1] = arm_a * cy + torques[k, 1]
-        out[k, OUT_TA + 2] = arm_a * cz + torques[k, 2]
-        out[k, OUT_TB] = arm_b * cx - torques[k, 0]
-        out[k, OUT_TB + 1] = arm_b * cy - torques[k, 1]
-        out[k, OUT_TB + 2] = arm_b * cz - torques[k, 2]
-        out[k, OUT_DELTA] = delta
-        for d in range(3):
-            out[k, OUT_FT + d] = tforces[k, d]
-            out[k, OUT_N + d] = normals[k, d]
-        ok = True
-        for d in range(9):
-            ok = ok and math.isfinite(out[k, d])
-        if not ok:
+        fx = forces[k, 0]
+        fy = forces[k, 1]
+        fz = forces[k, 2]
+        tax = arm_a * cx + torques[k, 0]
+        tay = arm_a * cy + torques[k, 1]
+        taz = arm_a * cz + torques[k, 2]
+        tbx = arm_b * cx - torques[k, 0]
+        tby = arm_b * cy - torques[k, 1]
+        tbz = arm_b * cz - torques[k, 2]
+        if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(fz) and math.isfinite(tax)
+                and math.isfinite(tay) and math.isfinite(taz) and math.isfinite(tbx) and math.isfinite(tby)
+                and math.isfinite(tbz)):
             bad += 1
+        if write_out:
+            out[k, OUT_F] = fx
+            out[k, OUT_F + 1] = fy
+            out[k, OUT_F + 2] = fz
+            out[k, OUT_TA] = tax
+            out[k, OUT_TA + 1] = tay
+            out[k, OUT_TA + 2] = taz
+            out[k, OUT_TB] = tbx
+            out[k, OUT_TB + 1] = tby
+            out[k, OUT_TB + 2] = tbz
+            out[k, OUT_DELTA] = delta
+            for d in range(3):
+                out[k, OUT_FT + d] = tforces[k, d]
+                out[k, OUT_N + d] = normals[k, d]
+        if scatter:
+            # LAMMPS's forces and torques of the local atoms (each summed over its contacts in their order)
+            if a < nlocal:
+                f[a, 0] += fx
+                f[a, 1] += fy
+                f[a, 2] += fz
+                torque[a, 0] += tax
+                torque[a, 1] += tay
+                torque[a, 2] += taz
+            if b < nlocal:
+                f[b, 0] -= fx
+                f[b, 1] -= fy
+                f[b, 2] -= fz
+                torque[b, 0] += tbx
+                torque[b, 1] += tby
+                torque[b, 2] += tbz
+            if with_virial:
+                # (as LAMMPS's ev_tally_xyz with newton off: half for each local atom of the pair)
+                h = 0.5 * ((1.0 if a < nlocal else 0.0) + (1.0 if b < nlocal else 0.0))
+                dx = x[a, 0] - x[b, 0]
+                dy = x[a, 1] - x[b, 1]
+                dz = x[a, 2] - x[b, 2]
+                virial[0] += h * dx * fx
+                virial[1] += h * dy * fy
+                virial[2] += h * dz * fz
+                virial[3] += h * dx * fy
+                virial[4] += h * dx * fz
+                virial[5] += h * dy * fz
     return bad
 
 
 def _entry(n, pairs, hrow, H, h_rows, hs, x, v, omega, radius, rmass, typ, nall, params, n_rows, sphere_row,
-           n_types, rowinfo, type_size, sized, frame_spin, dt, out, work, prow, pc):
+           n_types, rowinfo, type_size, sized, frame_spin, dt, out, work, prow, pc, nlocal, f, torque, flags, virial):
     """The C entry of ``_step``: raw pointers of the pair style's buffers and LAMMPS's per-atom arrays."""
     return step(n, carray(pairs, (n, 2)), carray(hrow, (n,)), carray(H, (h_rows, hs)),  # noqa: F821
                 carray(x, (nall, 3)), carray(v, (nall, 3)), carray(omega, (nall, 3)), carray(radius, (nall,)),
                 carray(rmass, (nall,)), carray(typ, (nall,)), carray(params, (n_rows, N_PARAMS)),
                 carray(sphere_row, (n_types, n_types)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
                 carray(type_size, (n_types, 2)), sized != 0, frame_spin != 0, dt, carray(out, (n, N_OUT)),
-                carray(work, (N_WORK * n,)), carray(prow, (n,)), carray(pc, (n_rows + (n if sized else 0), N_PARAMS)))
+                carray(work, (N_WORK * n,)), carray(prow, (n,)), carray(pc, (n_rows + (n if sized else 0), N_PARAMS)),
+                nlocal, carray(f, (nall, 3)), carray(torque, (nall, 3)), (flags & WRITE_OUT) != 0,
+                (flags & SCATTER) != 0, (flags & VIRIAL) != 0, carray(virial, (6,)))
 
 
 _I64P = types.CPointer(types.int64)
@@ -169,7 +216,8 @@ _F64P = types.CPointer(types.float64)
 #: the C signature of the step (``pair_dem_contact.cpp``, ``StepFn``)
 SIGNATURE = types.int64(types.int64, _I64P, _I64P, _F64P, types.int64, types.int64, _F64P, _F64P, _F64P, _F64P,
                         _F64P, types.CPointer(types.int32), types.int64, _F64P, types.int64, _I64P, types.int64,
-                        _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _I64P, _F64P)
+                        _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _I64P, _F64P,
+                        types.int64, _F64P, _F64P, types.int64, _F64P)
 
 _CFUNCS = {}
 

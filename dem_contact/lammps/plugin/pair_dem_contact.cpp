@@ -26,7 +26,10 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           double *x, double *v, double *omega, double *radius, double *rmass, int *type,
                           int64_t nall, const double *params, int64_t n_rows, const int64_t *sphere_row,
                           int64_t n_types, const double *rowinfo, const double *type_size, int64_t sized,
-                          int64_t frame_spin, double dt, double *out, double *work, int64_t *prow, double *pc);
+                          int64_t frame_spin, double dt, double *out, double *work, int64_t *prow, double *pc,
+                          int64_t nlocal, double *f, double *torque, int64_t flags, double *virial);
+// the flags of a step (pair_kernel.WRITE_OUT, SCATTER, VIRIAL)
+const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4;
 const int N_WORK = 20;   // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 const int ABI = 1;       // pair_kernel.ABI
@@ -50,7 +53,8 @@ std::string python_text(const std::string &s)
 }    // namespace
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
-    Pair(lmp), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false), sized(false), fix(nullptr), epoch(0), saved_step(-1), evaluated_step(-1)
+    Pair(lmp), evaluated_step(-1), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false),
+    sized(false), keep_out(false), fix(nullptr), epoch(0), saved_step(-1), nlocal_last(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -126,6 +130,11 @@ void PairDemContact::coeff(int narg, char **arg)
     error->all(FLERR, "pair_coeff for dem/contact is: pair_coeff * * TABLE_FILE (one table for every pair of types)");
   if (!allocated) allocate();
   table_path = arg[2];
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "pair dem/contact: reading {} and loading the compiled step of its laws (compiled at the first "
+                   "run in this environment, up to a minute, then cached)\n",
+                   table_path);
   attach_table(arg[2]);
   int n = atom->ntypes;
   for (int i = 1; i <= n; i++)
@@ -156,6 +165,8 @@ void PairDemContact::init_style()
         fmt::format("{} all DEM/CONTACT/HISTORY {} {}", FIX_ID, slots, kernel.history_size)));
   }
 
+  // the per-contact output at every step where a compute reads it
+  keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
   check_atoms();
   check_time_step();
 }
@@ -305,6 +316,26 @@ int PairDemContact::find_row(int i, double key, bool &fresh)
   return free_row;
 }
 
+// atom i (local) is in a contact at this step
+void PairDemContact::mark(int i)
+{
+  if (atom_epoch[i] != epoch) {
+    atom_epoch[i] = epoch;
+    touched.push_back(i);
+  }
+}
+
+// the rows of local atom i that no contact used at this step: freed (key and history zeroed)
+void PairDemContact::free_ended(int i, int hs)
+{
+  double *k = fix->keys[i];
+  for (int s = 0; s < slots; s++)
+    if (k[s] != 0.0 && seen[(size_t) i * slots + s] != epoch) {
+      k[s] = 0.0;
+      std::memset(fix->hist + ((size_t) i * slots + s) * hs, 0, sizeof(double) * hs);
+    }
+}
+
 // at a run's set-up: the forces of the last step again, where no atom changed since (then a run continued
 // in pieces is the one run); false where any did, on any rank
 bool PairDemContact::reapply_saved()
@@ -356,6 +387,8 @@ void PairDemContact::compute(int eflag, int vflag)
 
   epoch++;
   if ((int) seen.size() < nlocal * slots) seen.assign((size_t) 2 * nlocal * slots + 16, 0);
+  if ((int) atom_epoch.size() < nlocal) atom_epoch.assign((size_t) 2 * nlocal + 16, 0);
+  touched.clear();
   pairs.clear();
   hrow.clear();
   second.clear();
@@ -396,6 +429,7 @@ void PairDemContact::compute(int eflag, int vflag)
         continue;
       }
       seen[row] = epoch;
+      mark(p);
       if (fresh) {
         // the normal speed a contact begins at (approach > 0)
         const double r_ = std::sqrt(dx * dx + dy * dy + dz * dz);
@@ -417,6 +451,7 @@ void PairDemContact::compute(int eflag, int vflag)
         }
         other = (int64_t) q * slots + s;
         seen[other] = epoch;
+        mark(q);
       }
       pairs.push_back(a);
       pairs.push_back(b);
@@ -437,15 +472,16 @@ void PairDemContact::compute(int eflag, int vflag)
 
   if (!setup && fastest > vmax) check_onset(fastest, fastest_a, fastest_b);
 
-  // rows of local atoms whose contact ended: freed
-  for (int i = 0; i < nlocal; i++) {
-    double *k = fix->keys[i];
-    for (int s = 0; s < slots; s++)
-      if (k[s] != 0.0 && seen[(size_t) i * slots + s] != epoch) {
-        k[s] = 0.0;
-        std::memset(fix->hist + ((size_t) i * slots + s) * hs, 0, sizeof(double) * hs);
-      }
+  // rows of local atoms whose contact ended: freed. Only atoms that had rows after the last step or have a
+  // contact now can hold one, while atoms keep their indices (until LAMMPS rebuilds its lists: then all)
+  if (setup || neighbor->ago == 0 || nlocal != nlocal_last) {
+    for (int i = 0; i < nlocal; i++) free_ended(i, hs);
+  } else {
+    for (int i : held) free_ended(i, hs);
   }
+  held.swap(touched);
+  touched.clear();
+  nlocal_last = nlocal;
 
   const int64_t n = (int64_t) hrow.size();
   out.resize((size_t) N_OUT * n + 1);
@@ -472,12 +508,22 @@ void PairDemContact::compute(int eflag, int vflag)
   if ((int64_t) work.size() < N_WORK * n + 1) work.resize(2 * N_WORK * n + 64);
   if ((int64_t) prow.size() < n + 1) prow.resize(2 * n + 16);
   if (sized && (int64_t) pc.size() < (kernel.n_rows + n) * N_PARAMS) pc.resize((kernel.n_rows + 2 * n + 16) * N_PARAMS);
+  // An ordinary step: the kernel adds the forces, torques and global virial to LAMMPS's. A run's set-up (whose
+  // forces may be the saved ones), its last step (whose forces are saved), a per-atom virial or energy, or a
+  // compute dem/contact/local: the per-contact output, added here.
+  const bool last = !setup && update->ntimestep == update->laststep;
+  const bool direct = !setup && !last && !vflag_atom && !eflag_atom && !cvflag_atom;
+  int64_t flags = (direct ? SCATTER : WRITE_OUT) | (keep_out ? WRITE_OUT : 0) | (direct && vflag_global ? VIRIAL : 0);
+  double vsum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   auto step = (StepFn) kernel.step;
   int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, x[0], atom->v[0], atom->omega[0], radius, atom->rmass,
                          atom->type, nall, kernel.params, kernel.n_rows, kernel.sphere_row, kernel.n_types,
                          kernel.rowinfo, kernel.type_size, sized, frame_spin, dt, out.data(), work.data(),
-                         prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params))
+                         prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal, f[0],
+                         torque[0], flags, vsum)
                   : 0;
+  if (flags & VIRIAL)
+    for (int d = 0; d < 6; d++) virial[d] += vsum[d];
   if (bad)
     error->one(FLERR,
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
@@ -488,6 +534,7 @@ void PairDemContact::compute(int eflag, int vflag)
     for (int64_t k = 0; k < n; k++)
       if (second[k] >= 0) std::memcpy(H + second[k] * hs, H + hrow[k] * hs, sizeof(double) * hs);
 
+  if (direct) return;
   acc.assign((size_t) 6 * nlocal + 1, 0.0);
   for (int64_t k = 0; k < n; k++) {
     const int a = (int) pairs[2 * k], b = (int) pairs[2 * k + 1];
@@ -521,7 +568,7 @@ void PairDemContact::compute(int eflag, int vflag)
     }
   }
   // (the forces a next run's set-up reapplies: at a run's last step)
-  if (!setup && update->ntimestep == update->laststep) save_forces(nlocal);
+  if (last) save_forces(nlocal);
 }
 
 // whether any of the nall atoms (local and ghost) has not its type's radius and mass (to 1e-12, as the kernel)

@@ -77,13 +77,15 @@ class PairDemContact : public Pair {
   int slots, frame_spin;
   std::string table_path;
   DemContactAttach kernel;
-  bool attached, warned_onset, sized;
+  bool attached, warned_onset, sized, keep_out;
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
   int64_t epoch;
-  std::vector<int64_t> seen, pairs, hrow, second, scratch_rows, prow;
+  std::vector<int64_t> seen, atom_epoch, pairs, hrow, second, scratch_rows, prow;
+  std::vector<int> touched, held;    // local atoms in a contact at this step, and at the last
   std::vector<double> out, scratch, acc, work, pc;
   bigint saved_step;
+  int nlocal_last;
 
   void allocate();
   void attach_table(const char *path);
@@ -95,6 +97,8 @@ class PairDemContact : public Pair {
   bool reapply_saved();
   void save_forces(int nlocal);
   bool any_resized(int nall);
+  void mark(int i);
+  void free_ended(int i, int hs);
 };
 
 }    // namespace LAMMPS_NS
