@@ -6,6 +6,8 @@ pytest-benchmark and keeps, per benchmark, its min, median and mean [s] (and its
     python validation/performance/run_benchmarks.py contact3d    # test_bench_contact3d.py: the C comparison
                                                                   # and the pressed-packing workload
     python validation/performance/run_benchmarks.py twist        # test_bench_twist.py: with and without deresiewicz
+    python validation/performance/run_benchmarks.py plugin       # test_bench_plugin.py: pair_style dem/contact
+                                                                  # against LAMMPS's pair granular
 
 Each writes ``validation/performance/results/<set>.json``: a list of records, one per benchmark, ``name`` its
 pytest name (``test_bench_sweep_10k[2]``), and for each law timed both in C and in numba a record
@@ -28,6 +30,7 @@ SETS = {
     "impacts": (["tests/benchmarks/test_bench_sweep.py", "tests/benchmarks/test_bench_impact.py"], None),
     "contact3d": (["tests/benchmarks/test_bench_contact3d.py"], "test_c or test_numba or test_bench_pressed_like"),
     "twist": (["tests/benchmarks/test_bench_twist.py"], None),
+    "plugin": (["tests/benchmarks/test_bench_plugin.py"], None),
 }
 
 
