@@ -278,6 +278,34 @@ def _separation(x, radius, i, j):
     return dx, dy, dz, dx * dx + dy * dy + dz * dz, radius[i] + radius[j]
 
 
+@njit(inline="always", cache=True)
+def sphere_pair(x, v, omega, radius, a, b, dx, dy, dz, r2, rs):
+    """The law's inputs of the sphere pair (a, b), body 1 a, with the separation (dx, dy, dz) = x_b - x_a,
+    its squared length r2 and rs = r_a + r_b: (nx, ny, nz, delta, vx, vy, vz), the unit normal from a to b
+    (n = dx / r, as LAMMPS's granular models compute it), the overlap and the slip velocity with the full
+    radii, v = v_a - v_b + (R_a w_a + R_b w_b) x n."""
+    r = math.sqrt(r2)
+    delta = rs - r
+    rinv = 1.0 / r
+    nx = dx * rinv
+    ny = dy * rinv
+    nz = dz * rinv
+    ra = radius[a]
+    rb = radius[b]
+    wx = ra * omega[a, 0] + rb * omega[b, 0]
+    wy = ra * omega[a, 1] + rb * omega[b, 1]
+    wz = ra * omega[a, 2] + rb * omega[b, 2]
+    return (nx, ny, nz, delta, v[a, 0] - v[b, 0] + (wy * nz - wz * ny), v[a, 1] - v[b, 1] + (wz * nx - wx * nz),
+            v[a, 2] - v[b, 2] + (wx * ny - wy * nx))
+
+
+@njit(inline="always", cache=True)
+def frame_spin_rate(omega, a, b, nx, ny, nz):
+    """The spin of a sphere pair's contact frame about its normal: the mean spin of the two bodies along n."""
+    return 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
+                  + (omega[a, 2] + omega[b, 2]) * nz)
+
+
 @njit(cache=True)
 def overlapping(x, radius, walls, cand, cand_walls):
     """The candidates in contact now: (pairs, deltas, wall_hits (i, w, element), wall_deltas), deltas > 0 the
@@ -640,29 +668,13 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 dx = -dx
                 dy = -dy
                 dz = -dz
-            r = math.sqrt(r2)
-            delta = rs - r
-            rinv = 1.0 / r          # n = dx / r as LAMMPS's granular models compute it
-            nx = dx * rinv
-            ny = dy * rinv
-            nz = dz * rinv
-            ra = radius[a]
-            rb = radius[b]
-            wx = ra * omega[a, 0] + rb * omega[b, 0]
-            wy = ra * omega[a, 1] + rb * omega[b, 1]
-            wz = ra * omega[a, 2] + rb * omega[b, 2]
-            vx = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
-            vy = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
-            vz = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
+            nx, ny, nz, delta, vx, vy, vz = sphere_pair(x, v, omega, radius, a, b, dx, dy, dz, r2, rs)
             pair_rows[n] = prow[n] = sphere_row[typ[a] - 1, typ[b] - 1]
             if sized and (_resized(radius, rmass, typ, type_size, a) or _resized(radius, rmass, typ, type_size, b)):
                 rs, ms = _effective(radius, rmass, a, b, rowinfo, pair_rows[n])
                 prow[n] = params.shape[0] + n
                 _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
-            wn[n] = 0.0
-            if frame_spin:
-                wn[n] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
-                               + (omega[a, 2] + omega[b, 2]) * nz)
+            wn[n] = frame_spin_rate(omega, a, b, nx, ny, nz) if frame_spin else 0.0
         else:
             # body 1: the sphere; n from the sphere to the wall; minus the wall's velocity at the contact
             # point c = x + gap n on its surface

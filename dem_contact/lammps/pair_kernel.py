@@ -83,23 +83,11 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
         dx = x[b, 0] - x[a, 0]
         dy = x[b, 1] - x[a, 1]
         dz = x[b, 2] - x[a, 2]
-        r = math.sqrt(dx * dx + dy * dy + dz * dz)
-        rinv = 1.0 / r
-        nx = dx * rinv
-        ny = dy * rinv
-        nz = dz * rinv
-        ra = radius[a]
-        rb = radius[b]
-        wx = ra * omega[a, 0] + rb * omega[b, 0]
-        wy = ra * omega[a, 1] + rb * omega[b, 1]
-        wz = ra * omega[a, 2] + rb * omega[b, 2]
-        velocities[k, 0] = v[a, 0] - v[b, 0] + (wy * nz - wz * ny)
-        velocities[k, 1] = v[a, 1] - v[b, 1] + (wz * nx - wx * nz)
-        velocities[k, 2] = v[a, 2] - v[b, 2] + (wx * ny - wy * nx)
+        nx, ny, nz, overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2] = K.sphere_pair(
+            x, v, omega, radius, a, b, dx, dy, dz, dx * dx + dy * dy + dz * dz, radius[a] + radius[b])
         normals[k, 0] = nx
         normals[k, 1] = ny
         normals[k, 2] = nz
-        overlaps[k] = (ra + rb) - r
         for d in range(3):
             spins[k, d] = omega[a, d] - omega[b, d]
             torques[k, d] = 0.0
@@ -109,10 +97,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
             rs, ms = K._effective(radius, rmass, a, b, rowinfo, row)
             prow[k] = params.shape[0] + k
             K._contact_row(params, row, pc, prow[k], rowinfo, rs, ms)
-        wn[k] = 0.0
-        if frame_spin:
-            wn[k] = 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
-                           + (omega[a, 2] + omega[b, 2]) * nz)
+        wn[k] = K.frame_spin_rate(omega, a, b, nx, ny, nz) if frame_spin else 0.0
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(n):

@@ -16,7 +16,8 @@ MAT = Material(E=5e7, nu=0.3, rho=2500.0)
 
 
 def good_table(name="t.json", **kw):
-    return table_file.save(pair_table([Sphere(R, MAT)], mu=0.5, **kw), os.path.join(OUT, name))
+    return table_file.save(pair_table([Sphere(R, MAT)], mu=0.5, tangential="mindlin_total", **kw),
+                           os.path.join(OUT, name))
 
 
 def edited(name, edit):

@@ -113,6 +113,20 @@ def contact_rows(lmp, engine, bridge):
     return None
 
 
+def advance(lmp, a, t, restart):
+    """The engine's forces on, the run (in pieces; --restart-write: its first part, then the restart file
+    written), and the state at its end with the number of touching pairs."""
+    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    steps = a.restart_write or a.steps
+    for _ in range(a.pieces):
+        run(lmp, bridge, steps // a.pieces)
+    if a.restart_write:
+        lmp.command(f"write_restart {restart}")
+    out = state(lmp)
+    out["touching"] = touching(lmp)
+    return out
+
+
 def pour_box(lmp, a, t):
     """The pour's atoms: a bed of fixed type-1 spheres at the floor, and a lattice of both types above."""
     k = 6                          # bed spheres per side
@@ -179,15 +193,7 @@ def pour(a):
     else:
         pour_box(lmp, a, t)
         pour_settings(lmp)
-    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
-    steps = a.restart_write or a.steps
-    for _ in range(a.pieces):
-        run(lmp, bridge, steps // a.pieces)
-    if a.restart_write:
-        lmp.command(f"write_restart {restart}")
-    out = state(lmp)
-    out["touching"] = touching(lmp)
-    return lmp, out
+    return lmp, advance(lmp, a, t, restart)
 
 
 def pack_box(lmp, a, t, k=4):
@@ -197,8 +203,7 @@ def pack_box(lmp, a, t, k=4):
     L = k * s
     # (atoms sorted every 50 steps: their history rows move with them)
     for c in ("units si", "atom_style sphere", "atom_modify map array sort 50 0.0", f"newton {a.newton}",
-              "boundary p p p", "processors * 1 1", f"region box block 0 {L!r} 0 {L!r} 0 {L!r}", "create_box 1 box",
-              ):
+              "boundary p p p", "processors * 1 1", f"region box block 0 {L!r} 0 {L!r} 0 {L!r}", "create_box 1 box"):
         lmp.command(c)
     # (one by one: atom ids that do not depend on the ranks)
     for i in range(k):
@@ -226,15 +231,7 @@ def pack(a):
     for c in ("timestep 2e-6", "fix 1 all nve/sphere", "neighbor 0.0004 bin", "neigh_modify delay 0 every 1 check yes",
               "comm_modify vel yes"):
         lmp.command(c)
-    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
-    steps = a.restart_write or a.steps
-    for _ in range(a.pieces):
-        run(lmp, bridge, steps // a.pieces)
-    if a.restart_write:
-        lmp.command(f"write_restart {restart}")
-    out = state(lmp)
-    out["touching"] = touching(lmp)
-    return lmp, out
+    return lmp, advance(lmp, a, t, restart)
 
 
 def main():
