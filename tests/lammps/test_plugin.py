@@ -90,11 +90,14 @@ def test_pour_as_the_bridge_and_pair_granular(plugin, tmp_path):
 
 def test_pack_across_ranks_pieces_and_restarts(plugin, tmp_path):
     """A pressed periodic pack (six lasting contacts per sphere, across subdomains and periodic boundaries),
-    with the frame spin: one run on one rank; the same on two ranks; in three pieces; written to a restart
-    file on one rank and continued on two, and the other way round. All agree with each other and with the
+    with the frame spin and the twisting and rolling sds models (whose dashpots make the force depend on the
+    velocities: a run's set-up must reapply the forces of the step before, not compute them from the velocities
+    after it): one run on one rank; the same on two ranks; in three pieces; written to a restart file on one
+    rank and continued on two, and the other way round. All agree with each other and with the
     bridge to 1e-10: rounding differences (the order in which an atom's six contact forces are summed) grow
     over the run in a pressed pack to about 1e-12; a history lost or misplaced gives differences of order 1."""
-    steps = ["--steps", "300", "--frame-spin"]
+    law = ["--frame-spin", "--sds"]
+    steps = ["--steps", "300", *law]
     ref = _scenes("pack", "plugin,bridge", tmp_path, 1, *steps)
     one = ref["plugin"]
     assert one["touching"] >= 150
@@ -102,8 +105,8 @@ def test_pack_across_ranks_pieces_and_restarts(plugin, tmp_path):
     assert _rel(_scenes("pack", "plugin", tmp_path, 2, *steps, "--newton", "off")["plugin"], one) < 1e-10
     assert _rel(_scenes("pack", "plugin", tmp_path, 1, *steps, "--pieces", "3")["plugin"], one) < 1e-10
     for write, read in ((1, 2), (2, 1)):
-        _scenes("pack", "plugin", tmp_path, write, "--restart-write", "100", "--frame-spin")
-        got = _scenes("pack", "plugin", tmp_path, read, "--restart-read", "--steps", "200", "--frame-spin")["plugin"]
+        _scenes("pack", "plugin", tmp_path, write, "--restart-write", "100", *law)
+        got = _scenes("pack", "plugin", tmp_path, read, "--restart-read", "--steps", "200", *law)["plugin"]
         assert _rel(got, one) < 1e-10, (write, read)
 
 

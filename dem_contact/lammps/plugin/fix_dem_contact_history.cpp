@@ -3,6 +3,7 @@
 #include "atom.h"
 #include "error.h"
 #include "memory.h"
+#include "update.h"
 
 #include <cstring>
 
@@ -36,6 +37,20 @@ FixDemContactHistory::~FixDemContactHistory()
 
 int FixDemContactHistory::setmask() { return 0; }
 
+// after a run: the state the forces saved at its last step belong to is that at the end of the step, the
+// velocities and spins after its final integration (the pair style saw those of the half step)
+void FixDemContactHistory::post_run()
+{
+  const double step = (double) update->ntimestep;
+  double **v = atom->v, **omega = atom->omega;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (saved[i][SF_STEP] == step)
+      for (int d = 0; d < 3; d++) {
+        saved[i][SF_V + d] = v[i][d];
+        saved[i][SF_W + d] = omega[i][d];
+      }
+}
+
 double FixDemContactHistory::memory_usage()
 {
   return (double) atom->nmax * per_atom() * sizeof(double);
@@ -61,6 +76,7 @@ void FixDemContactHistory::set_arrays(int i)
   std::memset(keys[i], 0, sizeof(double) * slots);
   std::memset(hist + (size_t) i * slots * history_size, 0, sizeof(double) * slots * history_size);
   std::memset(saved[i], 0, sizeof(double) * N_SAVED);
+  saved[i][SF_STEP] = -1.0;
 }
 
 int FixDemContactHistory::pack_exchange(int i, double *buf)

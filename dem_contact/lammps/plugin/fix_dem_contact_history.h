@@ -4,8 +4,8 @@
    Every atom has `slots` rows. Row s of atom i: its key keys[i][s] (the partner's atom id; 0: free) and the
    law's history hist[(i * slots + s) * history_size ...] (dem_contact's 3D history row). A contact of two
    atoms has a row in each; the pair style keeps them equal. Per atom also the contact force and torque of the
-   last step and the state they were computed at (saved[i][...]), which the next run's set-up reapplies when
-   nothing has changed. */
+   last step of a run, the state they were computed at and that step (saved[i][...]), which the next run's
+   set-up reapplies when nothing has changed, also after a restart file (on any number of ranks). */
 #ifndef DEM_CONTACT_FIX_HISTORY_H
 #define DEM_CONTACT_FIX_HISTORY_H
 
@@ -15,12 +15,14 @@ namespace LAMMPS_NS {
 
 class FixDemContactHistory : public Fix {
  public:
-  // columns of saved: force (3), torque (3), then the state: x (3), v (3), omega (3), radius, rmass
-  enum { SF_F = 0, SF_T = 3, SF_X = 6, SF_V = 9, SF_W = 12, SF_R = 15, SF_M = 16, N_SAVED = 17 };
+  // columns of saved: force (3), torque (3), then the state: x (3), v (3), omega (3), radius, rmass, and the
+  // step they were saved at (-1: none)
+  enum { SF_F = 0, SF_T = 3, SF_X = 6, SF_V = 9, SF_W = 12, SF_R = 15, SF_M = 16, SF_STEP = 17, N_SAVED = 18 };
 
   FixDemContactHistory(class LAMMPS *, int, char **);
   ~FixDemContactHistory() override;
   int setmask() override;
+  void post_run() override;
 
   double memory_usage() override;
   void grow_arrays(int) override;

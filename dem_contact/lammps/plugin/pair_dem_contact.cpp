@@ -5,6 +5,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "fix.h"
 #include "force.h"
@@ -54,7 +55,7 @@ std::string python_text(const std::string &s)
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false),
-    sized(false), keep_out(false), fix(nullptr), epoch(0), saved_step(-1), nlocal_last(-1)
+    sized(false), keep_out(false), fix(nullptr), epoch(0), nlocal_last(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -336,19 +337,28 @@ void PairDemContact::free_ended(int i, int hs)
     }
 }
 
-// at a run's set-up: the forces of the last step again, where no atom changed since (then a run continued
-// in pieces is the one run); false where any did, on any rank
+// at a run's set-up: the forces of the last step again, where every atom has them from this step (the last
+// of the run before, also when read from a restart file) and none changed since (then a run continued in
+// pieces, or from a restart file, is the one run); false where any did, on any rank
 bool PairDemContact::reapply_saved()
 {
   int nlocal = atom->nlocal;
-  int ok = saved_step == update->ntimestep;
+  int ok = 1;
   double **x = atom->x, **v = atom->v, **omega = atom->omega, *radius = atom->radius, *rmass = atom->rmass;
+  const double step = (double) update->ntimestep;
+  // positions up to a period of the box (LAMMPS wraps atoms into it at a run's set-up) and its rounding
+  const int *periodic = domain->periodicity;
+  const double *prd = domain->prd;
   typedef FixDemContactHistory F;
   for (int i = 0; ok && i < nlocal; i++) {
     const double *s = fix->saved[i];
-    for (int d = 0; d < 3; d++)
-      ok = ok && s[F::SF_X + d] == x[i][d] && s[F::SF_V + d] == v[i][d] && s[F::SF_W + d] == omega[i][d];
-    ok = ok && s[F::SF_R] == radius[i] && s[F::SF_M] == rmass[i];
+    ok = s[F::SF_STEP] == step && s[F::SF_R] == radius[i] && s[F::SF_M] == rmass[i];
+    for (int d = 0; ok && d < 3; d++) {
+      double dx = x[i][d] - s[F::SF_X + d];
+      if (periodic[d] && !domain->triclinic) dx -= prd[d] * std::round(dx / prd[d]);
+      ok = std::fabs(dx) <= 1e-13 * (prd[d] + std::fabs(x[i][d])) && s[F::SF_V + d] == v[i][d] &&
+          s[F::SF_W + d] == omega[i][d];
+    }
   }
   int all;
   MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, world);
@@ -369,8 +379,8 @@ void PairDemContact::save_forces(int nlocal)
     }
     s[F::SF_R] = atom->radius[i];
     s[F::SF_M] = atom->rmass[i];
+    s[F::SF_STEP] = (double) update->ntimestep;
   }
-  saved_step = update->ntimestep;
 }
 
 void PairDemContact::compute(int eflag, int vflag)

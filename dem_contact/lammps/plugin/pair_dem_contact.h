@@ -84,7 +84,6 @@ class PairDemContact : public Pair {
   std::vector<int64_t> seen, atom_epoch, pairs, hrow, second, scratch_rows, prow;
   std::vector<int> touched, held;    // local atoms in a contact at this step, and at the last
   std::vector<double> out, scratch, acc, work, pc;
-  bigint saved_step;
   int nlocal_last;
 
   void allocate();
