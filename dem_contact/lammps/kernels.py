@@ -300,6 +300,18 @@ def sphere_pair(x, v, omega, radius, a, b, dx, dy, dz, r2, rs):
 
 
 @njit(inline="always", cache=True)
+def normal_cross(normals, tforces, k):
+    """n x Ft of contact k: times the arm, the moment of its tangential force about a body's centre."""
+    nx = normals[k, 0]
+    ny = normals[k, 1]
+    nz = normals[k, 2]
+    tx = tforces[k, 0]
+    ty = tforces[k, 1]
+    tz = tforces[k, 2]
+    return ny * tz - nz * ty, nz * tx - nx * tz, nx * ty - ny * tx
+
+
+@njit(inline="always", cache=True)
 def frame_spin_rate(omega, a, b, nx, ny, nz):
     """The spin of a sphere pair's contact frame about its normal: the mean spin of the two bodies along n."""
     return 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
@@ -1066,19 +1078,11 @@ def scatter_contacts(nlocal, x, v, omega, radius, rmass, typ, m, body, src, dst,
             for q in range(hs):
                 H[dst[n], q] = H[s, q]
         b = body[n, 1]
-        nx = normals[n, 0]
-        ny = normals[n, 1]
-        nz = normals[n, 2]
-        tx = tforces[n, 0]
-        ty = tforces[n, 1]
-        tz = tforces[n, 2]
         fx = forces[n, 0]
         fy = forces[n, 1]
         fz = forces[n, 2]
         delta = overlaps[n]
-        cx = ny * tz - nz * ty
-        cy = nz * tx - nx * tz
-        cz = nx * ty - ny * tx
+        cx, cy, cz = normal_cross(normals, tforces, n)
         # torque on a sphere: (R - delta/2) n x Ft on both bodies of a pair (r_a = +arm n, force on b =
         # -Ft); R n x Ft against a wall
         arm = radius[a] - 0.5 * delta if b >= 0 else radius[a]

@@ -112,15 +112,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
     for k in range(n):
         a = pairs[k, 0]
         b = pairs[k, 1]
-        nx = normals[k, 0]
-        ny = normals[k, 1]
-        nz = normals[k, 2]
-        tx = tforces[k, 0]
-        ty = tforces[k, 1]
-        tz = tforces[k, 2]
-        cx = ny * tz - nz * ty
-        cy = nz * tx - nx * tz
-        cz = nx * ty - ny * tx
+        cx, cy, cz = K.normal_cross(normals, tforces, k)
         delta = overlaps[k]
         # torque on a sphere: (R - delta/2) n x Ft on both bodies of the pair
         arm_a = radius[a] - 0.5 * delta
