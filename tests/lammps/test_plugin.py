@@ -68,12 +68,18 @@ def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
         assert _rel(got, ref["bridge"]) < 1e-12, (ranks, newton)
         assert _rel(got, ref["native"]) < 1e-10, (ranks, newton)
         if ranks == 1:
-            # compute dem/contact/local: the bridge's contact (ids, force, tangential force, normal, overlap)
+            # compute dem/contact/local: the bridge's contact (ids, force, tangential force, normal, overlap,
+            # sliding)
             row = np.array(got["contacts"])
-            assert row.shape == bridge_row.shape == (1, 12)
+            assert row.shape == bridge_row.shape == (1, 13)
             assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
             f, ft, n = row[0, 2:5], row[0, 5:8], row[0, 8:11]
             assert abs(ft @ n) < 1e-12 * np.linalg.norm(f) and -(f - ft) @ n > 0.0     # Ft tangential, N pushes
+    # a sliding contact (mu = 0.01): the compute's sliding column as the bridge's
+    slide = _scenes("pair", "plugin,bridge", tmp_path, 1, "--steps", "30", "--mu", "0.01")
+    row, bridge_row = np.array(slide["plugin"]["contacts"]), np.array(slide["bridge"]["contacts"])
+    assert row[0, 12] == bridge_row[0, 12] == 1.0
+    assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
 
 
 def test_pour_as_the_bridge_and_pair_granular(plugin, tmp_path):

@@ -8,10 +8,14 @@
 #include "memory.h"
 #include "update.h"
 
+#include <cmath>
+
 using namespace LAMMPS_NS;
 
 namespace {
-const int N_COLUMNS = 12;
+const int N_COLUMNS = 13;
+// a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (as the bridge's contacts())
+const double SLIDING_TOL = 1e-9;
 PairDemContact *our_pair(LAMMPS *lmp)
 {
   return dynamic_cast<PairDemContact *>(lmp->force->pair_match("dem/contact", 1));
@@ -73,6 +77,12 @@ void ComputeDemContactLocal::compute_local()
       r[8 + d] = o[PairDemContact::OUT_N + d];
     }
     r[11] = o[PairDemContact::OUT_DELTA];
+    double N = 0.0, ft = 0.0;
+    for (int d = 0; d < 3; d++) {
+      N -= (r[2 + d] - r[5 + d]) * r[8 + d];
+      ft += r[5 + d] * r[5 + d];
+    }
+    r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
   }
 }
 

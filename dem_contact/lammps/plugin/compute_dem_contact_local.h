@@ -1,11 +1,12 @@
 /* compute ID all dem/contact/local: the contacts of pair_style dem/contact at the step, one row each (each contact
    once over the ranks: a pair by the rank that owns its atom of lower id), for dump local:
 
-     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap
+     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap sliding
 
    id1 < id2 (atom ids); (fx, fy, fz) the contact force on atom id1 [N] (atom id2 takes the opposite), (ftx,
-   fty, ftz) its tangential part [N], (nx, ny, nz) the unit normal from id1 to id2, overlap [m]. The normal
-   force, positive when pushing apart, is -(f - ft) . n. */
+   fty, ftz) its tangential part [N], (nx, ny, nz) the unit normal from id1 to id2, overlap [m]; sliding: 1 where
+   |ft| >= (1 - 1e-9) mu N with N > 0 (the laws cap |ft| at mu N, to rounding), else 0. The normal force N,
+   positive when pushing apart, is -(f - ft) . n. */
 #ifdef COMPUTE_CLASS
 #else
 #ifndef DEM_CONTACT_COMPUTE_LOCAL_H

@@ -53,7 +53,7 @@ class FixDemContactHistory;
 class PairDemContact : public Pair {
  public:
   // columns of the per-contact output of a step (dem_contact/lammps/pair_kernel.py, OUT_...)
-  enum { OUT_F = 0, OUT_TA = 3, OUT_TB = 6, OUT_DELTA = 9, OUT_FT = 10, OUT_N = 13, N_OUT = 16 };
+  enum { OUT_F = 0, OUT_TA = 3, OUT_TB = 6, OUT_DELTA = 9, OUT_FT = 10, OUT_N = 13, OUT_MU = 16, N_OUT = 17 };
 
   PairDemContact(class LAMMPS *);
   ~PairDemContact() override;
