@@ -93,6 +93,8 @@ def pair_table(spheres, walls=(), *, mu=0.3, normal: str = "hertz", tangential: 
     if mu_arr.shape != (nt, nt + nw):
         raise InputError(f"mu must be a number or an array of shape (n_types, n_types + n_walls) = "
                          f"({nt}, {nt + nw}), got shape {mu_arr.shape}")
+    if not np.all(np.isfinite(mu_arr)):
+        raise InputError(f"mu (friction coefficient) must be finite, got {mu!r}")
     if not np.array_equal(mu_arr[:, :nt], mu_arr[:, :nt].T):
         raise InputError("mu[:, :n_types] (sphere-sphere friction) must be symmetric")
     laws = dict(scene_options, normal=normal, e_n=e_n, v_ref=v_ref)

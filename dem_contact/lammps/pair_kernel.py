@@ -29,7 +29,7 @@ from ..laws.vector import V_N, renamed
 from . import kernels as K
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 1
+ABI = 2
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
 #: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient
@@ -227,7 +227,6 @@ class Attach(ctypes.Structure):
         ("type_size", ctypes.c_void_p),
         ("size_free", ctypes.c_int64),
         ("history_size", ctypes.c_int64),
-        ("r_max", ctypes.c_double),
         ("tc_unit", ctypes.c_void_p),
         ("alpha", ctypes.c_void_p),
         ("laws", ctypes.c_char * 512),
@@ -276,7 +275,6 @@ def _attach(path, n_types, out, address):
     out.n_types = nt
     out.size_free = int(saved.size_free)
     out.history_size = table.history_size
-    out.r_max = float(saved.type_size[:, 0].max())
     out.laws = saved.laws.encode()[:511]
     out.error = b""
 

@@ -72,8 +72,7 @@ def _python_library() -> str:
     libdir = sysconfig.get_config_var("LIBDIR") or ""
     name = sysconfig.get_config_var("INSTSONAME") or sysconfig.get_config_var("LDLIBRARY") or ""
     path = os.path.join(libdir, name)
-    if not (sysconfig.get_config_var("Py_ENABLE_SHARED") and name.endswith((".so", ".so.1.0")) or ".so" in name) \
-            or not os.path.exists(path):
+    if not sysconfig.get_config_var("Py_ENABLE_SHARED") or not os.path.exists(path):
         raise PluginBuildError(f"this Python ({sys.executable}) has no shared library ({path}): the plugin loads "
                                f"it in lmp; use a Python built with --enable-shared")
     return path

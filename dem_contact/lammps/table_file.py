@@ -3,8 +3,8 @@ written as JSON (``pair_coeff * * FILE``).
 
 ``save(table, path)`` writes it; ``load(path)`` reads it back and refuses a file of another format or package
 version, or one whose laws this version lacks (``InputError``, naming what to do). The file holds the
-parameter rows exactly (JSON numbers round-trip float64), the law names of the rows, each type's radius, mass
-and density, whether the laws take atoms of any radius (``size_free``) and the rows' size and contact-time
+parameter rows exactly (JSON numbers round-trip float64), the law names of the rows, each type's radius and
+mass, whether the laws take atoms of any radius (``size_free``) and the rows' size and contact-time
 information (``row_info`` at 1 m/s, with the exponent of the speed), and a description of every row for
 people.
 """
@@ -88,13 +88,12 @@ def row_info(table, v_max) -> np.ndarray:
 @dataclass(frozen=True)
 class TableFile:
     """A table file read back: the PairTable (without Scenes), and per type (float64[n_types, 2]) radius and
-    mass, densities float64[n_types], size_free, rowinfo float64[n_rows, kernels.N_ROWINFO] at 1 m/s, the
+    mass (its density follows), size_free, rowinfo float64[n_rows, kernels.N_ROWINFO] at 1 m/s, the
     contact time of each row at 1 m/s ``tc_unit`` and its exponent of the speed ``alpha`` (t_c(v) =
     tc_unit v^-alpha), and ``laws``: the rows' law names, for messages."""
 
     table: PairTable
     type_size: np.ndarray
-    densities: np.ndarray
     size_free: bool
     rowinfo: np.ndarray
     tc_unit: np.ndarray
@@ -133,8 +132,7 @@ def save(table: PairTable, path) -> str:
         tangential=LT.FAMILIES["tangential"][table.tangential_id].NAME,
         laws=_law_names(table.params), params=table.params.tolist(), sphere_row=table.sphere_row.tolist(),
         wall_row=table.wall_row.tolist(), history_size=int(table.history_size),
-        radius=[s.radius for s in spheres], mass=[s.mass for s in spheres],
-        density=[s.material.rho for s in spheres], size_free=bool(free), size_free_why=why,
+        radius=[s.radius for s in spheres], mass=[s.mass for s in spheres], size_free=bool(free), size_free_why=why,
         rowinfo=info.tolist(), tc_unit=info[:, K.RI_TC].tolist(), alpha=alpha.tolist(),
         rows=[str(d) for d in table.describe()])
     path = os.fspath(path)
@@ -203,7 +201,7 @@ def load(path) -> TableFile:
     size = np.stack([_array(doc, "radius", float, (nt,), path), _array(doc, "mass", float, (nt,), path)], axis=1)
     n_rows = len(laws)
     return TableFile(table=table, type_size=np.ascontiguousarray(size),
-                     densities=_array(doc, "density", float, (nt,), path), size_free=bool(doc.get("size_free")),
+                     size_free=bool(doc.get("size_free")),
                      rowinfo=_array(doc, "rowinfo", float, (n_rows, K.N_ROWINFO), path),
                      tc_unit=_array(doc, "tc_unit", float, (n_rows,), path),
                      alpha=_array(doc, "alpha", float, (n_rows,), path),

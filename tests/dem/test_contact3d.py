@@ -828,3 +828,10 @@ def test_checked_entry_refuses_an_overlap_beyond_the_laws_and_reports_a_non_fini
     H[1, :] = 1e308
     with pytest.raises(NumericalError, match=r"^contact 1: the force is not finite"):
         contact_forces(*args[:4], H, *args[5:])
+
+
+@pytest.mark.parametrize("mu", [float("nan"), float("inf"), [[0.3, float("nan")], [float("nan"), 0.3]]])
+def test_pair_table_refuses_a_friction_coefficient_that_is_not_finite(mu):
+    """A NaN friction is named as such (not as an asymmetric table), before any row is built."""
+    with pytest.raises(InputError, match=r"^mu \(friction coefficient\) must be finite"):
+        pair_table([Sphere(1e-3, STEEL), Sphere(2e-3, STEEL)], mu=mu)

@@ -33,7 +33,7 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
 const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4;
 const int N_WORK = 20;   // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
-const int ABI = 1;       // pair_kernel.ABI
+const int ABI = 2;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;

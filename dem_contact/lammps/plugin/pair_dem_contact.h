@@ -40,7 +40,6 @@ struct DemContactAttach {
   const double *type_size;
   int64_t size_free;
   int64_t history_size;
-  double r_max;
   const double *tc_unit;
   const double *alpha;
   char laws[512];
