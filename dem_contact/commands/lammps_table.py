@@ -18,6 +18,10 @@ def add_options(p):
     p.add_argument("--sphere", nargs=4, action="append", required=True, metavar=("RADIUS", "E", "NU", "RHO"),
                    help="an atom type: radius [m], Young's modulus [Pa], Poisson ratio, density [kg/m^3] "
                         "(repeat for types 1, 2, ...)")
+    p.add_argument("--wall", nargs="+", action="append", default=[], metavar="E NU [CURVATURE]",
+                   help="a wall material for fix dem/contact/wall: Young's modulus [Pa], Poisson ratio, and the "
+                        "curvature 1/R2 [1/m] of its contacts (default 0, flat; a cylinder of radius RC: -1/(2 RC) "
+                        "inside, 1/(2 RC) outside); the fix's `wall W` is the W-th, from 0 (repeat for more)")
     p.add_argument("--mu", type=float, default=0.5, help="friction coefficient of every pair (default 0.5)")
     p.add_argument("--normal", choices=list(NORMAL_LAWS), default="hertz", help="normal law (default hertz)")
     p.add_argument("--tangential", choices=list(TANGENTIAL_LAWS), default=None,
@@ -35,7 +39,7 @@ def run(args) -> int:
     from ..dem.pairs import pair_table
     from ..errors import InputError
     from ..lammps import table_file
-    from ..materials import Material, Sphere
+    from ..materials import Material, Sphere, Wall
 
     check_output_file("--out", args.out, (".json",))
     spheres = []
@@ -53,8 +57,22 @@ def run(args) -> int:
     laws = dict(normal=args.normal, v_ref=args.v_ref, **options, **torque_laws(args))
     if args.tangential is not None:
         laws["tangential"] = args.tangential
-    table = pair_table(spheres, [], mu=args.mu, **laws)
+    walls = []
+    for k, words in enumerate(args.wall):
+        try:
+            if len(words) not in (2, 3):
+                raise ValueError
+            E, nu, *curvature = (float(w) for w in words)
+        except ValueError:
+            raise InputError(f"--wall (wall {k}): E NU [CURVATURE] must be two or three numbers, got "
+                             f"{' '.join(words)}") from None
+        try:
+            # (a wall's density does not enter its contacts: 1/m2 = 0)
+            walls.append(Wall(Material(E=E, nu=nu, rho=1.0), curvature=curvature[0] if curvature else 0.0))
+        except InputError as e:
+            raise InputError(f"--wall (wall {k}): {e}") from None
+    table = pair_table(spheres, walls, mu=args.mu, **laws)
     path = table_file.save(table, args.out)
-    print(f"{path}: {len(spheres)} atom type(s), {len(table.params)} rows, "
+    print(f"{path}: {len(spheres)} atom type(s), {len(walls)} wall(s), {len(table.params)} rows, "
           f"{table_file.load(path).laws}; in the input script: pair_coeff * * {path}")
     return 0

@@ -300,6 +300,27 @@ def sphere_pair(x, v, omega, radius, a, b, dx, dy, dz, r2, rs):
 
 
 @njit(inline="always", cache=True)
+def wall_slip(x, v, omega, radius, walls, i, w, gap, nx, ny, nz, frame_spin):
+    """(vx, vy, vz, wn) of the contact of sphere i with wall w (body 1 the sphere, n from the sphere to the
+    wall, the contact point c = x + gap n on the wall's surface): the slip velocity, the sphere's surface
+    velocity v + R omega x n minus the wall's at c (``walls.contract.velocity``), and where ``frame_spin``
+    the spin of the contact frame about n, the mean of the sphere's and the wall's (else 0)."""
+    uwx, uwy, uwz = W.velocity(walls, w, x[i, 0] + gap * nx, x[i, 1] + gap * ny, x[i, 2] + gap * nz)
+    ra = radius[i]
+    wx = ra * omega[i, 0]
+    wy = ra * omega[i, 1]
+    wz = ra * omega[i, 2]
+    vx = v[i, 0] - uwx + (wy * nz - wz * ny)
+    vy = v[i, 1] - uwy + (wz * nx - wx * nz)
+    vz = v[i, 2] - uwz + (wx * ny - wy * nx)
+    wn = 0.0
+    if frame_spin:
+        wn = 0.5 * ((omega[i, 0] + walls[w, W.OMEGA]) * nx + (omega[i, 1] + walls[w, W.OMEGA + 1]) * ny
+                    + (omega[i, 2] + walls[w, W.OMEGA + 2]) * nz)
+    return vx, vy, vz, wn
+
+
+@njit(inline="always", cache=True)
 def normal_cross(normals, tforces, k):
     """n x Ft of contact k: times the arm, the moment of its tangential force about a body's centre."""
     nx = normals[k, 0]
@@ -692,24 +713,12 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             # point c = x + gap n on its surface
             a = i
             b = -(w + 1)
-            ra = radius[i]
-            uwx, uwy, uwz = W.velocity(walls, w, x[i, 0] + gap * nx, x[i, 1] + gap * ny, x[i, 2] + gap * nz)
-            wx = ra * omega[i, 0]
-            wy = ra * omega[i, 1]
-            wz = ra * omega[i, 2]
-            vx = v[i, 0] - uwx + (wy * nz - wz * ny)
-            vy = v[i, 1] - uwy + (wz * nx - wx * nz)
-            vz = v[i, 2] - uwz + (wx * ny - wy * nx)
+            vx, vy, vz, wn[n] = wall_slip(x, v, omega, radius, walls, i, w, gap, nx, ny, nz, frame_spin)
             pair_rows[n] = prow[n] = wall_row[typ[i] - 1, wall_mat[w]]
             if sized and _resized(radius, rmass, typ, type_size, i):
                 rs, ms = _effective(radius, rmass, i, -1, rowinfo, pair_rows[n])
                 prow[n] = params.shape[0] + n
                 _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
-            wn[n] = 0.0
-            if frame_spin:
-                # (the frame turns with the mean spin of the sphere and the wall)
-                wn[n] = 0.5 * ((omega[i, 0] + walls[w, W.OMEGA]) * nx + (omega[i, 1] + walls[w, W.OMEGA + 1]) * ny
-                               + (omega[i, 2] + walls[w, W.OMEGA + 2]) * nz)
         body[n, 0] = a
         body[n, 1] = b
         normals[n, 0] = nx
@@ -940,33 +949,37 @@ def _rows_of_late_contacts(nlocal, x, radius, tag, walls, cand, cand_walls, cand
 def wall_loads(x, radius, walls, m, body, normals, overlaps, forces, torques, loads):
     """loads float64[n_walls, 7]: each wall's force (3) [N], torque about its centre of rotation (3) [N m]
     and the power it gives the spheres [W], from the m contacts of this rank (forces, torques: on body 1,
-    the sphere; each wall contact is its local atom's, so the ranks' loads add up): -F, (c - C) x (-F) - M
-    and F . v_wall(c), with c = x + (R - delta) n the contact point on the wall's surface."""
+    the sphere; each wall contact is its local atom's, so the ranks' loads add up): ``add_wall_load``."""
     loads[:, :] = 0.0
     for n in range(m):
         b = body[n, 1]
-        if b >= 0:
-            continue
-        w = -b - 1
-        a = body[n, 0]
-        s = radius[a] - overlaps[n]
-        cx = x[a, 0] + s * normals[n, 0]
-        cy = x[a, 1] + s * normals[n, 1]
-        cz = x[a, 2] + s * normals[n, 2]
-        fx = forces[n, 0]
-        fy = forces[n, 1]
-        fz = forces[n, 2]
-        rx = cx - walls[w, W.CENTRE]
-        ry = cy - walls[w, W.CENTRE + 1]
-        rz = cz - walls[w, W.CENTRE + 2]
-        loads[w, 0] -= fx
-        loads[w, 1] -= fy
-        loads[w, 2] -= fz
-        loads[w, 3] -= ry * fz - rz * fy + torques[n, 0]
-        loads[w, 4] -= rz * fx - rx * fz + torques[n, 1]
-        loads[w, 5] -= rx * fy - ry * fx + torques[n, 2]
-        vx, vy, vz = W.velocity(walls, w, cx, cy, cz)
-        loads[w, 6] += fx * vx + fy * vy + fz * vz
+        if b < 0:
+            add_wall_load(x, radius, walls, -b - 1, body[n, 0], overlaps[n], normals, forces, torques, n, loads[-b - 1])
+
+
+@njit(inline="always", cache=True)
+def add_wall_load(x, radius, walls, w, a, delta, normals, forces, torques, n, load):
+    """Add to load float64[7] the load on wall w of contact n of sphere a (forces[n], torques[n]: on the
+    sphere; normals[n] from the sphere to the wall, overlap delta): -F, (c - C) x (-F) - M and F . v_wall(c),
+    with c = x + (R - delta) n the contact point on the wall's surface and C the wall's centre now."""
+    s = radius[a] - delta
+    cx = x[a, 0] + s * normals[n, 0]
+    cy = x[a, 1] + s * normals[n, 1]
+    cz = x[a, 2] + s * normals[n, 2]
+    fx = forces[n, 0]
+    fy = forces[n, 1]
+    fz = forces[n, 2]
+    rx = cx - walls[w, W.CENTRE]
+    ry = cy - walls[w, W.CENTRE + 1]
+    rz = cz - walls[w, W.CENTRE + 2]
+    load[0] -= fx
+    load[1] -= fy
+    load[2] -= fz
+    load[3] -= ry * fz - rz * fy + torques[n, 0]
+    load[4] -= rz * fx - rx * fz + torques[n, 1]
+    load[5] -= rx * fy - ry * fx + torques[n, 2]
+    vx, vy, vz = W.velocity(walls, w, cx, cy, cz)
+    load[6] += fx * vx + fy * vy + fz * vz
 
 
 @njit(cache=True)

@@ -25,8 +25,8 @@ import sysconfig
 from ..errors import InputError
 
 SOURCE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "plugin")
-SOURCES = ("dem_contact_plugin.cpp", "pair_dem_contact.cpp", "fix_dem_contact_history.cpp", "compute_dem_contact_local.cpp",
-           "python_link.cpp")
+SOURCES = ("dem_contact_plugin.cpp", "pair_dem_contact.cpp", "fix_dem_contact_history.cpp", "fix_dem_contact_wall.cpp",
+           "compute_dem_contact_local.cpp", "python_link.cpp")
 #: the file name (LAMMPS loads every ``*plugin.so`` of the folders on LAMMPS_PLUGIN_PATH)
 NAME = "demcontactplugin.so"
 

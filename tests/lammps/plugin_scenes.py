@@ -30,7 +30,8 @@ from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import LammpsContacts, native_commands, new_lammps
 from dem_contact.lammps import plugin_build, table_file
 from dem_contact.laws.model import reference_speed
-from dem_contact.materials import Material, Sphere
+from dem_contact.materials import Material, Sphere, Wall
+from dem_contact.walls import CylinderWall, PlaneWall
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 POLYMER = Material(E=2e7, nu=0.4, rho=1100.0)
@@ -38,12 +39,24 @@ R1, R2 = 1.0e-3, 1.25e-3
 V_MAX = 1.0
 
 
-def table(sds, types=2, mu=0.5):
+def table(sds, types=2, mu=0.5, walls=()):
     spheres = [Sphere(R1, GLASS), Sphere(R2, POLYMER)][:types]
     extra = dict(twist="sds", rolling="sds", k_twist=1e-5, gamma_twist=4e-9, mu_twist=1e-4, k_roll=50.0,
                  gamma_roll=1e-2, mu_roll=0.1) if sds else {}
-    return pair_table(spheres, [], mu=mu, normal="hertz", tangential="mindlin_total",
+    return pair_table(spheres, list(walls), mu=mu, normal="hertz", tangential="mindlin_total",
                       v_ref=reference_speed(1.0), **extra)
+
+
+def fix_words(wall):
+    """The words of fix dem/contact/wall for a PlaneWall or CylinderWall."""
+    num = lambda v: " ".join(repr(float(c)) for c in v)  # noqa: E731
+    if isinstance(wall, PlaneWall):
+        words = f"plane {num(wall.point)} {num(wall.normal)}"
+    else:
+        words = (f"cylinder {num(wall.point)} {num(wall.axis)} {float(wall.radius)!r} "
+                 f"{'in' if wall.inside else 'out'}{'' if wall.curved else ' flat'}")
+    words += f" wall {wall.wall} velocity {num(wall.velocity)} angular_velocity {num(wall.angular_velocity)}"
+    return words + (f" centre {num(wall.centre)}" if wall.centre is not None else "")
 
 
 def gather(lmp, name):
@@ -54,10 +67,10 @@ def state(lmp):
     return {k: gather(lmp, k) for k in ("x", "v", "omega", "f", "torque")}
 
 
-def forces_on(lmp, engine, t, out, frame_spin):
-    """The contact forces of the engine: (the bridge, or None)."""
+def forces_on(lmp, engine, t, out, frame_spin, walls=()):
+    """The contact forces of the engine, with the walls: (the bridge, or None)."""
     if engine == "native":
-        for c in native_commands(t):
+        for c in native_commands(t, walls):
             lmp.command(c)
         return None
     if engine == "plugin":
@@ -66,10 +79,12 @@ def forces_on(lmp, engine, t, out, frame_spin):
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
         lmp.command(f"pair_style dem/contact vmax {V_MAX!r} frame_spin {'yes' if frame_spin else 'no'}")
         lmp.command(f"pair_coeff * * {path}")
+        for k, wall in enumerate(walls):
+            lmp.command(f"fix wall{k} all dem/contact/wall {fix_words(wall)}")
         return None
     lmp.command("pair_style zero 0.004")
     lmp.command("pair_coeff * *")
-    return LammpsContacts(lmp, t, v_max=V_MAX, frame_spin=frame_spin)
+    return LammpsContacts(lmp, t, walls, v_max=V_MAX, frame_spin=frame_spin)
 
 
 def run(lmp, bridge, n):
@@ -113,10 +128,11 @@ def contact_rows(lmp, engine, bridge):
     return None
 
 
-def advance(lmp, a, t, restart):
+def advance(lmp, a, t, restart, walls=()):
     """The engine's forces on, the run (in pieces; --restart-write: its first part, then the restart file
-    written), and the state at its end with the number of touching pairs."""
-    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    written), and the state at its end with the number of touching pairs (and with walls: the walls' loads,
+    plugin and bridge)."""
+    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin, walls)
     steps = a.restart_write or a.steps
     for _ in range(a.pieces):
         run(lmp, bridge, steps // a.pieces)
@@ -124,6 +140,11 @@ def advance(lmp, a, t, restart):
         lmp.command(f"write_restart {restart}")
     out = state(lmp)
     out["touching"] = touching(lmp)
+    if walls and a.engine == "plugin":
+        out["loads"] = [[lmp.extract_fix(f"wall{k}", 0, 1, q) for q in range(7)] for k in range(len(walls))]
+    elif walls and a.engine == "bridge":
+        w = bridge.wall_loads()
+        out["loads"] = np.column_stack([w["force"], w["torque"], w["power"]]).tolist()
     return out
 
 
@@ -234,9 +255,62 @@ def pack(a):
     return lmp, advance(lmp, a, t, restart)
 
 
+FLOOR = PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), velocity=(0.05, 0.0, 0.0))
+DRUM_R = 5.0e-3
+DRUM = CylinderWall((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), DRUM_R, angular_velocity=(0.0, 20.0, 0.0))
+
+
+def walled(a):
+    """Spheres of both types falling on a floor that slides along x (floor), or tumbling in a drum turning
+    about its axis y (drum): periodic in the directions the wall leaves open, split between the ranks along
+    x."""
+    floor = a.scene == "floor"
+    walls = [FLOOR] if floor else [DRUM]
+    mats = [Wall(GLASS)] if floor else [Wall(GLASS, curvature=DRUM.curvature_for_rstar)]
+    t = table(a.sds, walls=mats)
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    restart = os.path.join(a.dir, f"{a.scene}.restart")
+    if a.restart_read:
+        for c in (f"newton {a.newton}", "processors * 1 1", f"read_restart {restart}"):
+            lmp.command(c)
+    else:
+        L = 8.0 * R2
+        box = f"0 {L!r} 0 {L!r} 0 0.02" if floor else f"{-DRUM_R!r} {DRUM_R!r} 0 {L!r} {-DRUM_R!r} {DRUM_R!r}"
+        for c in ("units si", "atom_style sphere", "atom_modify map array sort 0 0.0", f"newton {a.newton}",
+                  f"boundary {'p p f' if floor else 'f p f'}", "processors * 1 1", f"region box block {box}",
+                  "create_box 2 box"):
+            lmp.command(c)
+        rng = np.random.default_rng(11)
+        n = 0
+        for layer in range(2):
+            for i in range(3):
+                for j in range(3):
+                    if floor:
+                        x, y, z = (i + 0.5) * L / 3, (j + 0.5) * L / 3, R2 + 5e-5 + layer * 2.2 * R2
+                    else:
+                        # (on a ring just inside the drum)
+                        phi = (3 * layer + i + 0.5 * j) * np.pi / 3
+                        ring = DRUM_R - R2 - 5e-5
+                        x, y, z = float(ring * np.cos(phi)), (j + 0.5) * L / 3, float(ring * np.sin(phi))
+                    x += float(rng.uniform(-1e-4, 1e-4))
+                    lmp.command(f"create_atoms {1 + n % 2} single {x!r} {y!r} {z!r}")
+                    n += 1
+        for typ, sph in ((1, t.scenes[t.sphere_row[0, 0]].sphere), (2, t.scenes[t.sphere_row[1, 1]].sphere)):
+            lmp.command(f"set type {typ} diameter {2 * sph.radius!r}")
+            lmp.command(f"set type {typ} mass {sph.mass!r}")
+        vel = rng.normal(0.0, 0.2, (n, 3)).tolist()
+        for q in range(n):
+            lmp.command(f"set atom {q + 1} vx {vel[q][0]!r} vy {vel[q][1]!r} vz {vel[q][2] - 0.5!r} "
+                        f"omega {vel[q][1] * 300!r} {vel[q][2] * 300!r} {vel[q][0] * 300!r}")
+    for c in ("timestep 2e-6", "fix 1 all nve/sphere", "fix 2 all gravity 9.81 vector 0 0 -1", "neighbor 0.0004 bin",
+              "neigh_modify delay 0 every 1 check yes", "comm_modify vel yes"):
+        lmp.command(c)
+    return lmp, advance(lmp, a, t, restart, walls)
+
+
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("scene", choices=("pair", "pour", "pack"))
+    p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum"))
     p.add_argument("engines", help="comma-separated: plugin, bridge, native (each run in turn)")
     p.add_argument("dir")
     p.add_argument("--newton", choices=("on", "off"), default="on")
@@ -251,7 +325,7 @@ def main():
     result = {}
     for engine in a.engines.split(","):
         a.engine = engine
-        lmp, result[engine] = dict(pair=pair, pour=pour, pack=pack)[a.scene](a)
+        lmp, result[engine] = dict(pair=pair, pour=pour, pack=pack, floor=walled, drum=walled)[a.scene](a)
         rank = lmp.extract_setting("world_rank")
         lmp.close()
     if rank == 0:

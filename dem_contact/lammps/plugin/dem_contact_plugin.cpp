@@ -1,5 +1,5 @@
-// Registers pair_style dem/contact and its history fix with LAMMPS (PLUGIN package: plugin load, or a
-// *plugin.so on LAMMPS_PLUGIN_PATH).
+// Registers pair_style dem/contact, fix dem/contact/wall, compute dem/contact/local and their history fix with
+// LAMMPS (PLUGIN package: plugin load, or a *plugin.so on LAMMPS_PLUGIN_PATH).
 #include "lammpsplugin.h"
 #include "library.h"
 
@@ -8,6 +8,7 @@
 
 #include "compute_dem_contact_local.h"
 #include "fix_dem_contact_history.h"
+#include "fix_dem_contact_wall.h"
 #include "pair_dem_contact.h"
 
 #ifndef DEM_CONTACT_LAMMPS_VERSION
@@ -26,6 +27,11 @@ static Pair *pair_creator(LAMMPS *lmp) { return new PairDemContact(lmp); }
 static Compute *local_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new ComputeDemContactLocal(lmp, argc, argv);
+}
+
+static Fix *wall_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new FixDemContactWall(lmp, argc, argv);
 }
 
 static Fix *history_creator(LAMMPS *lmp, int argc, char **argv)
@@ -64,6 +70,11 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   (*register_plugin)(&plugin, lmp);
 
   plugin.style = "fix";
+  plugin.name = "dem/contact/wall";
+  plugin.info = "a wall (plane, cylinder, STL mesh; rigid motion) with the laws of pair_style dem/contact";
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &wall_creator;
+  (*register_plugin)(&plugin, lmp);
+
   plugin.name = "DEM/CONTACT/HISTORY";
   plugin.info = "contact rows of pair_style dem/contact, moving with their atoms";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &history_creator;

@@ -9,11 +9,11 @@
 
 using namespace LAMMPS_NS;
 
-// fix ID all DEM/CONTACT/HISTORY slots history_size (made by pair_style dem/contact)
+// fix ID all DEM/CONTACT/HISTORY slots history_size (made by pair_style dem/contact and fix dem/contact/wall)
 FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr)
 {
-  if (narg != 5) error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact only");
+  if (narg != 5) error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact and fix dem/contact/wall only");
   slots = utils::inumeric(FLERR, arg[3], false, lmp);
   history_size = utils::inumeric(FLERR, arg[4], false, lmp);
   if (slots < 1 || history_size < 1) error->all(FLERR, "fix DEM/CONTACT/HISTORY: bad sizes");
@@ -116,9 +116,10 @@ void FixDemContactHistory::unpack_restart(int nlocal, int nth)
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   if ((int) extra[nlocal][m + 1] != slots || (int) extra[nlocal][m + 2] != history_size)
     error->one(FLERR,
-               "pair dem/contact: the restart file's contact rows have {} slots of {} values, this run's {} of {}: "
-               "give pair_style dem/contact the slots of the run that wrote it and the same table file",
-               (int) extra[nlocal][m + 1], (int) extra[nlocal][m + 2], slots, history_size);
+               "dem/contact: the restart file's contact rows ({}) have {} slots of {} values, this run's {} of {}: "
+               "give pair_style dem/contact (or fix dem/contact/wall) the slots of the run that wrote it and the "
+               "same table file",
+               id, (int) extra[nlocal][m + 1], (int) extra[nlocal][m + 2], slots, history_size);
   unpack_exchange(nlocal, &extra[nlocal][m + 3]);
 }
 

@@ -70,6 +70,10 @@ class PairDemContact : public Pair {
   int64_t contact_count() const { return (int64_t) hrow.size(); }
   const int64_t *contact_atoms() const { return pairs.data(); }
   const double *contact_values() const { return out.data(); }
+  // what fix dem/contact/wall takes from the pair style: its table file, vmax and frame_spin
+  const std::string &table_file() const { return table_path; }
+  double speed_limit() const { return vmax; }
+  int frame_spin_on() const { return frame_spin; }
 
  private:
   double vmax;

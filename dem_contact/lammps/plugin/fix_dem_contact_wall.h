@@ -1,0 +1,86 @@
+/* fix dem/contact/wall: a wall of dem_contact's walls room (a plane, a cylinder or an STL mesh, with a rigid
+   motion) touching the atoms of a group, with the contact laws of pair_style dem/contact's table file.
+
+     fix ID GROUP dem/contact/wall KIND ARGS [wall W] [velocity VX VY VZ] [angular_velocity WX WY WZ]
+         [centre CX CY CZ] [slots N]
+
+   KIND ARGS: plane PX PY PZ NX NY NZ | cylinder PX PY PZ AX AY AZ RC in|out [flat] | mesh FILE [scale S]
+   (dem_contact/lammps/wall_kernel.py reads them). W: the wall's material, the W-th wall of the table file
+   (default 0). Define pair_style dem/contact and its pair_coeff first: the fix takes its table, vmax and
+   frame_spin.
+
+   The fix keeps each atom's wall contact rows in the per-atom rows of its own history fix
+   (FixDemContactHistory, which moves them with the atoms), and hands the local atoms to the package's compiled
+   wall step once per step (post_force). Its global vector (7): the wall's force [N] and torque about its centre
+   [N m] from the atoms, and the power it gives them [W], summed over the ranks. */
+#ifdef FIX_CLASS
+#else
+#ifndef DEM_CONTACT_FIX_WALL_H
+#define DEM_CONTACT_FIX_WALL_H
+
+#include "fix.h"
+
+#include <cstdint>
+#include <string>
+
+// what dem_contact.lammps.wall_kernel.attach writes (its class WallAttach, field for field)
+struct DemContactWallAttach {
+  int64_t abi;
+  char error[2048];
+  void *step;
+  double *walls;
+  int64_t wall_rows;
+  int64_t mat;
+  const double *params;
+  int64_t n_rows;
+  const int64_t *wall_row;
+  int64_t n_types;
+  int64_t n_mats;
+  const double *rowinfo;
+  const double *type_size;
+  int64_t size_free;
+  int64_t history_size;
+  int64_t slots;
+  int64_t unbounded;
+  char describe[512];
+};
+
+namespace LAMMPS_NS {
+
+class FixDemContactHistory;
+class PairDemContact;
+
+class FixDemContactWall : public Fix {
+ public:
+  FixDemContactWall(class LAMMPS *, int, char **);
+  ~FixDemContactWall() override;
+  int setmask() override;
+  void post_constructor() override;
+  void init() override;
+  void setup(int) override;
+  void post_force(int) override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ private:
+  DemContactWallAttach kernel;
+  std::string words, table_path, history_id;
+  FixDemContactHistory *history;
+  PairDemContact *pair;
+  double report[14], load_all[7];
+  bool load_summed, warned_onset;
+  // the wall's clock: LAMMPS's time plus offset; the clock at the last step evaluated (has_clock)
+  double clock_offset, clock_last;
+  int has_clock;
+
+  void attach();
+  double now() const;
+  void evaluate(bool setup);
+  void check_time_step();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
