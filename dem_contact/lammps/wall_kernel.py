@@ -83,6 +83,15 @@ def _find_row(keys, i, key):
     return -1
 
 
+@njit(cache=True)
+def _touch(walls, e, x, y, z, r):
+    """(s, nx, ny, nz, key) of the sphere centred at (x, y, z) of radius r and element e of the fix's wall:
+    ``walls.contract.contact`` and the contact's history key (``walls.table.history_key``). (Compiled once for
+    every law: the kinds' geometry is the larger part of the step to compile.)"""
+    s, nx, ny, nz = W.contact(walls, 0, e, x, y, z, r)
+    return s, nx, ny, nz, W.history_key(walls, 0, e, x, y, z)
+
+
 def _unchanged(saved, i, x, v, omega, radius, rmass, step_no, box):
     """Whether atom i's forces saved at step ``step_no`` are those of its state now (positions up to a period
     of the box, which LAMMPS wraps atoms into at a run's set-up)."""
@@ -141,14 +150,13 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
         e = hits[c, 2]
         if (mask[i] & groupbit) == 0:
             continue
-        gap, nx, ny, nz = W.contact(walls, 0, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, nx, ny, nz, key = _touch(walls, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
         delta = radius[i] - gap
         if not delta > 0.0:
             continue
         if unbounded and gap < 0.0:
             report[R_BEHIND] = i + 1
             continue
-        key = W.history_key(walls, 0, e, x[i, 0], x[i, 1], x[i, 2])
         s = _find_row(keys, i, key)
         fresh = s < 0
         if advance:
@@ -340,11 +348,11 @@ def parse(words: list):
                 raise ValueError
             return tuple(float(w) for w in got)
         except ValueError:
-            raise InputError(f"fix dem/contact/wall: {what} needs {count} numbers, got {' '.join(got) or 'none'} "
+            raise InputError(f"{what} needs {count} numbers, got {' '.join(got) or 'none'} "
                              f"(syntax: {_SYNTAX})") from None
 
     if not words or words[0] not in _KIND_WORDS:
-        raise InputError(f"fix dem/contact/wall: unknown wall kind {words[0] if words else '(none)'!r} "
+        raise InputError(f"unknown wall kind {words[0] if words else '(none)'!r} "
                          f"(syntax: {_SYNTAX})")
     kind = words[0]
     k = 1
@@ -357,7 +365,7 @@ def parse(words: list):
         k += 7
         side = words[k] if k < len(words) else None
         if side not in ("in", "out"):
-            raise InputError(f"fix dem/contact/wall: cylinder needs its side after the radius, in or out, got "
+            raise InputError(f"cylinder needs its side after the radius, in or out, got "
                              f"{side!r} (syntax: {_SYNTAX})")
         k += 1
         curved = True
@@ -367,7 +375,7 @@ def parse(words: list):
         shape = dict(point=a[:3], axis=a[3:6], radius=a[6], inside=side == "in", curved=curved)
     else:
         if k >= len(words):
-            raise InputError(f"fix dem/contact/wall: mesh needs an STL file (syntax: {_SYNTAX})")
+            raise InputError(f"mesh needs an STL file (syntax: {_SYNTAX})")
         shape = dict(path=words[k], scale=1.0)
         k += 1
         if k < len(words) and words[k] == "scale":
@@ -386,17 +394,17 @@ def parse(words: list):
             try:
                 value = int(got)
             except ValueError:
-                raise InputError(f"fix dem/contact/wall: {key} needs a whole number, got {got or 'none'!r}") from None
+                raise InputError(f"{key} needs a whole number, got {got or 'none'!r}") from None
             if key == "wall":
                 mat = value
             else:
                 if not 1 <= value <= 1000:
-                    raise InputError(f"fix dem/contact/wall: slots (history rows per atom) must be in [1, 1000], "
+                    raise InputError(f"slots (history rows per atom) must be in [1, 1000], "
                                      f"got {value}")
                 slots = value
             k += 2
         else:
-            raise InputError(f"fix dem/contact/wall: unknown keyword {key!r} (syntax: {_SYNTAX})")
+            raise InputError(f"unknown keyword {key!r} (syntax: {_SYNTAX})")
     if kind == "plane":
         wall = PlaneWall(wall=mat, **shape, **motion)
     elif kind == "cylinder":
@@ -405,7 +413,7 @@ def parse(words: list):
         try:
             wall = MeshWall.from_stl(shape["path"], scale=shape["scale"], wall=mat, **motion)
         except OSError as e:
-            raise InputError(f"fix dem/contact/wall: the STL file {shape['path']} cannot be read ({e})") from None
+            raise InputError(f"the STL file {shape['path']} cannot be read ({e})") from None
     return wall, slots
 
 
@@ -441,13 +449,13 @@ def _attach(words, path, n_types, out, address):
         raise InputError(f"the table file {path} has no walls: write it with the walls' materials "
                          f"(`dem-contact lammps-table ... --wall E NU`, or pair_table(spheres, walls))")
     if not 0 <= wall.wall < n_mats:
-        raise InputError(f"fix dem/contact/wall: wall {wall.wall} is not a wall of the table file {path} (it has "
+        raise InputError(f"wall {wall.wall} is not a wall of the table file {path} (it has "
                          f"walls 0 ... {n_mats - 1})")
     rows, mats = pack([wall], n_mats)
     want = float(getattr(wall, "curvature_for_rstar", 0.0))
     have = float(saved.rowinfo[table.wall_row[0, wall.wall], K.RI_CURV])
     if have != want:
-        raise InputError(f"fix dem/contact/wall: the wall has curvature {want!r} 1/m at its contacts, but its "
+        raise InputError(f"the wall has curvature {want!r} 1/m at its contacts, but its "
                          f"material (wall {wall.wall} of {path}) has curvature {have!r}: write the table with that "
                          f"curvature for it (--wall E NU {want!r}), or give the cylinder the word flat (R* = R1)")
     unbounded = not math.isfinite(W.bounds(rows, 0, 0)[0])

@@ -1,4 +1,5 @@
-"""Run by test_plugin.py as ``python tests/lammps/plugin_errors.py DIR``: bad input to pair_style dem/contact,
+"""Run by test_plugin.py as ``python tests/lammps/plugin_errors.py DIR``: bad input to pair_style dem/contact
+and fix dem/contact/wall,
 each case in a new LAMMPS instance; prints one JSON object {case: LAMMPS's error message, or None where the
 input ran}."""
 import json
@@ -8,15 +9,15 @@ import sys
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import new_lammps, plugin_build, table_file
-from dem_contact.materials import Material, Sphere
+from dem_contact.materials import Material, Sphere, Wall
 
 OUT = sys.argv[1]
 R = 1e-3
 MAT = Material(E=5e7, nu=0.3, rho=2500.0)
 
 
-def good_table(name="t.json", **kw):
-    return table_file.save(pair_table([Sphere(R, MAT)], mu=0.5, tangential="mindlin_total", **kw),
+def good_table(name="t.json", walls=(), **kw):
+    return table_file.save(pair_table([Sphere(R, MAT)], list(walls), mu=0.5, tangential="mindlin_total", **kw),
                            os.path.join(OUT, name))
 
 
@@ -31,8 +32,9 @@ def edited(name, edit):
 
 
 def scene(table, style="sphere", pair="pair_style dem/contact vmax 1.0", dt=1e-6, vel=True, plugin=None,
-          units="si", gap=-2e-5, steps=10, speed=0.0):
-    """Two spheres touching (overlap -gap) in a box; returns the error message or None."""
+          units="si", gap=-2e-5, steps=10, speed=0.0, wall=None, wall_first=False):
+    """Two spheres touching (overlap -gap) in a box, with the fix dem/contact/wall of the words ``wall`` after
+    the pair style (or before it: wall_first); returns the error message or None."""
     lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
     cmds = [f"plugin load {plugin or plugin_build.plugin_path()}", f"units {units}", f"atom_style {style}",
             "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
@@ -42,8 +44,10 @@ def scene(table, style="sphere", pair="pair_style dem/contact vmax 1.0", dt=1e-6
     else:
         cmds += ["mass 1 1.0"]
     cmds += [f"timestep {dt!r}", "fix 1 all nve/sphere" if style == "sphere" else "fix 1 all nve",
-             "neighbor 0.0003 bin"] + (["comm_modify vel yes"] if vel else []) + [pair, f"pair_coeff * * {table}",
-                                                                                 f"run {steps}"]
+             "neighbor 0.0003 bin"] + (["comm_modify vel yes"] if vel else [])
+    forces = [pair, f"pair_coeff * * {table}"]
+    walls = [f"fix w all dem/contact/wall {wall}"] if wall else []
+    cmds += (walls + forces if wall_first else forces + walls) + [f"run {steps}"]
     try:
         for c in cmds:
             lmp.command(c)
@@ -76,6 +80,19 @@ def main():
         units=scene(good_table(), units="metal"),
         other_lammps=scene(good_table(), plugin=old),
         fast=scene(good_table(), gap=5e-4, speed=200.0, dt=5e-6, pair="pair_style dem/contact vmax 0.05"),
+    )
+    walled = good_table("walls.json", walls=[Wall(MAT)])
+    plane = "plane -0.0009 0 0 1 0 0"
+    cases.update(
+        wall_runs=scene(walled, wall=plane),
+        wall_kind=scene(walled, wall="sphere 0 0 0 0.001"),
+        wall_numbers=scene(walled, wall="plane 0 0 x 1 0 0"),
+        wall_before_pair=scene(walled, wall=plane, wall_first=True),
+        wall_not_in_table=scene(good_table(), wall=plane),
+        wall_index=scene(walled, wall=plane + " wall 3"),
+        wall_curvature=scene(walled, wall="cylinder 0 0 0 0 0 1 0.005 in"),
+        wall_behind=scene(walled, wall="plane 0.0001 0 0 1 0 0"),
+        wall_stl=scene(walled, wall=f"mesh {os.path.join(OUT, 'nowhere.stl')}"),
     )
     print(json.dumps(cases))
 
