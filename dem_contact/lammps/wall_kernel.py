@@ -36,11 +36,12 @@ from numba import carray, cfunc, njit, types
 
 from ..dem.contact3d import _LOOPS
 from ..laws.dispatch import uses_rate
-from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_TANGENTIAL_LAW
+from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_TANGENTIAL_LAW
 from ..laws.vector import V_N, renamed
 from ..walls import search as WS
 from ..walls import table as W
 from . import kernels as K
+from . import pair_kernel as PK
 
 #: the layout version of ``WallAttach`` (the plugin refuses another)
 ABI = 1
@@ -108,12 +109,14 @@ def _unchanged(saved, i, x, v, omega, radius, rmass, step_no, box):
 
 
 def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t, mat, params, wall_row, rowinfo,
-               type_size, size_free, keys, H, saved, dt, flags, step_no, box, f, torque, report):
+               type_size, size_free, keys, H, saved, dt, flags, step_no, box, f, torque, report, out, out_atoms):
     """One step of the wall ``walls`` (packed rows of one wall, placed here at time t [s]) on the local atoms
     of the group (mask & groupbit): see the module's docstring. keys float64[nlocal, slots] and H
     float64[nlocal * slots, history_size]: the atoms' rows (key 0: free; advanced in place where ``ADVANCE``,
     else the law works on copies with no time passing); saved float64[nlocal, N_SAVED]; f, torque
-    float64[nlocal, 3]: LAMMPS's, added to; report float64[N_REPORT]."""
+    float64[nlocal, 3]: LAMMPS's, added to; report float64[N_REPORT]; out float64[cap, pair_kernel.N_OUT] and
+    out_atoms int64[cap]: the first cap contacts (cap may be 0), as the pair style's (no torque on body 2: the
+    wall), and their atoms. Returns the number of contacts."""
     advance = (flags & ADVANCE) != 0
     save = (flags & SAVE) != 0
     reapply = (flags & REAPPLY) != 0
@@ -224,13 +227,28 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
         cx, cy, cz = K.normal_cross(normals, tforces, k)
         # torque on the sphere: R n x Ft (the bridge's arm against a wall) and the twist and rolling torques
         r = radius[i]
+        tx = r * cx + torques[k, 0]
+        ty = r * cy + torques[k, 1]
+        tz = r * cz + torques[k, 2]
         acc[i, 0] += forces[k, 0]
         acc[i, 1] += forces[k, 1]
         acc[i, 2] += forces[k, 2]
-        acc[i, 3] += r * cx + torques[k, 0]
-        acc[i, 4] += r * cy + torques[k, 1]
-        acc[i, 5] += r * cz + torques[k, 2]
+        acc[i, 3] += tx
+        acc[i, 4] += ty
+        acc[i, 5] += tz
         K.add_wall_load(x, radius, walls, 0, i, overlaps[k], normals, forces, torques, k, load)
+        if k < out.shape[0]:
+            out_atoms[k] = i
+            out[k, PK.OUT_TA] = tx
+            out[k, PK.OUT_TA + 1] = ty
+            out[k, PK.OUT_TA + 2] = tz
+            for d in range(3):
+                out[k, PK.OUT_F + d] = forces[k, d]
+                out[k, PK.OUT_TB + d] = 0.0
+                out[k, PK.OUT_FT + d] = tforces[k, d]
+                out[k, PK.OUT_N + d] = normals[k, d]
+            out[k, PK.OUT_DELTA] = overlaps[k]
+            out[k, PK.OUT_MU] = pc[prow[k], P_MU]
     report[R_CONTACTS] = m
     for i in range(nlocal):
         if (mask[i] & groupbit) == 0:
@@ -262,7 +280,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
 
 def _entry(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, wall_rows, t, mat, params, n_rows,
            wall_row, n_types, n_mats, rowinfo, type_size, size_free, keys, H, slots, hs, saved, dt, flags, step_no,
-           box, f, torque, report):
+           box, f, torque, report, out, out_atoms, out_cap):
     """The C entry of ``_wall_step``: raw pointers of the fix's buffers and LAMMPS's per-atom arrays."""
     return step(nlocal, carray(x, (nlocal, 3)), carray(v, (nlocal, 3)), carray(omega, (nlocal, 3)),  # noqa: F821
                 carray(radius, (nlocal,)), carray(rmass, (nlocal,)), carray(typ, (nlocal,)), carray(mask, (nlocal,)),
@@ -270,7 +288,8 @@ def _entry(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, wall_
                 carray(wall_row, (n_types, n_mats)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
                 carray(type_size, (n_types, 2)), size_free != 0, carray(keys, (nlocal, slots)),
                 carray(H, (nlocal * slots, hs)), carray(saved, (nlocal, N_SAVED)), dt, flags, step_no,
-                carray(box, (N_BOX,)), carray(f, (nlocal, 3)), carray(torque, (nlocal, 3)), carray(report, (N_REPORT,)))
+                carray(box, (N_BOX,)), carray(f, (nlocal, 3)), carray(torque, (nlocal, 3)), carray(report, (N_REPORT,)),
+                carray(out, (out_cap, PK.N_OUT)), carray(out_atoms, (out_cap,)))
 
 
 _I64P = types.CPointer(types.int64)
@@ -280,7 +299,7 @@ _I64 = types.int64
 #: the C signature of the step (``fix_dem_contact_wall.cpp``, ``WallStepFn``)
 SIGNATURE = types.int64(_I64, _F64P, _F64P, _F64P, _F64P, _F64P, _I32P, _I32P, _I64, _F64P, _I64, types.float64, _I64,
                         _F64P, _I64, _I64P, _I64, _I64, _F64P, _F64P, _I64, _F64P, _F64P, _I64, _I64, _F64P,
-                        types.float64, _I64, types.float64, _F64P, _F64P, _F64P, _F64P)
+                        types.float64, _I64, types.float64, _F64P, _F64P, _F64P, _F64P, _F64P, _I64P, _I64)
 
 _CFUNCS = {}
 

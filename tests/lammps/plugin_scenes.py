@@ -81,6 +81,8 @@ def forces_on(lmp, engine, t, out, frame_spin, walls=()):
         lmp.command(f"pair_coeff * * {path}")
         for k, wall in enumerate(walls):
             lmp.command(f"fix wall{k} all dem/contact/wall {fix_words(wall)}")
+        if walls:
+            lmp.command("compute contacts all dem/contact/local")
         return None
     lmp.command("pair_style zero 0.004")
     lmp.command("pair_coeff * *")
@@ -124,14 +126,14 @@ def contact_rows(lmp, engine, bridge):
     if engine == "bridge":
         c = bridge.contacts()
         return np.column_stack([c["id1"], c["id2"], c["force"], c["tangential_force"], c["normal"],
-                                c["overlap"], c["sliding"]]).tolist()
+                                c["overlap"], c["sliding"], np.where(c["wall"] >= 0, c["wall"] + 1, 0)]).tolist()
     return None
 
 
 def advance(lmp, a, t, restart, walls=()):
     """The engine's forces on, the run (in pieces; --restart-write: its first part, then the restart file
-    written), and the state at its end with the number of touching pairs (and with walls: the walls' loads,
-    plugin and bridge)."""
+    written), and the state at its end with the number of touching pairs (and with walls, plugin and bridge:
+    the walls' loads and this rank's contacts)."""
     bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin, walls)
     steps = a.restart_write or a.steps
     for _ in range(a.pieces):
@@ -140,6 +142,8 @@ def advance(lmp, a, t, restart, walls=()):
         lmp.command(f"write_restart {restart}")
     out = state(lmp)
     out["touching"] = touching(lmp)
+    if walls and a.engine != "native":
+        out["contacts"] = contact_rows(lmp, a.engine, bridge)
     if walls and a.engine == "plugin":
         out["loads"] = [[lmp.extract_fix(f"wall{k}", 0, 1, q) for q in range(7)] for k in range(len(walls))]
     elif walls and a.engine == "bridge":

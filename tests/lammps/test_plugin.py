@@ -72,7 +72,7 @@ def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
             # compute dem/contact/local: the bridge's contact (ids, force, tangential force, normal, overlap,
             # sliding)
             row = np.array(got["contacts"])
-            assert row.shape == bridge_row.shape == (1, 13)
+            assert row.shape == bridge_row.shape == (1, 14)
             assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
             f, ft, n = row[0, 2:5], row[0, 5:8], row[0, 8:11]
             assert abs(ft @ n) < 1e-12 * np.linalg.norm(f) and -(f - ft) @ n > 0.0     # Ft tangential, N pushes
@@ -132,7 +132,8 @@ def test_walls_as_the_bridge_and_wall_gran(plugin, tmp_path):
     zplane shear) and tumbling in a drum turning about its axis (fix wall/gran/region on a cylinder region
     turned by move rotate; R* with the drum's curvature), twisting and rolling sds on: the atoms' forces are the
     bridge's to 1e-12 and LAMMPS's own to 1e-10, and the wall's load (force, torque about its centre, power) the
-    bridge's, on one rank with newton on and on two with newton off (atoms crossing between the ranks)."""
+    bridge's, on one rank with newton on and on two with newton off (atoms crossing between the ranks), and
+    the rows of compute dem/contact/local the bridge's contacts."""
     for scene, steps in (("floor", "300"), ("drum", "120")):
         ref = _scenes(scene, "bridge,native", tmp_path, 1, "--steps", steps, "--sds")
         for ranks, newton in ((1, "on"), (2, "off")):
@@ -140,6 +141,11 @@ def test_walls_as_the_bridge_and_wall_gran(plugin, tmp_path):
             assert _rel(got, ref["bridge"]) < 1e-12, (scene, ranks)
             assert _rel(got, ref["native"]) < 1e-10, (scene, ranks)
             assert _loads_equal(got, ref["bridge"]), (scene, ranks, got["loads"], ref["bridge"]["loads"])
+            if ranks == 1:
+                # compute dem/contact/local: the bridge's contacts, the wall's with id2 0 and wall 1
+                rows, bridge_rows = (np.array(sorted(r["contacts"])) for r in (got, ref["bridge"]))
+                assert rows.shape == bridge_rows.shape and (rows[:, 1] == 0).any() and (rows[:, 13] == 1).any()
+                assert np.allclose(rows, bridge_rows, rtol=1e-12, atol=1e-12 * np.abs(bridge_rows).max())
 
 
 def test_walls_in_pieces_and_from_restarts(plugin, tmp_path):

@@ -1,19 +1,22 @@
 #include "compute_dem_contact_local.h"
 
+#include "fix_dem_contact_wall.h"
 #include "pair_dem_contact.h"
 
 #include "atom.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
+#include "modify.h"
 #include "update.h"
 
 #include <cmath>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
 namespace {
-const int N_COLUMNS = 13;
+const int N_COLUMNS = 14;
 // a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (as the bridge's contacts())
 const double SLIDING_TOL = 1e-9;
 PairDemContact *our_pair(LAMMPS *lmp)
@@ -48,14 +51,22 @@ void ComputeDemContactLocal::compute_local()
                "compute dem/contact/local: the pair style has no contacts of step {} (it has those of step {}): "
                "dump or use it at the steps of a run, not before the first",
                update->ntimestep, pair->evaluated_step);
+  // the pair style's contacts (a pair: reported by the rank that owns atom a), then each wall's
+  std::vector<FixDemContactWall *> walls;
+  for (auto f : modify->get_fix_by_style("^dem/contact/wall$")) {
+    auto w = dynamic_cast<FixDemContactWall *>(f);
+    if (w->evaluated_step != update->ntimestep)
+      error->all(FLERR, "compute dem/contact/local: fix {} has no contacts of step {}: dump or use it at the steps "
+                 "of a run", w->id, update->ntimestep);
+    walls.push_back(w);
+  }
   const int nlocal = atom->nlocal;
   const int64_t n = pair->contact_count();
   const int64_t *ab = pair->contact_atoms();
-  const double *out = pair->contact_values();
-  tagint *tag = atom->tag;
   int m = 0;
   for (int64_t k = 0; k < n; k++)
     if (ab[2 * k] < nlocal) m++;
+  for (auto w : walls) m += (int) w->contact_count();
   if (m > nmax) {
     memory->destroy(rows);
     nmax = m;
@@ -64,26 +75,37 @@ void ComputeDemContactLocal::compute_local()
   }
   size_local_rows = m;
   m = 0;
+  tagint *tag = atom->tag;
   for (int64_t k = 0; k < n; k++) {
     const int a = (int) ab[2 * k], b = (int) ab[2 * k + 1];
-    if (a >= nlocal) continue;    // (reported by the rank that owns atom a)
-    const double *o = out + PairDemContact::N_OUT * k;
-    double *r = rows[m++];
-    r[0] = tag[a];
-    r[1] = tag[b];
-    for (int d = 0; d < 3; d++) {
-      r[2 + d] = o[PairDemContact::OUT_F + d];
-      r[5 + d] = o[PairDemContact::OUT_FT + d];
-      r[8 + d] = o[PairDemContact::OUT_N + d];
-    }
-    r[11] = o[PairDemContact::OUT_DELTA];
-    double N = 0.0, ft = 0.0;
-    for (int d = 0; d < 3; d++) {
-      N -= (r[2 + d] - r[5 + d]) * r[8 + d];
-      ft += r[5 + d] * r[5 + d];
-    }
-    r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
+    if (a >= nlocal) continue;
+    fill(rows[m++], tag[a], tag[b], 0, pair->contact_values() + PairDemContact::N_OUT * k);
   }
+  for (size_t w = 0; w < walls.size(); w++) {
+    const int64_t *atoms = walls[w]->contact_atoms();
+    for (int64_t k = 0; k < walls[w]->contact_count(); k++)
+      fill(rows[m++], tag[atoms[k]], 0, (int) w + 1, walls[w]->contact_values() + PairDemContact::N_OUT * k);
+  }
+}
+
+// a row: ids, the force on atom id1 and its tangential part, the normal, the overlap, sliding, the wall
+void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, const double *o)
+{
+  r[0] = id1;
+  r[1] = id2;
+  for (int d = 0; d < 3; d++) {
+    r[2 + d] = o[PairDemContact::OUT_F + d];
+    r[5 + d] = o[PairDemContact::OUT_FT + d];
+    r[8 + d] = o[PairDemContact::OUT_N + d];
+  }
+  r[11] = o[PairDemContact::OUT_DELTA];
+  double N = 0.0, ft = 0.0;
+  for (int d = 0; d < 3; d++) {
+    N -= (r[2 + d] - r[5 + d]) * r[8 + d];
+    ft += r[5 + d] * r[5 + d];
+  }
+  r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
+  r[13] = wall;
 }
 
 double ComputeDemContactLocal::memory_usage() { return (double) nmax * N_COLUMNS * sizeof(double); }

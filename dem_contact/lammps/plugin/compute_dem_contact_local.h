@@ -1,12 +1,14 @@
-/* compute ID all dem/contact/local: the contacts of pair_style dem/contact at the step, one row each (each contact
-   once over the ranks: a pair by the rank that owns its atom of lower id), for dump local:
+/* compute ID all dem/contact/local: the contacts of pair_style dem/contact and of every fix dem/contact/wall at
+   the step, one row each (each contact once over the ranks: a pair by the rank that owns its atom of lower id, a
+   wall contact by the rank of its atom), for dump local:
 
-     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap sliding
+     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap sliding wall
 
-   id1 < id2 (atom ids); (fx, fy, fz) the contact force on atom id1 [N] (atom id2 takes the opposite), (ftx,
-   fty, ftz) its tangential part [N], (nx, ny, nz) the unit normal from id1 to id2, overlap [m]; sliding: 1 where
-   |ft| >= (1 - 1e-9) mu N with N > 0 (the laws cap |ft| at mu N, to rounding), else 0. The normal force N,
-   positive when pushing apart, is -(f - ft) . n. */
+   A pair: id1 < id2 (atom ids), wall 0. A wall contact: id1 the atom, id2 0, wall k for the k-th fix
+   dem/contact/wall (from 1, in the order the fixes were defined). (fx, fy, fz) the contact force on atom id1 [N]
+   (body 2 takes the opposite), (ftx, fty, ftz) its tangential part [N], (nx, ny, nz) the unit normal from id1 to
+   body 2, overlap [m]; sliding: 1 where |ft| >= (1 - 1e-9) mu N with N > 0 (the laws cap |ft| at mu N, to
+   rounding), else 0. The normal force N, positive when pushing apart, is -(f - ft) . n. */
 #ifdef COMPUTE_CLASS
 #else
 #ifndef DEM_CONTACT_COMPUTE_LOCAL_H
@@ -27,6 +29,7 @@ class ComputeDemContactLocal : public Compute {
  private:
   int nmax;
   double **rows;
+  void fill(double *row, tagint id1, tagint id2, int wall, const double *values);
 };
 
 }    // namespace LAMMPS_NS

@@ -65,7 +65,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 
   plugin.style = "compute";
   plugin.name = "dem/contact/local";
-  plugin.info = "the contacts of pair_style dem/contact at the step (for dump local)";
+  plugin.info = "the contacts of pair_style dem/contact and fix dem/contact/wall at the step (for dump local)";
   plugin.creator.v2 = (lammpsplugin_factory2 *) &local_creator;
   (*register_plugin)(&plugin, lmp);
 

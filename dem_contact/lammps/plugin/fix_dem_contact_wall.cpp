@@ -28,7 +28,7 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               int64_t n_types, int64_t n_mats, const double *rowinfo, const double *type_size,
                               int64_t size_free, double *keys, double *H, int64_t slots, int64_t hs, double *saved,
                               double dt, int64_t flags, double step_no, const double *box, double *f, double *torque,
-                              double *report);
+                              double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
 const int ABI = 1;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8;
@@ -52,8 +52,8 @@ std::string python_text(const std::string &s)
 }    // namespace
 
 FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), history(nullptr), pair(nullptr), load_summed(false), warned_onset(false),
-    clock_offset(0.0), clock_last(0.0), has_clock(0)
+    Fix(lmp, narg, arg), evaluated_step(-1), history(nullptr), pair(nullptr), load_summed(false),
+    warned_onset(false), keep_out(false), n_out(0), clock_offset(0.0), clock_last(0.0), has_clock(0)
 {
   for (int k = 3; k < narg; k++) words += (k > 3 ? "\n" : "") + std::string(arg[k]);
   vector_flag = 1;
@@ -121,6 +121,8 @@ void FixDemContactWall::init()
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "fix dem/contact/wall needs atoms with radius, per-atom mass, spin and torque: use "
                       "atom_style sphere");
+  // the per-contact output at every step where a compute reads it
+  keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
   check_time_step();
 }
 
@@ -183,7 +185,9 @@ void FixDemContactWall::evaluate(bool setup)
   if (!setup) {
     clock_last = t;
     has_clock = 1;
+    evaluated_step = update->ntimestep;
   }
+  n_out = 0;
   if (nlocal == 0) return;
   // A run's set-up advances nothing (the law works on copies of the histories, with no time passing) and
   // reapplies the forces saved at the last step of the run before to the atoms whose state is unchanged; the
@@ -196,12 +200,19 @@ void FixDemContactWall::evaluate(bool setup)
     box[3 + d] = domain->periodicity[d] && !domain->triclinic ? 1.0 : 0.0;
   }
   box[6] = pair->speed_limit();
+  // (at a step, not a set-up, every contact has one of the atoms' rows)
+  const int64_t cap = keep_out && !setup ? (int64_t) nlocal * kernel.slots : 0;
+  if ((int64_t) out_atoms.size() < cap + 1) {
+    out.resize((size_t) PairDemContact::N_OUT * (cap + 1));
+    out_atoms.resize(cap + 1);
+  }
   auto step = (WallStepFn) kernel.step;
-  step(nlocal, atom->x[0], atom->v[0], atom->omega[0], atom->radius, atom->rmass, atom->type, atom->mask, groupbit,
+  int64_t m = step(nlocal, atom->x[0], atom->v[0], atom->omega[0], atom->radius, atom->rmass, atom->type, atom->mask, groupbit,
        kernel.walls, kernel.wall_rows, t, kernel.mat, kernel.params, kernel.n_rows, kernel.wall_row, kernel.n_types,
        kernel.n_mats, kernel.rowinfo, kernel.type_size, kernel.size_free, history->keys[0], history->hist,
        kernel.slots, kernel.history_size, history->saved[0], setup ? 0.0 : update->dt, flags,
-       (double) update->ntimestep, box, atom->f[0], atom->torque[0], report);
+       (double) update->ntimestep, box, atom->f[0], atom->torque[0], report, out.data(), out_atoms.data(), cap);
+  n_out = std::min(m, cap);
   tagint *tag = atom->tag;
   if (report[R_BEHIND] > 0)
     error->one(FLERR,

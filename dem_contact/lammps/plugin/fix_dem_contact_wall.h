@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 // what dem_contact.lammps.wall_kernel.attach writes (its class WallAttach, field for field)
 struct DemContactWallAttach {
@@ -63,13 +64,23 @@ class FixDemContactWall : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // the wall's contacts of the last step evaluated (not a run's set-up) where a compute dem/contact/local reads
+  // them: the step (-1: none), their number, atoms (local indices) and rows of PairDemContact::N_OUT values
+  bigint evaluated_step;
+  int64_t contact_count() const { return n_out; }
+  const int64_t *contact_atoms() const { return out_atoms.data(); }
+  const double *contact_values() const { return out.data(); }
+
  private:
   DemContactWallAttach kernel;
   std::string words, table_path, history_id;
   FixDemContactHistory *history;
   PairDemContact *pair;
   double report[14], load_all[7];
-  bool load_summed, warned_onset;
+  bool load_summed, warned_onset, keep_out;
+  int64_t n_out;
+  std::vector<double> out;
+  std::vector<int64_t> out_atoms;
   // the wall's clock: LAMMPS's time plus offset; the clock at the last step evaluated (has_clock)
   double clock_offset, clock_last;
   int has_clock;
