@@ -88,7 +88,8 @@ RI_TC = 2        # contact time of the row at v_max [s]
 RI_ALPHA = 3     # exponent of the speed in the contact time: t_c(v) = t_c(v_max) (v_max / v)^alpha
 RI_DEEPEST = 4   # overlap of a head-on impact of the row at v_max [m]
 RI_CURV = 5      # a wall row: the curvature of the wall's material, 1/R2 in R* (0: flat; a sphere row: 0)
-N_ROWINFO = 6
+RI_DEEP_ALPHA = 6   # exponent of the speed in that overlap near v_max: delta(v) ~ delta(v_max) (v / v_max)^this
+N_ROWINFO = 7
 #: slots of the parameter row that scale with R*^power (the rest but R* and m* do not depend on the sizes;
 #: the bridge checks this for each law at attach)
 SIZE_SLOTS = ((P_DELTA_Y, 1.0), (P_F_Y, 2.0))

@@ -29,7 +29,7 @@ from ..laws.vector import V_N, renamed
 from . import kernels as K
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 2
+ABI = 3
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
 #: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient

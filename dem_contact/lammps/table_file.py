@@ -72,7 +72,8 @@ def size_free(table) -> tuple:
 def row_info(table, v_max) -> np.ndarray:
     """float64[n_rows, kernels.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
     its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), the overlap of a
-    head-on impact at v_max (the normal law's own), and a wall row's curvature (``materials.Wall.curvature``)."""
+    head-on impact at v_max (the normal law's own), a wall row's curvature (``materials.Wall.curvature``), and
+    the exponent of the speed in that overlap (from the overlap at 2 v_max)."""
     info = np.zeros((len(table.scenes), K.N_ROWINFO))
     for row, sc in enumerate(table.scenes):
         tc = sc.contact_time(v_max)
@@ -81,6 +82,8 @@ def row_info(table, v_max) -> np.ndarray:
         info[row, K.RI_TC] = tc
         info[row, K.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
         info[row, K.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
+        info[row, K.RI_DEEP_ALPHA] = math.log(sc.max_contact_radius(2.0 * v_max) ** 2 / sc.pair.R_star
+                                              / info[row, K.RI_DEEPEST]) / math.log(2.0)
         info[row, K.RI_CURV] = getattr(sc.body2, "curvature", 0.0)
     return info
 

@@ -32,25 +32,31 @@ def edited(name, edit):
 
 
 def scene(table, style="sphere", pair="pair_style dem/contact vmax 1.0", dt=1e-6, vel=True, plugin=None,
-          units="si", gap=-2e-5, steps=10, speed=0.0, wall=None, wall_first=False):
+          units="si", gap=-2e-5, steps=10, speed=0.0, wall=None, wall_first=False, extra=(), warnings=False):
     """Two spheres touching (overlap -gap) in a box, with the fix dem/contact/wall of the words ``wall`` after
-    the pair style (or before it: wall_first); returns the error message or None."""
-    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    the pair style (or before it: wall_first) and the commands ``extra`` before the run; returns the error
+    message or None (warnings: LAMMPS's warnings, one string)."""
+    log = os.path.join(OUT, "warnings.log")
+    lmp = new_lammps("-log", log if warnings else "none", "-screen", "none", "-nocite")
     cmds = [f"plugin load {plugin or plugin_build.plugin_path()}", f"units {units}", f"atom_style {style}",
             "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
             "create_atoms 1 single 0 0 0", f"create_atoms 1 single {2 * R + gap!r} 0 0"]
-    if style == "sphere":
+    if style.startswith("sphere"):
         cmds += [f"set type 1 diameter {2 * R!r}", f"set type 1 density {MAT.rho!r}", f"set atom 1 vx {speed!r}"]
     else:
         cmds += ["mass 1 1.0"]
-    cmds += [f"timestep {dt!r}", "fix 1 all nve/sphere" if style == "sphere" else "fix 1 all nve",
+    cmds += [f"timestep {dt!r}", "fix 1 all nve/sphere" if style.startswith("sphere") else "fix 1 all nve",
              "neighbor 0.0003 bin"] + (["comm_modify vel yes"] if vel else [])
     forces = [pair, f"pair_coeff * * {table}"]
     walls = [f"fix w all dem/contact/wall {wall}"] if wall else []
-    cmds += (walls + forces if wall_first else forces + walls) + [f"run {steps}"]
+    cmds += (walls + forces if wall_first else forces + walls) + list(extra) + [f"run {steps}"]
     try:
         for c in cmds:
             lmp.command(c)
+        if warnings:
+            lmp.close()
+            with open(log) as f:
+                return " ".join(line.strip() for line in f if line.startswith("WARNING"))
         return None
     except Exception as e:       # (LAMMPS's error, raised by the lammps module)
         return str(e).splitlines()[0]
@@ -93,6 +99,10 @@ def main():
         wall_curvature=scene(walled, wall="cylinder 0 0 0 0 0 1 0.005 in"),
         wall_behind=scene(walled, wall="plane 0.0001 0 0 1 0 0"),
         wall_stl=scene(walled, wall=f"mesh {os.path.join(OUT, 'nowhere.stl')}"),
+        deep=scene(walled, gap=-5e-4, wall="plane -0.0005 0 0 1 0 0", warnings=True),
+        grown=scene(good_table(), style="sphere 1", extra=["variable d equal 0.002+step*1e-5", "fix grow all adapt 1 atom diameter v_d"]),
+        grown_rmax=scene(good_table(), style="sphere 1", pair="pair_style dem/contact vmax 1.0 rmax 0.0012",
+                         extra=["variable d equal 0.002+step*1e-5", "fix grow all adapt 1 atom diameter v_d"]),
     )
     print(json.dumps(cases))
 

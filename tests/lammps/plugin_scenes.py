@@ -9,7 +9,8 @@ without the frame spin, with --sds LAMMPS's twisting and rolling sds models too.
 Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 
 - pair: two spheres pressed, sliding and spinning (--steps steps), with the contact's row of compute
-  dem/contact/local (plugin) or of LammpsContacts.contacts() (bridge) on the rank that reports it;
+  dem/contact/local (plugin) or of LammpsContacts.contacts() (bridge) on the rank that reports it; --grow: both
+  grow by fix adapt (engines plugin and bridge);
 - pour: spheres of two types falling under gravity onto a bed of fixed spheres, periodic in x and y (x split
   between the ranks: contacts cross the subdomains and atoms change rank);
 - pack: 64 spheres on a cubic lattice 1% closer than touching, periodic, with random velocities and spins (six
@@ -67,8 +68,9 @@ def state(lmp):
     return {k: gather(lmp, k) for k in ("x", "v", "omega", "f", "torque")}
 
 
-def forces_on(lmp, engine, t, out, frame_spin, walls=()):
-    """The contact forces of the engine, with the walls: (the bridge, or None)."""
+def forces_on(lmp, engine, t, out, frame_spin, walls=(), r_max=None):
+    """The contact forces of the engine, with the walls (r_max: the largest radius the run reaches, where atoms
+    grow): (the bridge, or None)."""
     if engine == "native":
         for c in native_commands(t, walls):
             lmp.command(c)
@@ -77,7 +79,8 @@ def forces_on(lmp, engine, t, out, frame_spin, walls=()):
         # (a file per rank: the ranks write at once)
         path = table_file.save(t, os.path.join(out, f"table_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
-        lmp.command(f"pair_style dem/contact vmax {V_MAX!r} frame_spin {'yes' if frame_spin else 'no'}")
+        lmp.command(f"pair_style dem/contact vmax {V_MAX!r} frame_spin {'yes' if frame_spin else 'no'}"
+                    + (f" rmax {r_max!r}" if r_max else ""))
         lmp.command(f"pair_coeff * * {path}")
         for k, wall in enumerate(walls):
             lmp.command(f"fix wall{k} all dem/contact/wall {fix_words(wall)}")
@@ -86,7 +89,7 @@ def forces_on(lmp, engine, t, out, frame_spin, walls=()):
         return None
     lmp.command("pair_style zero 0.004")
     lmp.command("pair_coeff * *")
-    return LammpsContacts(lmp, t, walls, v_max=V_MAX, frame_spin=frame_spin)
+    return LammpsContacts(lmp, t, walls, v_max=V_MAX, frame_spin=frame_spin, r_max=r_max)
 
 
 def run(lmp, bridge, n):
@@ -99,15 +102,20 @@ def run(lmp, bridge, n):
 def pair(a):
     t = table(a.sds, types=1, mu=a.mu)
     lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
-    for c in ("units si", "atom_style sphere", "atom_modify map array sort 0 0.0", f"newton {a.newton}",
-              "boundary f f f", "processors * 1 1", "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
+    for c in ("units si", f"atom_style sphere{' 1' if a.grow else ''}", "atom_modify map array sort 0 0.0",
+              f"newton {a.newton}", "boundary f f f", "processors * 1 1",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
               "create_box 1 box", "create_atoms 1 single -0.00097 0 0", "create_atoms 1 single 0.00097 0.0002 0.0001",
               f"set type 1 diameter {2 * R1!r}", f"set type 1 mass {t.scenes[0].sphere.mass!r}",
               "set atom 1 vx 0.05", "set atom 2 vy 0.03", "set atom 1 omega 3 5 10", "set atom 2 omega -2 0 4",
               "timestep 1e-6", "fix 1 all nve/sphere", "neighbor 0.0003 bin", "neigh_modify delay 0 every 1 check yes",
               "comm_modify vel yes"):
         lmp.command(c)
-    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin)
+    bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin, r_max=1.1 * R1 if a.grow else None)
+    if a.grow:
+        # (both atoms grow by 0.02% a step, their density kept)
+        lmp.command(f"variable d equal {2 * R1!r}*(1+2e-4*step)")
+        lmp.command("fix grow all adapt 1 atom diameter v_d")
     if a.engine == "plugin":
         lmp.command("compute contacts all dem/contact/local")
     run(lmp, bridge, a.steps)
@@ -322,6 +330,7 @@ def main():
     p.add_argument("--sds", action="store_true")
     p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (pair)")
     p.add_argument("--frame-spin", action="store_true")
+    p.add_argument("--grow", action="store_true", help="pair: both atoms grow during the run (fix adapt)")
     p.add_argument("--pieces", type=int, default=1)
     p.add_argument("--restart-write", type=int, default=0)
     p.add_argument("--restart-read", action="store_true")

@@ -83,6 +83,17 @@ def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
     assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
 
 
+def test_atoms_grown_by_fix_adapt_as_the_bridge(plugin, tmp_path):
+    """Two spheres in contact that fix adapt grows at every step (the contact's R* and m* follow them, also
+    between LAMMPS's list rebuilds): the bridge's forces to 1e-12, far from those of the atoms left at their
+    size."""
+    got = _scenes("pair", "plugin,bridge", tmp_path, 1, "--steps", "30", "--grow")
+    assert np.array(got["plugin"]["contacts"]).shape == (1, 14)
+    assert _rel(got["plugin"], got["bridge"]) < 1e-12
+    still = _scenes("pair", "plugin", tmp_path, 1, "--steps", "30")["plugin"]
+    assert _rel(got["plugin"], still) > 0.1
+
+
 def test_pour_as_the_bridge_and_pair_granular(plugin, tmp_path):
     """Spheres of two sizes and materials poured onto a bed, periodic in x and y, atoms crossing between the
     ranks: the bridge's to 1e-12 and pair granular's to 1e-10 (one rank each), on one rank with newton off, on
@@ -163,7 +174,10 @@ def test_walls_in_pieces_and_from_restarts(plugin, tmp_path):
 
 def test_bad_input_has_one_message_each(plugin, tmp_path):
     out = json.loads(_run([sys.executable, "tests/lammps/plugin_errors.py", str(tmp_path)]))
-    assert out.pop("runs") is None and out.pop("wall_runs") is None
+    assert out.pop("runs") is None and out.pop("wall_runs") is None and out.pop("grown_rmax") is None
+    deep = out.pop("deep")
+    assert "pair dem/contact: 1 contacts start with an overlap deeper than a head-on impact" in deep
+    assert "dem/contact/wall: 1 contacts with the wall start with an overlap deeper" in deep
     expect = dict(missing="does not exist", corrupt="cannot be read as JSON", other_version="was written by dem_contact",
                   unknown_law="needs the tangential law 'glue'", bad_params="is corrupt",
                   atomic="use atom_style sphere", no_vmax="needs vmax V", bad_keyword="unknown keyword colour",
@@ -172,7 +186,8 @@ def test_bad_input_has_one_message_each(plugin, tmp_path):
                   wall_kind="unknown wall kind 'sphere'", wall_numbers="plane needs 6 numbers",
                   wall_before_pair="needs pair_style dem/contact and its pair_coeff", wall_not_in_table="has no walls",
                   wall_index="wall 3 is not a wall of the table file", wall_curvature="or give the cylinder the word flat",
-                  wall_behind="the centre of atom 1 is behind the wall", wall_stl="nowhere.stl cannot be read")
+                  wall_behind="the centre of atom 1 is behind the wall", wall_stl="nowhere.stl cannot be read",
+                  grown="give pair_style dem/contact rmax R")
     assert set(out) == set(expect)
     for case, words in expect.items():
         assert out[case] is not None and words in out[case], (case, out[case])

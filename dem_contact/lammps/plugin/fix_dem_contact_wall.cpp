@@ -35,7 +35,7 @@ const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13 };
 // kernels.RI_...: columns of the table's per-row information
-const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_CURV = 5, N_ROWINFO = 6;
+const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_DEEPEST = 4, RI_CURV = 5, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
 // as pair dem/contact: the fewest time steps per contact time
 const double MIN_STEPS_PER_CONTACT = 10.0;
 
@@ -53,7 +53,7 @@ std::string python_text(const std::string &s)
 
 FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), evaluated_step(-1), history(nullptr), pair(nullptr), load_summed(false),
-    warned_onset(false), keep_out(false), n_out(0), clock_offset(0.0), clock_last(0.0), has_clock(0)
+    warned_onset(false), keep_out(false), deep_checked(false), n_out(0), clock_offset(0.0), clock_last(0.0), has_clock(0)
 {
   for (int k = 3; k < narg; k++) words += (k > 3 ? "\n" : "") + std::string(arg[k]);
   vector_flag = 1;
@@ -188,7 +188,6 @@ void FixDemContactWall::evaluate(bool setup)
     evaluated_step = update->ntimestep;
   }
   n_out = 0;
-  if (nlocal == 0) return;
   // A run's set-up advances nothing (the law works on copies of the histories, with no time passing) and
   // reapplies the forces saved at the last step of the run before to the atoms whose state is unchanged; the
   // last step of a run saves them.
@@ -200,19 +199,26 @@ void FixDemContactWall::evaluate(bool setup)
     box[3 + d] = domain->periodicity[d] && !domain->triclinic ? 1.0 : 0.0;
   }
   box[6] = pair->speed_limit();
-  // (at a step, not a set-up, every contact has one of the atoms' rows)
-  const int64_t cap = keep_out && !setup ? (int64_t) nlocal * kernel.slots : 0;
+  // (at a step, not a set-up, every contact has one of the atoms' rows; at the first set-up, the contacts' overlaps
+  // are checked)
+  const int64_t cap = (keep_out && !setup) || (setup && !deep_checked) ? (int64_t) nlocal * kernel.slots : 0;
   if ((int64_t) out_atoms.size() < cap + 1) {
     out.resize((size_t) PairDemContact::N_OUT * (cap + 1));
     out_atoms.resize(cap + 1);
   }
   auto step = (WallStepFn) kernel.step;
-  int64_t m = step(nlocal, atom->x[0], atom->v[0], atom->omega[0], atom->radius, atom->rmass, atom->type, atom->mask, groupbit,
-       kernel.walls, kernel.wall_rows, t, kernel.mat, kernel.params, kernel.n_rows, kernel.wall_row, kernel.n_types,
-       kernel.n_mats, kernel.rowinfo, kernel.type_size, kernel.size_free, history->keys[0], history->hist,
-       kernel.slots, kernel.history_size, history->saved[0], setup ? 0.0 : update->dt, flags,
-       (double) update->ntimestep, box, atom->f[0], atom->torque[0], report, out.data(), out_atoms.data(), cap);
+  const int64_t m = nlocal == 0 ? 0
+      : step(nlocal, atom->x[0], atom->v[0], atom->omega[0], atom->radius, atom->rmass, atom->type, atom->mask,
+             groupbit, kernel.walls, kernel.wall_rows, t, kernel.mat, kernel.params, kernel.n_rows, kernel.wall_row,
+             kernel.n_types, kernel.n_mats, kernel.rowinfo, kernel.type_size, kernel.size_free, history->keys[0],
+             history->hist, kernel.slots, kernel.history_size, history->saved[0], setup ? 0.0 : update->dt, flags,
+             (double) update->ntimestep, box, atom->f[0], atom->torque[0], report, out.data(), out_atoms.data(), cap);
   n_out = std::min(m, cap);
+  if (setup && !deep_checked) {
+    check_deep();
+    deep_checked = true;
+    n_out = 0;
+  }
   tagint *tag = atom->tag;
   if (report[R_BEHIND] > 0)
     error->one(FLERR,
@@ -247,6 +253,36 @@ void FixDemContactWall::evaluate(bool setup)
       warned_onset = true;
     }
   }
+}
+
+// at the first set-up: a warning where contacts start deeper than a head-on impact at vmax would press them (as
+// pair dem/contact's)
+void FixDemContactWall::check_deep()
+{
+  const double vmax = pair->speed_limit();
+  int count = 0, total = 0;
+  double worst = 0.0, all_worst = 0.0;
+  for (int64_t k = 0; k < n_out; k++) {
+    const int i = (int) out_atoms[k];
+    const int row = (int) kernel.wall_row[(atom->type[i] - 1) * kernel.n_mats + kernel.mat];
+    const double *info = kernel.rowinfo + (size_t) row * N_ROWINFO;
+    const double r = atom->radius[i], m = atom->rmass[i];
+    const double rs = info[RI_CURV] == 0.0 ? r : 1.0 / (1.0 / r + info[RI_CURV]);
+    const double deep = info[RI_DEEPEST] * std::pow(vmax, info[RI_DEEP_ALPHA]) * std::pow(m * m / rs / info[RI_Q], 0.2);
+    const double ratio = out[(size_t) PairDemContact::N_OUT * k + PairDemContact::OUT_DELTA] / deep;
+    if (ratio > 1.0) {
+      count++;
+      worst = std::max(worst, ratio);
+    }
+  }
+  MPI_Allreduce(&count, &total, 1, MPI_INT, MPI_SUM, world);
+  MPI_Allreduce(&worst, &all_worst, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (total && comm->me == 0)
+    error->warning(FLERR,
+                   "fix {} dem/contact/wall: {} contacts with the wall start with an overlap deeper than a head-on "
+                   "impact at vmax = {} m/s would press them (up to {:.3g} times that overlap): their first contact "
+                   "force releases the energy of the overlap; place the atoms apart, or give the vmax that reaches it",
+                   id, total, vmax, all_worst);
 }
 
 // the wall's load summed over the ranks: force (3) [N], torque about its centre (3) [N m], power given to the

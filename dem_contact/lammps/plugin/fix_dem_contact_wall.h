@@ -77,7 +77,7 @@ class FixDemContactWall : public Fix {
   FixDemContactHistory *history;
   PairDemContact *pair;
   double report[14], load_all[7];
-  bool load_summed, warned_onset, keep_out;
+  bool load_summed, warned_onset, keep_out, deep_checked;
   int64_t n_out;
   std::vector<double> out;
   std::vector<int64_t> out_atoms;
@@ -89,6 +89,7 @@ class FixDemContactWall : public Fix {
   double now() const;
   void evaluate(bool setup);
   void check_time_step();
+  void check_deep();
 };
 
 }    // namespace LAMMPS_NS

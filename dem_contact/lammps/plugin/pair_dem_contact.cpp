@@ -33,7 +33,9 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
 const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4;
 const int N_WORK = 20;   // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
-const int ABI = 2;       // pair_kernel.ABI
+// kernels.RI_...: columns of the table's per-row information (at 1 m/s)
+const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
+const int ABI = 3;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;
@@ -54,8 +56,8 @@ std::string python_text(const std::string &s)
 }    // namespace
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
-    Pair(lmp), evaluated_step(-1), vmax(0.0), slots(12), frame_spin(1), attached(false), warned_onset(false),
-    sized(false), keep_out(false), fix(nullptr), epoch(0), nlocal_last(-1)
+    Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
+    warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), fix(nullptr), epoch(0), nlocal_last(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -87,10 +89,11 @@ void PairDemContact::allocate()
     for (int j = i; j <= n; j++) setflag[i][j] = 0;
 }
 
-// pair_style dem/contact vmax V [slots N] [frame_spin yes|no]
+// pair_style dem/contact vmax V [slots N] [frame_spin yes|no] [rmax R]
 void PairDemContact::settings(int narg, char **arg)
 {
   vmax = 0.0;
+  rmax = 0.0;
   for (int k = 0; k < narg; k += 2) {
     std::string key = arg[k];
     if (k + 1 >= narg) error->all(FLERR, "pair_style dem/contact: keyword {} needs a value", key);
@@ -100,13 +103,18 @@ void PairDemContact::settings(int narg, char **arg)
       slots = utils::inumeric(FLERR, arg[k + 1], false, lmp);
     else if (key == "frame_spin")
       frame_spin = utils::logical(FLERR, arg[k + 1], false, lmp);
+    else if (key == "rmax")
+      rmax = utils::numeric(FLERR, arg[k + 1], false, lmp);
     else
-      error->all(FLERR, "pair_style dem/contact: unknown keyword {} (valid: vmax, slots, frame_spin)", key);
+      error->all(FLERR, "pair_style dem/contact: unknown keyword {} (valid: vmax, slots, frame_spin, rmax)", key);
   }
   if (!(vmax > 0.0) || !std::isfinite(vmax))
     error->all(FLERR,
                "pair_style dem/contact needs vmax V: the largest normal impact speed of the run [m/s], finite and "
                "> 0 (the time step is checked against the contact time at that speed)");
+  if (!(rmax >= 0.0) || !std::isfinite(rmax))
+    error->all(FLERR, "pair_style dem/contact: rmax (the largest radius atoms reach in the run) must be finite and "
+                      ">= 0 [m], got {}", rmax);
   if (slots < 1 || slots > 1000)
     error->all(FLERR, "pair_style dem/contact: slots (history rows per atom) must be in [1, 1000], got {}", slots);
 }
@@ -168,6 +176,8 @@ void PairDemContact::init_style()
 
   // the per-contact output at every step where a compute reads it
   keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
+  // sizes that may change at any step, not only where LAMMPS rebuilds its lists
+  radii_change = !modify->get_fix_by_style("^adapt").empty();
   check_atoms();
   check_time_step();
 }
@@ -210,7 +220,7 @@ void PairDemContact::check_atoms()
   type_rmax.assign(ntypes + 1, 0.0);
   MPI_Allreduce(local_max.data(), type_rmax.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
   for (int t = 1; t <= ntypes; t++) {
-    type_rmax[t] = std::max(type_rmax[t], kernel.type_size[2 * (t - 1)]);
+    type_rmax[t] = std::max(type_rmax[t], std::max(kernel.type_size[2 * (t - 1)], rmax));
     // atoms a fix inserts (fix pour, fix deposit) reach the radius it reports
     // (extract's second argument: the atom type asked about, as pair granular asks)
     for (auto &f : modify->get_fix_list()) {
@@ -241,7 +251,7 @@ void PairDemContact::check_time_step()
       double ma = std::min(all[2 * a + 1], kernel.type_size[2 * a + 1]);
       double mb = std::min(all[2 * b + 1], kernel.type_size[2 * b + 1]);
       double rs = ra * rb / (ra + rb), ms = ma * mb / (ma + mb);
-      double q_row = kernel.rowinfo[row * 6 + 1];    // kernels.RI_Q
+      double q_row = kernel.rowinfo[row * N_ROWINFO + RI_Q];
       double tc = kernel.tc_unit[row] * std::pow(vmax, -kernel.alpha[row]) * std::pow(ms * ms / rs / q_row, 0.2);
       if (tc < tc_min) {
         tc_min = tc;
@@ -266,7 +276,7 @@ double PairDemContact::contact_time(int a, int b, double vn)
   double *radius = atom->radius, *rmass = atom->rmass;
   double rs = radius[a] * radius[b] / (radius[a] + radius[b]);
   double ms = rmass[a] * rmass[b] / (rmass[a] + rmass[b]);
-  double q_row = kernel.rowinfo[row * 6 + 1];    // kernels.RI_Q
+  double q_row = kernel.rowinfo[row * N_ROWINFO + RI_Q];
   return kernel.tc_unit[row] * std::pow(vn, -kernel.alpha[row]) * std::pow(ms * ms / rs / q_row, 0.2);
 }
 
@@ -287,6 +297,62 @@ void PairDemContact::check_onset(double vn, int a, int b)
                    "is reached",
                    atom->tag[a], atom->tag[b], vn, vmax, steps);
     warned_onset = true;
+  }
+}
+
+// at the first set-up: a warning where contacts start deeper than a head-on impact at vmax would press them
+// (their first force releases the energy of that overlap); the overlap at vmax from the table's at 1 m/s, by the
+// law's exponent of the speed there and Hertz's scaling with m*^2 / R* (Johnson 1985, Contact Mechanics, eq.
+// 11.23)
+void PairDemContact::check_deep(int64_t n)
+{
+  const int nlocal = atom->nlocal;
+  double *radius = atom->radius, *rmass = atom->rmass;
+  int count = 0, total = 0;
+  double worst = 0.0, all_worst = 0.0;
+  for (int64_t k = 0; k < n; k++) {
+    const int a = (int) pairs[2 * k], b = (int) pairs[2 * k + 1];
+    if (a >= nlocal) continue;    // (counted by the rank that owns atom a)
+    const int row = (int) kernel.sphere_row[(atom->type[a] - 1) * kernel.n_types + atom->type[b] - 1];
+    const double *info = kernel.rowinfo + (size_t) row * N_ROWINFO;
+    const double rs = radius[a] * radius[b] / (radius[a] + radius[b]);
+    const double ms = rmass[a] * rmass[b] / (rmass[a] + rmass[b]);
+    const double deep = info[RI_DEEPEST] * std::pow(vmax, info[RI_DEEP_ALPHA]) * std::pow(ms * ms / rs / info[RI_Q], 0.2);
+    const double ratio = out[(size_t) N_OUT * k + OUT_DELTA] / deep;
+    if (ratio > 1.0) {
+      count++;
+      worst = std::max(worst, ratio);
+    }
+  }
+  MPI_Allreduce(&count, &total, 1, MPI_INT, MPI_SUM, world);
+  MPI_Allreduce(&worst, &all_worst, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (total && comm->me == 0)
+    error->warning(FLERR,
+                   "pair dem/contact: {} contacts start with an overlap deeper than a head-on impact at vmax = {} m/s "
+                   "would press them (up to {:.3g} times that overlap): their first contact force releases the energy "
+                   "of the overlap; place the atoms apart, or give the vmax that reaches it",
+                   total, vmax, all_worst);
+}
+
+// no atom larger than the radius its type's contacts are searched for (the neighbour cutoff), nor, where the
+// laws take no other radius, of another radius than its type's
+void PairDemContact::check_grown(int nlocal)
+{
+  double *radius = atom->radius;
+  int *type = atom->type;
+  for (int i = 0; i < nlocal; i++) {
+    if (radius[i] > type_rmax[type[i]] * (1.0 + 1e-12))
+      error->one(FLERR,
+                 "pair dem/contact: atom {} (type {}) has grown to a radius of {} m, larger than the {} m its type's "
+                 "contacts are searched for (the neighbour cutoff, set at the run's start): give pair_style "
+                 "dem/contact rmax R with the largest radius the run reaches (fix adapt, fix pour)",
+                 atom->tag[i], type[i], radius[i], type_rmax[type[i]]);
+    const double r0 = kernel.type_size[2 * (type[i] - 1)];
+    if (!kernel.size_free && std::fabs(radius[i] - r0) > SIZE_TOL * r0)
+      error->one(FLERR,
+                 "pair dem/contact: atom {} (type {}) has a radius of {} m during the run, its type's is {} m, and "
+                 "the laws of this table take no other radius (a fix adapt?)",
+                 atom->tag[i], type[i], radius[i], r0);
   }
 }
 
@@ -513,8 +579,12 @@ void PairDemContact::compute(int eflag, int vflag)
     dt = 0.0;
   }
   // per-contact parameter rows only where an atom here is not of its type's size (sizes change where LAMMPS
-  // rebuilds its lists, or at a run's set-up)
-  if (setup || neighbor->ago == 0) sized = kernel.size_free && any_resized(nall);
+  // rebuilds its lists, at a run's set-up, or at any step under a fix adapt); no atom larger than the contact
+  // search allows
+  if (setup || neighbor->ago == 0 || radii_change) {
+    check_grown(nlocal);
+    sized = kernel.size_free && any_resized(nall);
+  }
   if ((int64_t) work.size() < N_WORK * n + 1) work.resize(2 * N_WORK * n + 64);
   if ((int64_t) prow.size() < n + 1) prow.resize(2 * n + 16);
   if (sized && (int64_t) pc.size() < (kernel.n_rows + n) * N_PARAMS) pc.resize((kernel.n_rows + 2 * n + 16) * N_PARAMS);
@@ -540,6 +610,10 @@ void PairDemContact::compute(int eflag, int vflag)
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
   if (!setup) evaluated_step = update->ntimestep;
+  if (setup && !deep_checked) {
+    check_deep(n);
+    deep_checked = true;
+  }
   if (!setup)
     for (int64_t k = 0; k < n; k++)
       if (second[k] >= 0) std::memcpy(H + second[k] * hs, H + hrow[k] * hs, sizeof(double) * hs);

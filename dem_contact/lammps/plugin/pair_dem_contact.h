@@ -1,13 +1,15 @@
 /* pair_style dem/contact: dem_contact's contact laws for spheres (atom_style sphere, units si) in LAMMPS's own
    pair loop.
 
-     pair_style dem/contact vmax V [slots N] [frame_spin yes|no]
+     pair_style dem/contact vmax V [slots N] [frame_spin yes|no] [rmax R]
      pair_coeff * * TABLE_FILE
 
    vmax: the largest normal impact speed [m/s] (the time step is checked against the contact time at it, and
    contacts that begin faster against theirs); slots: history rows per atom (default 12); frame_spin (default
    yes, as the bridge): pass the spin of the contact frame about the normal to the tangential law; no: keep the
-   tangential history fixed in space, as LAMMPS's granular models.
+   tangential history fixed in space, as LAMMPS's granular models; rmax: the largest radius atoms reach in the
+   run [m] (default: each type's largest at the run's start, or the radius a fix inserts), where fix adapt grows
+   them (the neighbour cutoff).
 
    The table file (dem_contact.lammps.table_file.save) holds the parameter rows of every pair of atom types and
    their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
@@ -76,11 +78,11 @@ class PairDemContact : public Pair {
   int frame_spin_on() const { return frame_spin; }
 
  private:
-  double vmax;
+  double vmax, rmax;
   int slots, frame_spin;
   std::string table_path;
   DemContactAttach kernel;
-  bool attached, warned_onset, sized, keep_out;
+  bool attached, warned_onset, sized, keep_out, deep_checked, radii_change;
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
   int64_t epoch;
@@ -101,6 +103,8 @@ class PairDemContact : public Pair {
   bool any_resized(int nall);
   void mark(int i);
   void free_ended(int i, int hs);
+  void check_deep(int64_t n);
+  void check_grown(int nlocal);
 };
 
 }    // namespace LAMMPS_NS
