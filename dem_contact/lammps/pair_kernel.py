@@ -22,17 +22,20 @@ import traceback
 import numpy as np
 from numba import carray, cfunc, njit, types
 
-from ..dem.contact3d import _LOOPS
+from ..dem.contact3d import _LOOPS, _torque_laws_of as torque_laws_of
 from ..laws.dispatch import uses_rate
 from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_TANGENTIAL_LAW
-from ..laws.vector import V_N, renamed
+from ..laws.dispatch import tangential_base
+from ..laws.vector import V_N, W_WORK, renamed
 from . import kernels as K
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 3
+ABI = 4
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
-#: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient
+#: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient, the work the
+#: normal force and the tangential force have done on the contact since it began [J] (``X_WORK_N``, the law's
+#: ``W_WORK``)
 OUT_F = 0
 OUT_TA = 3
 OUT_TB = 6
@@ -40,7 +43,18 @@ OUT_DELTA = 9
 OUT_FT = 10
 OUT_N = 13
 OUT_MU = 16
-N_OUT = 17
+OUT_WORK_N = 17
+OUT_WORK_T = 18
+N_OUT = 19
+
+#: values the plugin keeps after the law's history in each contact row (a row is history_size + N_EXTRA long):
+#: the work the normal force has done on the contact since it began, the trapezoid sum of N d(delta) [J]; the
+#: overlap at the last step [m]; the work of the normal and tangential forces together [J] (the law's W_WORK
+#: added): what the contact absorbed, stored elastically while it lasts, and at its end the energy it dissipated
+X_WORK_N = 0
+X_DELTA = 1
+X_WORK = 2
+N_EXTRA = 3
 
 #: what the pair style asks of a step (its flags argument, bits): the per-contact output, the forces and
 #: torques added to LAMMPS's, the global virial
@@ -50,8 +64,49 @@ VIRIAL = 4
 
 
 #: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's inputs and outputs,
-#: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn: n)
-N_WORK = 20
+#: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn, the normal
+#: force at the last step: n)
+N_WORK = 21
+
+
+@njit(inline="always", cache=True)
+def begin_work(H, hrow, normals, overlaps, velocities, dt, n_last, n):
+    """Before the law's step of the n contacts: n_last := each contact's normal force at the last step (the law's
+    V_N), and for a contact that begins (its X_DELTA still 0) its overlap at the last step, a gap: delta - dt
+    (v . n), as the time integration moved the bodies, so that the work of its forces is what the integration
+    gave them (the kinetic energy lost)."""
+    x0 = H.shape[1] - N_EXTRA
+    for k in range(n):
+        r = hrow[k]
+        n_last[k] = H[r, V_N]
+        if H[r, x0 + X_DELTA] == 0.0:
+            vn = velocities[k, 0] * normals[k, 0] + velocities[k, 1] * normals[k, 1] + velocities[k, 2] * normals[k, 2]
+            H[r, x0 + X_DELTA] = overlaps[k] - dt * vn
+
+
+@njit(inline="always", cache=True)
+def account_work(nid, rows, prow, H, hrow, overlaps, n_last, n):
+    """After the law's step of the n contacts (history rows hrow of H, whose last N_EXTRA values are the
+    plugin's; n_last: each contact's normal force before the step, ``begin_work``): the normal force's work
+    advanced by the trapezoid rule, 0.5 (N_last + N) (delta - delta_last), as the law's W_WORK is, the overlap
+    kept, and the total with the tangential law's running work W_WORK."""
+    x0 = H.shape[1] - N_EXTRA
+    for k in range(n):
+        r = hrow[k]
+        qid, rid = torque_laws_of(rows, prow[k])
+        wn = H[r, x0 + X_WORK_N] + 0.5 * (n_last[k] + H[r, V_N]) * (overlaps[k] - H[r, x0 + X_DELTA])
+        H[r, x0 + X_WORK_N] = wn
+        H[r, x0 + X_DELTA] = overlaps[k]
+        H[r, x0 + X_WORK] = wn + H[r, tangential_base(nid, qid, rid) + W_WORK]
+
+
+@njit(inline="always", cache=True)
+def ended_work(H, r, delta_end):
+    """The work done on the contact of row r of H that ended: X_WORK, with the last part of the normal work, from
+    the last step's overlap and normal force to the overlap now, delta_end (a gap), and no force, by the
+    trapezoid rule (as the plugin's C++, PairDemContact::ended_work)."""
+    x0 = H.shape[1] - N_EXTRA
+    return H[r, x0 + X_WORK] + 0.5 * H[r, V_N] * (delta_end - H[r, x0 + X_DELTA])
 
 
 def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row, rowinfo, type_size, sized,
@@ -74,6 +129,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
     torques = work[15 * n:18 * n].reshape((n, 3))
     overlaps = work[18 * n:19 * n]
     wn = work[19 * n:20 * n]
+    n_last = work[20 * n:21 * n]
     rows = params
     if sized:
         pc[:params.shape[0]] = params
@@ -99,6 +155,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
             prow[k] = params.shape[0] + k
             K._contact_row(params, row, pc, prow[k], rowinfo, rs, ms)
         wn[k] = K.frame_spin_rate(omega, a, b, nx, ny, nz) if frame_spin else 0.0
+    begin_work(H, hrow, normals, overlaps, velocities, dt, n_last, n)
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(n):
@@ -109,6 +166,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
                 velocities[k, d] -= kick * normals[k, d]
     loop(nid, tid, rows, prow, H, hrow, normals, overlaps, velocities, spins, wn, dt, forces, tforces,  # noqa: F821
          torques)
+    account_work(nid, rows, prow, H, hrow, overlaps, n_last, n)
     bad = 0
     for k in range(n):
         a = pairs[k, 0]
@@ -146,6 +204,9 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
                 out[k, OUT_FT + d] = tforces[k, d]
                 out[k, OUT_N + d] = normals[k, d]
             out[k, OUT_MU] = rows[prow[k], P_MU]
+            x0 = H.shape[1] - N_EXTRA
+            out[k, OUT_WORK_N] = H[hrow[k], x0 + X_WORK_N]
+            out[k, OUT_WORK_T] = H[hrow[k], x0 + X_WORK] - H[hrow[k], x0 + X_WORK_N]
         if scatter:
             # LAMMPS's forces and torques of the local atoms (each summed over its contacts in their order)
             if a < nlocal:
@@ -274,7 +335,7 @@ def _attach(path, n_types, out, address):
     out.n_rows = table.params.shape[0]
     out.n_types = nt
     out.size_free = int(saved.size_free)
-    out.history_size = table.history_size
+    out.history_size = table.history_size + N_EXTRA
     out.laws = saved.laws.encode()[:511]
     out.error = b""
 

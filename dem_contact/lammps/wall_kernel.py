@@ -44,7 +44,7 @@ from . import kernels as K
 from . import pair_kernel as PK
 
 #: the layout version of ``WallAttach`` (the plugin refuses another)
-ABI = 1
+ABI = 2
 
 #: what the fix asks of a step (its flags argument, bits): advance the histories (not a run's set-up), save
 #: the atoms' wall forces with their state (a run's last step), reapply the saved forces of the atoms whose
@@ -109,11 +109,13 @@ def _unchanged(saved, i, x, v, omega, radius, rmass, step_no, box):
 
 
 def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t, mat, params, wall_row, rowinfo,
-               type_size, size_free, keys, H, saved, dt, flags, step_no, box, f, torque, report, out, out_atoms):
+               type_size, size_free, keys, H, saved, dissipated, dt, flags, step_no, box, f, torque, report, out,
+               out_atoms):
     """One step of the wall ``walls`` (packed rows of one wall, placed here at time t [s]) on the local atoms
     of the group (mask & groupbit): see the module's docstring. keys float64[nlocal, slots] and H
-    float64[nlocal * slots, history_size]: the atoms' rows (key 0: free; advanced in place where ``ADVANCE``,
-    else the law works on copies with no time passing); saved float64[nlocal, N_SAVED]; f, torque
+    float64[nlocal * slots, history_size + pair_kernel.N_EXTRA]: the atoms' rows (key 0: free; advanced in place
+    where ``ADVANCE``, else the law works on copies with no time passing); saved float64[nlocal, N_SAVED];
+    dissipated float64[nlocal]: the energy of the atoms' ended contacts [J], added to as rows are freed; f, torque
     float64[nlocal, 3]: LAMMPS's, added to; report float64[N_REPORT]; out float64[cap, pair_kernel.N_OUT] and
     out_atoms int64[cap]: the first cap contacts (cap may be 0), as the pair style's (no torque on body 2: the
     wall), and their atoms. Returns the number of contacts."""
@@ -211,7 +213,14 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
             if (mask[i] & groupbit) != 0:
                 for s in range(slots):
                     if keys[i, s] != 0.0 and not used[i, s]:
+                        # (the overlap now, a gap, where the wall is one element: a plane, a cylinder)
+                        delta_end = 0.0
+                        if unbounded:
+                            delta_end = min(radius[i] - _touch(walls, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0], 0.0)
+                        dissipated[i] += PK.ended_work(H, i * slots + s, delta_end)
                         K._release(keys, H, i, s)
+    n_last = np.empty(m)
+    PK.begin_work(Hl, hrow, normals, overlaps, velocities, dt, n_last, m)
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(m):
@@ -220,6 +229,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                 velocities[k, d] -= kick * normals[k, d]
     loop(nid, tid, pc, prow[:m], Hl, hrow[:m], normals[:m], overlaps[:m], velocities[:m], spins[:m],  # noqa: F821
          wn[:m], dt, forces[:m], tforces[:m], torques[:m])
+    PK.account_work(nid, pc, prow, Hl, hrow, overlaps, n_last, m)
     acc = np.zeros((nlocal, 6))
     load = report[R_LOAD:R_LOAD + 7]
     for k in range(m):
@@ -249,6 +259,9 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                 out[k, PK.OUT_N + d] = normals[k, d]
             out[k, PK.OUT_DELTA] = overlaps[k]
             out[k, PK.OUT_MU] = pc[prow[k], P_MU]
+            x0 = Hl.shape[1] - PK.N_EXTRA
+            out[k, PK.OUT_WORK_N] = Hl[hrow[k], x0 + PK.X_WORK_N]
+            out[k, PK.OUT_WORK_T] = Hl[hrow[k], x0 + PK.X_WORK] - Hl[hrow[k], x0 + PK.X_WORK_N]
     report[R_CONTACTS] = m
     for i in range(nlocal):
         if (mask[i] & groupbit) == 0:
@@ -279,15 +292,16 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
 
 
 def _entry(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, wall_rows, t, mat, params, n_rows,
-           wall_row, n_types, n_mats, rowinfo, type_size, size_free, keys, H, slots, hs, saved, dt, flags, step_no,
-           box, f, torque, report, out, out_atoms, out_cap):
+           wall_row, n_types, n_mats, rowinfo, type_size, size_free, keys, H, slots, hs, saved, dissipated, dt, flags,
+           step_no, box, f, torque, report, out, out_atoms, out_cap):
     """The C entry of ``_wall_step``: raw pointers of the fix's buffers and LAMMPS's per-atom arrays."""
     return step(nlocal, carray(x, (nlocal, 3)), carray(v, (nlocal, 3)), carray(omega, (nlocal, 3)),  # noqa: F821
                 carray(radius, (nlocal,)), carray(rmass, (nlocal,)), carray(typ, (nlocal,)), carray(mask, (nlocal,)),
                 groupbit, carray(walls, (wall_rows, W.ROW_SIZE)), t, mat, carray(params, (n_rows, N_PARAMS)),
                 carray(wall_row, (n_types, n_mats)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
                 carray(type_size, (n_types, 2)), size_free != 0, carray(keys, (nlocal, slots)),
-                carray(H, (nlocal * slots, hs)), carray(saved, (nlocal, N_SAVED)), dt, flags, step_no,
+                carray(H, (nlocal * slots, hs)), carray(saved, (nlocal, N_SAVED)), carray(dissipated, (nlocal,)), dt,
+                flags, step_no,
                 carray(box, (N_BOX,)), carray(f, (nlocal, 3)), carray(torque, (nlocal, 3)), carray(report, (N_REPORT,)),
                 carray(out, (out_cap, PK.N_OUT)), carray(out_atoms, (out_cap,)))
 
@@ -298,7 +312,7 @@ _I32P = types.CPointer(types.int32)
 _I64 = types.int64
 #: the C signature of the step (``fix_dem_contact_wall.cpp``, ``WallStepFn``)
 SIGNATURE = types.int64(_I64, _F64P, _F64P, _F64P, _F64P, _F64P, _I32P, _I32P, _I64, _F64P, _I64, types.float64, _I64,
-                        _F64P, _I64, _I64P, _I64, _I64, _F64P, _F64P, _I64, _F64P, _F64P, _I64, _I64, _F64P,
+                        _F64P, _I64, _I64P, _I64, _I64, _F64P, _F64P, _I64, _F64P, _F64P, _I64, _I64, _F64P, _F64P,
                         types.float64, _I64, types.float64, _F64P, _F64P, _F64P, _F64P, _F64P, _I64P, _I64)
 
 _CFUNCS = {}
@@ -494,7 +508,7 @@ def _attach(words, path, n_types, out, address):
     out.n_types = table.wall_row.shape[0]
     out.n_mats = n_mats
     out.size_free = int(saved.size_free)
-    out.history_size = table.history_size
+    out.history_size = table.history_size + PK.N_EXTRA
     out.slots = slots
     out.unbounded = int(unbounded)
     out.describe = f"{type(wall).__name__} (table wall {wall.wall}), {saved.laws}".encode()[:511]

@@ -320,9 +320,60 @@ def walled(a):
     return lmp, advance(lmp, a, t, restart, walls)
 
 
+def kinetic(lmp):
+    """The atoms' kinetic energy, translational and rotational [J] (solid spheres)."""
+    m = np.array(lmp.gather_atoms("rmass", 1, 1))
+    r = np.array(lmp.gather_atoms("radius", 1, 1))
+    v, w = np.array(gather(lmp, "v")), np.array(gather(lmp, "omega"))
+    return float(0.5 * (m * (v**2).sum(1)).sum() + 0.2 * (m * r**2 * (w**2).sum(1)).sum())
+
+
+def collide(a):
+    """Two spheres meeting obliquely, spinning (collide), or one sphere striking the floor wall (strike),
+    normal law --normal (hertz_damped: restitution 0.5), mu --mu: the kinetic energy before and after, the energy
+    the ended contacts dissipated (the history fixes' scalars), and compute dem/contact/local's rows half-way
+    (--steps / 2)."""
+    strike = a.scene == "strike"
+    extra = dict(e_n=0.5) if a.normal == "hertz_damped" else {}
+    t = pair_table([Sphere(R1, GLASS)], [Wall(GLASS)] if strike else [], mu=a.mu, normal=a.normal,
+                   tangential="mindlin_total", v_ref=reference_speed(1.0), **extra)
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    for c in ("units si", "atom_style sphere", "atom_modify map array", f"newton {a.newton}", "boundary f f f",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box"):
+        lmp.command(c)
+    if strike:
+        lmp.command(f"create_atoms 1 single 0 0 {R1 + 1e-5!r}")
+    else:
+        lmp.command(f"create_atoms 1 single {-R1 - 1e-5!r} 0 0")
+        lmp.command(f"create_atoms 1 single {R1 + 1e-5!r} 0.0003 0")
+    lmp.command(f"set type 1 diameter {2 * R1!r}")
+    lmp.command(f"set type 1 density {GLASS.rho!r}")
+    if strike:
+        lmp.command("set atom 1 vx 0.2 vz -0.5 omega 0 30 0")
+    else:
+        lmp.command("set atom 1 vx 0.5 vy 0.1 omega 0 0 40")
+        lmp.command("set atom 2 vx -0.5 omega 20 0 0")
+    for c in (f"timestep {a.dt!r}", "fix 1 all nve/sphere", "neighbor 0.0003 bin",
+              "neigh_modify delay 0 every 1 check yes", "comm_modify vel yes"):
+        lmp.command(c)
+    forces_on(lmp, "plugin", t, a.dir, False, [PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))] if strike else [])
+    if not strike:
+        lmp.command("compute contacts all dem/contact/local")
+    out = dict(before=kinetic(lmp))
+    lmp.command(f"run {a.steps // 2}")
+    out["rows"] = contact_rows(lmp, "plugin", None)
+    lmp.command(f"run {a.steps - a.steps // 2}")
+    out["after"] = kinetic(lmp)
+    out["dissipated"] = lmp.extract_fix("DEM_CONTACT_WALL_wall0" if strike else "DEM_CONTACT_HISTORY", 0, 0)
+    out["touching"] = touching(lmp)
+    return lmp, out
+
+
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum"))
+    p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum", "collide", "strike"))
+    p.add_argument("--dt", type=float, default=1e-6, help="collide, strike: the time step [s]")
+    p.add_argument("--normal", default="hertz", help="collide, strike: the normal law (hertz, hertz_damped)")
     p.add_argument("engines", help="comma-separated: plugin, bridge, native (each run in turn)")
     p.add_argument("dir")
     p.add_argument("--newton", choices=("on", "off"), default="on")
@@ -338,7 +389,8 @@ def main():
     result = {}
     for engine in a.engines.split(","):
         a.engine = engine
-        lmp, result[engine] = dict(pair=pair, pour=pour, pack=pack, floor=walled, drum=walled)[a.scene](a)
+        lmp, result[engine] = dict(pair=pair, pour=pour, pack=pack, floor=walled, drum=walled, collide=collide,
+                                   strike=collide)[a.scene](a)
         rank = lmp.extract_setting("world_rank")
         lmp.close()
     if rank == 0:

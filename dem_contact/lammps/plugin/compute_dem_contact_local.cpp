@@ -16,7 +16,7 @@
 using namespace LAMMPS_NS;
 
 namespace {
-const int N_COLUMNS = 14;
+const int N_COLUMNS = 16;
 // a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (as the bridge's contacts())
 const double SLIDING_TOL = 1e-9;
 PairDemContact *our_pair(LAMMPS *lmp)
@@ -88,7 +88,8 @@ void ComputeDemContactLocal::compute_local()
   }
 }
 
-// a row: ids, the force on atom id1 and its tangential part, the normal, the overlap, sliding, the wall
+// a row: ids, the force on atom id1 and its tangential part, the normal, the overlap, sliding, the wall, the work
+// of the normal and tangential forces
 void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, const double *o)
 {
   r[0] = id1;
@@ -106,6 +107,8 @@ void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, c
   }
   r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
   r[13] = wall;
+  r[14] = o[PairDemContact::OUT_WORK_N];
+  r[15] = o[PairDemContact::OUT_WORK_T];
 }
 
 double ComputeDemContactLocal::memory_usage() { return (double) nmax * N_COLUMNS * sizeof(double); }

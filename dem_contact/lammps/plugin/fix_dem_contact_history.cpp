@@ -1,6 +1,7 @@
 #include "fix_dem_contact_history.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "error.h"
 #include "memory.h"
 #include "update.h"
@@ -11,7 +12,7 @@ using namespace LAMMPS_NS;
 
 // fix ID all DEM/CONTACT/HISTORY slots history_size (made by pair_style dem/contact and fix dem/contact/wall)
 FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr)
+    Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr), dissipated(nullptr)
 {
   if (narg != 5) error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact and fix dem/contact/wall only");
   slots = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -19,6 +20,12 @@ FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
   if (slots < 1 || history_size < 1) error->all(FLERR, "fix DEM/CONTACT/HISTORY: bad sizes");
   restart_peratom = 1;
   create_attribute = 1;
+  peratom_flag = 1;
+  size_peratom_cols = 0;
+  peratom_freq = 1;
+  scalar_flag = 1;
+  extscalar = 1;
+  global_freq = 1;
   maxexchange = per_atom();
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -33,6 +40,7 @@ FixDemContactHistory::~FixDemContactHistory()
   memory->destroy(keys);
   memory->sfree(hist);
   memory->destroy(saved);
+  memory->destroy(dissipated);
 }
 
 int FixDemContactHistory::setmask() { return 0; }
@@ -51,6 +59,15 @@ void FixDemContactHistory::post_run()
       }
 }
 
+// the energy the ended contacts of all atoms dissipated [J]
+double FixDemContactHistory::compute_scalar()
+{
+  double mine = 0.0, all = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) mine += dissipated[i];
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}
+
 double FixDemContactHistory::memory_usage()
 {
   return (double) atom->nmax * per_atom() * sizeof(double);
@@ -61,6 +78,8 @@ void FixDemContactHistory::grow_arrays(int nmax)
   memory->grow(keys, nmax, slots, "dem/contact:keys");
   hist = (double *) memory->srealloc(hist, sizeof(double) * nmax * slots * history_size, "dem/contact:hist");
   memory->grow(saved, nmax, (int) N_SAVED, "dem/contact:saved");
+  memory->grow(dissipated, nmax, "dem/contact:dissipated");
+  vector_atom = dissipated;
 }
 
 void FixDemContactHistory::copy_arrays(int i, int j, int /*delflag*/)
@@ -69,6 +88,7 @@ void FixDemContactHistory::copy_arrays(int i, int j, int /*delflag*/)
   std::memcpy(hist + (size_t) j * slots * history_size, hist + (size_t) i * slots * history_size,
               sizeof(double) * slots * history_size);
   std::memcpy(saved[j], saved[i], sizeof(double) * N_SAVED);
+  dissipated[j] = dissipated[i];
 }
 
 void FixDemContactHistory::set_arrays(int i)
@@ -77,6 +97,7 @@ void FixDemContactHistory::set_arrays(int i)
   std::memset(hist + (size_t) i * slots * history_size, 0, sizeof(double) * slots * history_size);
   std::memset(saved[i], 0, sizeof(double) * N_SAVED);
   saved[i][SF_STEP] = -1.0;
+  dissipated[i] = 0.0;
 }
 
 int FixDemContactHistory::pack_exchange(int i, double *buf)
@@ -86,6 +107,7 @@ int FixDemContactHistory::pack_exchange(int i, double *buf)
   const double *h = hist + (size_t) i * slots * history_size;
   for (int q = 0; q < slots * history_size; q++) buf[m++] = h[q];
   for (int q = 0; q < N_SAVED; q++) buf[m++] = saved[i][q];
+  buf[m++] = dissipated[i];
   return m;
 }
 
@@ -96,6 +118,7 @@ int FixDemContactHistory::unpack_exchange(int i, double *buf)
   double *h = hist + (size_t) i * slots * history_size;
   for (int q = 0; q < slots * history_size; q++) h[q] = buf[m++];
   for (int q = 0; q < N_SAVED; q++) saved[i][q] = buf[m++];
+  dissipated[i] = buf[m++];
   return m;
 }
 

@@ -5,7 +5,10 @@
    law's history hist[(i * slots + s) * history_size ...] (dem_contact's 3D history row). A contact of two
    atoms has a row in each; the pair style keeps them equal. Per atom also the contact force and torque of the
    last step of a run, the state they were computed at and that step (saved[i][...]), which the next run's
-   set-up reapplies when nothing has changed, also after a restart file (on any number of ranks). */
+   set-up reapplies when nothing has changed, also after a restart file (on any number of ranks), and the energy
+   its ended contacts dissipated (dissipated[i], J: half of each contact with another atom, all of a wall
+   contact; the work its forces did on the contact over its life), which this fix gives as its per-atom vector
+   (dump custom: f_ID) and their sum over the atoms as its global scalar. */
 #ifndef DEM_CONTACT_FIX_HISTORY_H
 #define DEM_CONTACT_FIX_HISTORY_H
 
@@ -23,6 +26,7 @@ class FixDemContactHistory : public Fix {
   ~FixDemContactHistory() override;
   int setmask() override;
   void post_run() override;
+  double compute_scalar() override;
 
   double memory_usage() override;
   void grow_arrays(int) override;
@@ -39,9 +43,10 @@ class FixDemContactHistory : public Fix {
   double **keys;     // [nmax][slots]
   double *hist;      // [nmax * slots * history_size]
   double **saved;    // [nmax][N_SAVED]
+  double *dissipated;    // [nmax]
 
  private:
-  int per_atom() const { return slots * (1 + history_size) + N_SAVED; }
+  int per_atom() const { return slots * (1 + history_size) + N_SAVED + 1; }
 };
 
 }    // namespace LAMMPS_NS

@@ -27,10 +27,10 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               int64_t mat, const double *params, int64_t n_rows, const int64_t *wall_row,
                               int64_t n_types, int64_t n_mats, const double *rowinfo, const double *type_size,
                               int64_t size_free, double *keys, double *H, int64_t slots, int64_t hs, double *saved,
-                              double dt, int64_t flags, double step_no, const double *box, double *f, double *torque,
+                              double *dissipated, double dt, int64_t flags, double step_no, const double *box, double *f, double *torque,
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
-const int ABI = 1;
+const int ABI = 2;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13 };
@@ -211,7 +211,8 @@ void FixDemContactWall::evaluate(bool setup)
       : step(nlocal, atom->x[0], atom->v[0], atom->omega[0], atom->radius, atom->rmass, atom->type, atom->mask,
              groupbit, kernel.walls, kernel.wall_rows, t, kernel.mat, kernel.params, kernel.n_rows, kernel.wall_row,
              kernel.n_types, kernel.n_mats, kernel.rowinfo, kernel.type_size, kernel.size_free, history->keys[0],
-             history->hist, kernel.slots, kernel.history_size, history->saved[0], setup ? 0.0 : update->dt, flags,
+             history->hist, kernel.slots, kernel.history_size, history->saved[0], history->dissipated,
+             setup ? 0.0 : update->dt, flags,
              (double) update->ntimestep, box, atom->f[0], atom->torque[0], report, out.data(), out_atoms.data(), cap);
   n_out = std::min(m, cap);
   if (setup && !deep_checked) {

@@ -31,11 +31,11 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           int64_t nlocal, double *f, double *torque, int64_t flags, double *virial);
 // the flags of a step (pair_kernel.WRITE_OUT, SCATTER, VIRIAL)
 const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4;
-const int N_WORK = 20;   // pair_kernel.N_WORK
+const int N_WORK = 21;   // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 // kernels.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
-const int ABI = 3;       // pair_kernel.ABI
+const int ABI = 4;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;
@@ -392,14 +392,27 @@ void PairDemContact::mark(int i)
   }
 }
 
-// the rows of local atom i that no contact used at this step: freed (key and history zeroed)
+// the rows of local atom i that no contact used at this step: freed (key and history zeroed), the energy each
+// contact dissipated added to the atom's, half of it (the partner's copy gives the other half)
 void PairDemContact::free_ended(int i, int hs)
 {
   double *k = fix->keys[i];
   for (int s = 0; s < slots; s++)
     if (k[s] != 0.0 && seen[(size_t) i * slots + s] != epoch) {
+      const tagint partner = (tagint) k[s];
       k[s] = 0.0;
-      std::memset(fix->hist + ((size_t) i * slots + s) * hs, 0, sizeof(double) * hs);
+      double *h = fix->hist + ((size_t) i * slots + s) * hs;
+      // (the overlap now, a gap: the partner's image closest to atom i, if it is here)
+      double delta_end = 0.0;
+      int j = atom->map_style != Atom::MAP_NONE ? atom->map(partner) : -1;
+      if (j >= 0) {
+        j = domain->closest_image(i, j);
+        double **x = atom->x;
+        const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+        delta_end = std::min(0.0, atom->radius[i] + atom->radius[j] - std::sqrt(dx * dx + dy * dy + dz * dz));
+      }
+      fix->dissipated[i] += 0.5 * ended_work(h, hs, delta_end);
+      std::memset(h, 0, sizeof(double) * hs);
     }
 }
 

@@ -54,7 +54,28 @@ class FixDemContactHistory;
 class PairDemContact : public Pair {
  public:
   // columns of the per-contact output of a step (dem_contact/lammps/pair_kernel.py, OUT_...)
-  enum { OUT_F = 0, OUT_TA = 3, OUT_TB = 6, OUT_DELTA = 9, OUT_FT = 10, OUT_N = 13, OUT_MU = 16, N_OUT = 17 };
+  enum {
+    OUT_F = 0,
+    OUT_TA = 3,
+    OUT_TB = 6,
+    OUT_DELTA = 9,
+    OUT_FT = 10,
+    OUT_N = 13,
+    OUT_MU = 16,
+    OUT_WORK_N = 17,
+    OUT_WORK_T = 18,
+    N_OUT = 19
+  };
+  // the plugin's values after the law's history in a contact row (pair_kernel.X_..., N_EXTRA): X_WORK, the work
+  // the contact's forces have done on it since it began, is the energy it dissipated when it ends
+  enum { X_DELTA = 1, X_WORK = 2, N_EXTRA = 3 };
+  // the work done on an ended contact of row h (hs values): its X_WORK, with the last part of the normal work, from
+  // the last step's overlap and normal force (the law's V_N, slot 0) to the overlap now, delta_end (a gap, < 0),
+  // and no force, by the trapezoid rule (pair_kernel.ended_work)
+  static double ended_work(const double *h, int hs, double delta_end)
+  {
+    return h[hs - N_EXTRA + X_WORK] + 0.5 * h[0] * (delta_end - h[hs - N_EXTRA + X_DELTA]);
+  }
 
   PairDemContact(class LAMMPS *);
   ~PairDemContact() override;
