@@ -39,7 +39,7 @@ def _find(x, radius, walls):
     m = 0
     for q in range(len(near)):
         i, w, e = near[q, 0], near[q, 1], near[q, 2]
-        gaps[q, 0], gaps[q, 1], gaps[q, 2], gaps[q, 3] = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gaps[q, 0], gaps[q, 1], gaps[q, 2], gaps[q, 3] = W.contact_of(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
         if radius[i] - gaps[q, 0] > 0.0:
             m += 1
     ids = np.empty((m, 3), dtype=np.int64)
@@ -62,7 +62,7 @@ def _find(x, radius, walls):
         ids[k, 0] = i
         ids[k, 1] = w
         ids[k, 2] = e
-        keys[k] = W.history_key(walls, w, e, x[i, 0], x[i, 1], x[i, 2])
+        keys[k] = W.key_of(walls, w, e, x[i, 0], x[i, 1], x[i, 2])
         normals[k, 0] = nx
         normals[k, 1] = ny
         normals[k, 2] = nz

@@ -365,7 +365,7 @@ def overlapping(x, radius, walls, cand, cand_walls):
     for c in range(cand_walls.shape[0]):
         i = cand_walls[c, 0]
         w = cand_walls[c, 1]
-        gap, _, _, _ = W.contact(walls, w, cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, _, _, _ = W.contact_of(walls, w, cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
         d = radius[i] - gap
         if d > 0.0:
             wkeep[kw] = c
@@ -387,7 +387,7 @@ def any_touching(x, radius, walls, cand, cand_walls):
             return True
     for c in range(cand_walls.shape[0]):
         i = cand_walls[c, 0]
-        gap, _, _, _ = W.contact(walls, cand_walls[c, 1], cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, _, _, _ = W.contact_of(walls, cand_walls[c, 1], cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
         if gap < radius[i]:
             return True
     return False
@@ -445,7 +445,7 @@ def _candidate(cand, cand_walls, walls, c, tag, nlocal, x):
         return cand[c, 0], j, float(tag[j]), j < nlocal
     k = c - npc
     i = cand_walls[k, 0]
-    return i, -1, W.history_key(walls, cand_walls[k, 1], cand_walls[k, 2], x[i, 0], x[i, 1], x[i, 2]), False
+    return i, -1, W.key_of(walls, cand_walls[k, 1], cand_walls[k, 2], x[i, 0], x[i, 1], x[i, 2]), False
 
 
 @njit(inline="always", cache=True)
@@ -661,7 +661,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
             i = cand_walls[c - npc, 0]
             w = cand_walls[c - npc, 1]
             j = -1
-            gap, nx, ny, nz = W.contact(walls, w, cand_walls[c - npc, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
+            gap, nx, ny, nz = W.contact_of(walls, w, cand_walls[c - npc, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
             delta = radius[i] - gap
             touch = delta > 0.0
             local_j = False
@@ -1029,7 +1029,7 @@ def behind_walls(nlocal, x, radius, walls):
             for e in range(W.elements(walls, w)):
                 if math.isfinite(W.bounds(walls, w, 0)[0]):
                     break
-                s, _, _, _ = W.contact(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+                s, _, _, _ = W.contact_of(walls, w, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
                 if s < 0.0:
                     count[w] += 1
                     break

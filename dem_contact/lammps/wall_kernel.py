@@ -84,15 +84,6 @@ def _find_row(keys, i, key):
     return -1
 
 
-@njit(cache=True)
-def _touch(walls, e, x, y, z, r):
-    """(s, nx, ny, nz, key) of the sphere centred at (x, y, z) of radius r and element e of the fix's wall:
-    ``walls.contract.contact`` and the contact's history key (``walls.table.history_key``). (Compiled once for
-    every law: the kinds' geometry is the larger part of the step to compile.)"""
-    s, nx, ny, nz = W.contact(walls, 0, e, x, y, z, r)
-    return s, nx, ny, nz, W.history_key(walls, 0, e, x, y, z)
-
-
 def _unchanged(saved, i, x, v, omega, radius, rmass, step_no, box):
     """Whether atom i's forces saved at step ``step_no`` are those of its state now (positions up to a period
     of the box, which LAMMPS wraps atoms into at a run's set-up)."""
@@ -155,13 +146,14 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
         e = hits[c, 2]
         if (mask[i] & groupbit) == 0:
             continue
-        gap, nx, ny, nz, key = _touch(walls, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
+        gap, nx, ny, nz = W.contact_of(walls, 0, e, x[i, 0], x[i, 1], x[i, 2], radius[i])
         delta = radius[i] - gap
         if not delta > 0.0:
             continue
         if unbounded and gap < 0.0:
             report[R_BEHIND] = i + 1
             continue
+        key = W.key_of(walls, 0, e, x[i, 0], x[i, 1], x[i, 2])
         s = _find_row(keys, i, key)
         fresh = s < 0
         if advance:
@@ -216,7 +208,8 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                         # (the overlap now, a gap, where the wall is one element: a plane, a cylinder)
                         delta_end = 0.0
                         if unbounded:
-                            delta_end = min(radius[i] - _touch(walls, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0], 0.0)
+                            delta_end = min(radius[i] - W.contact_of(walls, 0, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0],
+                                            0.0)
                         dissipated[i] += PK.ended_work(H, i * slots + s, delta_end)
                         K._release(keys, H, i, s)
     n_last = np.empty(m)

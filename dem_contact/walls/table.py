@@ -11,7 +11,8 @@ Adding a kind: write ``walls/<kind>.py`` keeping the contract (its user class, `
 ``pack`` accepts its class, ``ROW_SIZE`` grows to its numbers, and the dispatch functions here (``contact``,
 ``distance``, ``curvature``, ``patch``, ``bounds``, ``place``) are generated from ``KINDS`` when the module is imported: a chain of ``if walls[w,
 KIND] == id`` branches, one per kind, each a direct call (inlined: the callers compile the branches of
-every kind in the table). ``history_key`` and ``place_walls`` are written on them.
+every kind in the table). ``history_key`` and ``place_walls`` are written on them; ``contact_of`` and ``key_of``
+are ``contact`` and ``history_key`` compiled once, which the per-contact kernels call.
 """
 from __future__ import annotations
 
@@ -148,6 +149,20 @@ def history_key(walls, w, e, x, y, z):
     """Key of the history of a contact of the sphere centred at (x, y, z) with element e of wall w:
     -(first key of wall w + its patch + 1) (negative; ``contract``)."""
     return -(walls[w, KEY_BASE] + patch(walls, w, e, x, y, z) + 1.0)
+
+
+@njit(cache=True)
+def contact_of(walls, w, e, x, y, z, r):
+    """``contact`` (s, nx, ny, nz) of the kind of wall w, compiled once for all its callers: the kinds'
+    geometry (a mesh's edges and vertices) is the larger part of a wall kernel to compile, and a call per
+    contact costs a few ns."""
+    return contact(walls, w, e, x, y, z, r)
+
+
+@njit(cache=True)
+def key_of(walls, w, e, x, y, z):
+    """``history_key`` of the kind of wall w, compiled once for all its callers (as ``contact_of``)."""
+    return history_key(walls, w, e, x, y, z)
 
 
 @njit(cache=True)
