@@ -30,7 +30,7 @@ from ..laws.vector import V_N, W_WORK, renamed
 from . import kernels as K
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 4
+ABI = 5
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
 #: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient, the work the
@@ -47,57 +47,62 @@ OUT_WORK_N = 17
 OUT_WORK_T = 18
 N_OUT = 19
 
-#: values the plugin keeps after the law's history in each contact row (a row is history_size + N_EXTRA long):
+#: values the plugin keeps after the law's history in each contact row where it accounts the work of the
+#: contact forces (then a row is history_size + N_EXTRA long):
 #: the work the normal force has done on the contact since it began, the trapezoid sum of N d(delta) [J]; the
 #: overlap at the last step [m]; the work of the normal and tangential forces together [J] (the law's W_WORK
-#: added): what the contact absorbed, stored elastically while it lasts, and at its end the energy it dissipated
+#: added): what the contact absorbed, stored elastically while it lasts, and at its end the energy it
+#: dissipated; the normal force at the last step [N]
 X_WORK_N = 0
 X_DELTA = 1
 X_WORK = 2
-N_EXTRA = 3
+X_N_LAST = 3
+N_EXTRA = 4
 
 #: what the pair style asks of a step (its flags argument, bits): the per-contact output, the forces and
-#: torques added to LAMMPS's, the global virial
+#: torques added to LAMMPS's, the global virial, the work of the contact forces (``pair_style ... energy yes``:
+#: its rows carry N_EXTRA values more)
 WRITE_OUT = 1
 SCATTER = 2
 VIRIAL = 4
+ENERGY = 8
 
 
 #: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's inputs and outputs,
-#: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn, the normal
-#: force at the last step: n)
-N_WORK = 21
+#: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn: n)
+N_WORK = 20
 
 
 @njit(inline="always", cache=True)
-def begin_work(H, hrow, normals, overlaps, velocities, dt, n_last, n):
-    """Before the law's step of the n contacts: n_last := each contact's normal force at the last step (the law's
-    V_N), and for a contact that begins (its X_DELTA still 0) its overlap at the last step, a gap: delta - dt
-    (v . n), as the time integration moved the bodies, so that the work of its forces is what the integration
-    gave them (the kinetic energy lost)."""
+def account_work(H, r, w_col, delta, vx, vy, vz, nx, ny, nz, dt):
+    """After the law's step of the contact of row r of H (whose last N_EXTRA values are the plugin's), with
+    overlap delta, slip velocity v and normal n (the law's inputs; w_col: the column of the tangential law's
+    running work W_WORK, ``work_columns``): the normal force's work advanced by the trapezoid rule, 0.5 (N_last
+    + N) (delta - delta_last), as the law's W_WORK is, and the total with W_WORK; the overlap and the normal
+    force kept for the next step. A contact that begins (X_DELTA still 0) starts from its overlap at the last
+    step, a gap, delta - dt (v . n), as the time integration moved the bodies, and no force: so the work of its
+    forces is what the integration gave them (the kinetic energy the bodies lose)."""
     x0 = H.shape[1] - N_EXTRA
-    for k in range(n):
-        r = hrow[k]
-        n_last[k] = H[r, V_N]
-        if H[r, x0 + X_DELTA] == 0.0:
-            vn = velocities[k, 0] * normals[k, 0] + velocities[k, 1] * normals[k, 1] + velocities[k, 2] * normals[k, 2]
-            H[r, x0 + X_DELTA] = overlaps[k] - dt * vn
+    last = H[r, x0 + X_DELTA]
+    if last == 0.0:
+        last = delta - dt * (vx * nx + vy * ny + vz * nz)
+    n_now = H[r, V_N]
+    wn = H[r, x0 + X_WORK_N] + 0.5 * (H[r, x0 + X_N_LAST] + n_now) * (delta - last)
+    H[r, x0 + X_WORK_N] = wn
+    H[r, x0 + X_DELTA] = delta
+    H[r, x0 + X_N_LAST] = n_now
+    H[r, x0 + X_WORK] = wn + H[r, w_col]
 
 
 @njit(inline="always", cache=True)
-def account_work(nid, rows, prow, H, hrow, overlaps, n_last, n):
-    """After the law's step of the n contacts (history rows hrow of H, whose last N_EXTRA values are the
-    plugin's; n_last: each contact's normal force before the step, ``begin_work``): the normal force's work
-    advanced by the trapezoid rule, 0.5 (N_last + N) (delta - delta_last), as the law's W_WORK is, the overlap
-    kept, and the total with the tangential law's running work W_WORK."""
-    x0 = H.shape[1] - N_EXTRA
-    for k in range(n):
-        r = hrow[k]
-        qid, rid = torque_laws_of(rows, prow[k])
-        wn = H[r, x0 + X_WORK_N] + 0.5 * (n_last[k] + H[r, V_N]) * (overlaps[k] - H[r, x0 + X_DELTA])
-        H[r, x0 + X_WORK_N] = wn
-        H[r, x0 + X_DELTA] = overlaps[k]
-        H[r, x0 + X_WORK] = wn + H[r, tangential_base(nid, qid, rid) + W_WORK]
+def work_columns(nid, params):
+    """int64[n_rows]: per parameter row, the column of the tangential law's running work W_WORK in a history row
+    (after the normal, twist and rolling laws' states: ``laws.dispatch.tangential_base``)."""
+    cols = np.empty(params.shape[0], dtype=np.int64)
+    for row in range(params.shape[0]):
+        qid, rid = torque_laws_of(params, row)
+        cols[row] = tangential_base(nid, qid, rid) + W_WORK
+    return cols
 
 
 @njit(inline="always", cache=True)
@@ -110,7 +115,7 @@ def ended_work(H, r, delta_end):
 
 
 def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row, rowinfo, type_size, sized,
-          frame_spin, dt, out, work, prow, pc, nlocal, f, torque, write_out, scatter, with_virial, virial):
+          frame_spin, dt, out, work, prow, pc, nlocal, f, torque, write_out, scatter, with_virial, virial, energy):
     """The m = n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows
     ``hrow`` (advanced in place; the caller passes copies where nothing may advance): the law's inputs as
     ``kernels.gather_contacts`` lays them out, the tangential family's loop (``loop``, bound per family), and
@@ -118,7 +123,8 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
     torques added to f, torque float64[nall, 3] for the first ``nlocal`` atoms, with the virial's six
     components added to ``virial`` (``with_virial``). work float64[N_WORK * n], prow int64[n]: scratch; pc
     float64[n_rows + n, N_PARAMS] (only where ``sized``: atoms not of their type's size get their own rows
-    there). Returns the number of contacts whose force or torques are not finite."""
+    there); ``energy``: the rows carry N_EXTRA values after the law's history, the work of the contact's forces
+    (``account_work``). Returns the number of contacts whose force or torques are not finite."""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
     normals = work[0:3 * n].reshape((n, 3))
@@ -129,7 +135,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
     torques = work[15 * n:18 * n].reshape((n, 3))
     overlaps = work[18 * n:19 * n]
     wn = work[19 * n:20 * n]
-    n_last = work[20 * n:21 * n]
+    w_cols = work_columns(nid, params)
     rows = params
     if sized:
         pc[:params.shape[0]] = params
@@ -155,7 +161,6 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
             prow[k] = params.shape[0] + k
             K._contact_row(params, row, pc, prow[k], rowinfo, rs, ms)
         wn[k] = K.frame_spin_rate(omega, a, b, nx, ny, nz) if frame_spin else 0.0
-    begin_work(H, hrow, normals, overlaps, velocities, dt, n_last, n)
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(n):
@@ -166,7 +171,12 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
                 velocities[k, d] -= kick * normals[k, d]
     loop(nid, tid, rows, prow, H, hrow, normals, overlaps, velocities, spins, wn, dt, forces, tforces,  # noqa: F821
          torques)
-    account_work(nid, rows, prow, H, hrow, overlaps, n_last, n)
+    nr = params.shape[0]
+    for k in range(n if energy else 0):
+        # (a contact's own row, of atoms not of their type's size, has its pair of types' laws)
+        row = prow[k] if prow[k] < nr else sphere_row[typ[pairs[k, 0]] - 1, typ[pairs[k, 1]] - 1]
+        account_work(H, hrow[k], w_cols[row], overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2],
+                     normals[k, 0], normals[k, 1], normals[k, 2], dt)
     bad = 0
     for k in range(n):
         a = pairs[k, 0]
@@ -204,9 +214,10 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
                 out[k, OUT_FT + d] = tforces[k, d]
                 out[k, OUT_N + d] = normals[k, d]
             out[k, OUT_MU] = rows[prow[k], P_MU]
-            x0 = H.shape[1] - N_EXTRA
-            out[k, OUT_WORK_N] = H[hrow[k], x0 + X_WORK_N]
-            out[k, OUT_WORK_T] = H[hrow[k], x0 + X_WORK] - H[hrow[k], x0 + X_WORK_N]
+            if energy:
+                x0 = H.shape[1] - N_EXTRA
+                out[k, OUT_WORK_N] = H[hrow[k], x0 + X_WORK_N]
+                out[k, OUT_WORK_T] = H[hrow[k], x0 + X_WORK] - H[hrow[k], x0 + X_WORK_N]
         if scatter:
             # LAMMPS's forces and torques of the local atoms (each summed over its contacts in their order)
             if a < nlocal:
@@ -248,7 +259,7 @@ def _entry(n, pairs, hrow, H, h_rows, hs, x, v, omega, radius, rmass, typ, nall,
                 carray(type_size, (n_types, 2)), sized != 0, frame_spin != 0, dt, carray(out, (n, N_OUT)),
                 carray(work, (N_WORK * n,)), carray(prow, (n,)), carray(pc, (n_rows + (n if sized else 0), N_PARAMS)),
                 nlocal, carray(f, (nall, 3)), carray(torque, (nall, 3)), (flags & WRITE_OUT) != 0,
-                (flags & SCATTER) != 0, (flags & VIRIAL) != 0, carray(virial, (6,)))
+                (flags & SCATTER) != 0, (flags & VIRIAL) != 0, carray(virial, (6,)), (flags & ENERGY) != 0)
 
 
 _I64P = types.CPointer(types.int64)
@@ -335,7 +346,7 @@ def _attach(path, n_types, out, address):
     out.n_rows = table.params.shape[0]
     out.n_types = nt
     out.size_free = int(saved.size_free)
-    out.history_size = table.history_size + N_EXTRA
+    out.history_size = table.history_size
     out.laws = saved.laws.encode()[:511]
     out.error = b""
 

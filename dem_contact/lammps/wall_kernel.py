@@ -48,11 +48,13 @@ ABI = 2
 
 #: what the fix asks of a step (its flags argument, bits): advance the histories (not a run's set-up), save
 #: the atoms' wall forces with their state (a run's last step), reapply the saved forces of the atoms whose
-#: state is that saved (a run's set-up), pass the spin of the contact frame to the law
+#: state is that saved (a run's set-up), pass the spin of the contact frame to the law, account the work of the
+#: contact forces (its rows carry pair_kernel.N_EXTRA values more: ``pair_style ... energy yes``)
 ADVANCE = 1
 SAVE = 2
 REAPPLY = 4
 FRAME_SPIN = 8
+ENERGY = 16
 
 #: columns of the per-atom saved forces (the history fix's ``saved``: FixDemContactHistory::SF_...)
 SF_F, SF_T, SF_X, SF_V, SF_W, SF_R, SF_M, SF_STEP, N_SAVED = 0, 3, 6, 9, 12, 15, 16, 17, 18
@@ -104,9 +106,10 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                out_atoms):
     """One step of the wall ``walls`` (packed rows of one wall, placed here at time t [s]) on the local atoms
     of the group (mask & groupbit): see the module's docstring. keys float64[nlocal, slots] and H
-    float64[nlocal * slots, history_size + pair_kernel.N_EXTRA]: the atoms' rows (key 0: free; advanced in place
-    where ``ADVANCE``, else the law works on copies with no time passing); saved float64[nlocal, N_SAVED];
-    dissipated float64[nlocal]: the energy of the atoms' ended contacts [J], added to as rows are freed; f, torque
+    float64[nlocal * slots, history_size (+ pair_kernel.N_EXTRA where ``ENERGY``)]: the atoms' rows (key 0: free;
+    advanced in place where ``ADVANCE``, else the law works on copies with no time passing); saved
+    float64[nlocal, N_SAVED]; dissipated float64[nlocal]: the energy of the atoms' ended contacts [J], added to
+    as rows are freed (``ENERGY``); f, torque
     float64[nlocal, 3]: LAMMPS's, added to; report float64[N_REPORT]; out float64[cap, pair_kernel.N_OUT] and
     out_atoms int64[cap]: the first cap contacts (cap may be 0), as the pair style's (no torque on body 2: the
     wall), and their atoms. Returns the number of contacts."""
@@ -114,6 +117,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
     save = (flags & SAVE) != 0
     reapply = (flags & REAPPLY) != 0
     frame_spin = (flags & FRAME_SPIN) != 0
+    energy = (flags & ENERGY) != 0
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
     v_max = box[6]
@@ -133,6 +137,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
     spins = np.empty((n, 3))
     overlaps = np.empty(n)
     wn = np.empty(n)
+    w_cols = PK.work_columns(nid, params)
     forces = np.empty((n, 3))
     tforces = np.empty((n, 3))
     torques = np.zeros((n, 3))
@@ -205,15 +210,14 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
             if (mask[i] & groupbit) != 0:
                 for s in range(slots):
                     if keys[i, s] != 0.0 and not used[i, s]:
-                        # (the overlap now, a gap, where the wall is one element: a plane, a cylinder)
-                        delta_end = 0.0
-                        if unbounded:
-                            delta_end = min(radius[i] - W.contact_of(walls, 0, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0],
-                                            0.0)
-                        dissipated[i] += PK.ended_work(H, i * slots + s, delta_end)
+                        if energy:
+                            # (the overlap now, a gap, where the wall is one element: a plane, a cylinder)
+                            delta_end = 0.0
+                            if unbounded:
+                                gap = W.contact_of(walls, 0, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0]
+                                delta_end = min(radius[i] - gap, 0.0)
+                            dissipated[i] += PK.ended_work(H, i * slots + s, delta_end)
                         K._release(keys, H, i, s)
-    n_last = np.empty(m)
-    PK.begin_work(Hl, hrow, normals, overlaps, velocities, dt, n_last, m)
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(m):
@@ -222,11 +226,14 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                 velocities[k, d] -= kick * normals[k, d]
     loop(nid, tid, pc, prow[:m], Hl, hrow[:m], normals[:m], overlaps[:m], velocities[:m], spins[:m],  # noqa: F821
          wn[:m], dt, forces[:m], tforces[:m], torques[:m])
-    PK.account_work(nid, pc, prow, Hl, hrow, overlaps, n_last, m)
+
     acc = np.zeros((nlocal, 6))
     load = report[R_LOAD:R_LOAD + 7]
     for k in range(m):
         i = body[k]
+        if energy:
+            PK.account_work(Hl, hrow[k], w_cols[wall_row[typ[i] - 1, mat]], overlaps[k], velocities[k, 0],
+                            velocities[k, 1], velocities[k, 2], normals[k, 0], normals[k, 1], normals[k, 2], dt)
         cx, cy, cz = K.normal_cross(normals, tforces, k)
         # torque on the sphere: R n x Ft (the bridge's arm against a wall) and the twist and rolling torques
         r = radius[i]
@@ -252,9 +259,10 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                 out[k, PK.OUT_N + d] = normals[k, d]
             out[k, PK.OUT_DELTA] = overlaps[k]
             out[k, PK.OUT_MU] = pc[prow[k], P_MU]
-            x0 = Hl.shape[1] - PK.N_EXTRA
-            out[k, PK.OUT_WORK_N] = Hl[hrow[k], x0 + PK.X_WORK_N]
-            out[k, PK.OUT_WORK_T] = Hl[hrow[k], x0 + PK.X_WORK] - Hl[hrow[k], x0 + PK.X_WORK_N]
+            if energy:
+                x0 = Hl.shape[1] - PK.N_EXTRA
+                out[k, PK.OUT_WORK_N] = Hl[hrow[k], x0 + PK.X_WORK_N]
+                out[k, PK.OUT_WORK_T] = Hl[hrow[k], x0 + PK.X_WORK] - Hl[hrow[k], x0 + PK.X_WORK_N]
     report[R_CONTACTS] = m
     for i in range(nlocal):
         if (mask[i] & groupbit) == 0:
@@ -501,7 +509,7 @@ def _attach(words, path, n_types, out, address):
     out.n_types = table.wall_row.shape[0]
     out.n_mats = n_mats
     out.size_free = int(saved.size_free)
-    out.history_size = table.history_size + PK.N_EXTRA
+    out.history_size = table.history_size
     out.slots = slots
     out.unbounded = int(unbounded)
     out.describe = f"{type(wall).__name__} (table wall {wall.wall}), {saved.laws}".encode()[:511]

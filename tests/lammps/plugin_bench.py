@@ -1,5 +1,5 @@
 """The cost of a contact update in LAMMPS's Pair section: ``[mpirun -np N] python tests/lammps/plugin_bench.py
-SCENE N STEPS [--tangential LAW]``, run by test_bench_plugin.py (and by hand). Prints one JSON object (rank 0):
+SCENE N STEPS [--tangential LAW] [--energy]``, run by test_bench_plugin.py (and by hand). Prints one JSON object (rank 0):
 per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair granular
 hertz/material + mindlin) the Pair section's time, averaged over the ranks, of STEPS steps after a warm-up run,
 the sphere-sphere contacts, and ns_per_update: the Pair time of all ranks over STEPS x contacts.
@@ -78,7 +78,7 @@ def run(engine, args, log):
         t = pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential)
         path = table_file.save(t, os.path.join(args.dir, f"bench_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
-        lmp.command("pair_style dem/contact vmax 1.0 frame_spin no")
+        lmp.command(f"pair_style dem/contact vmax 1.0 frame_spin no energy {'yes' if args.energy else 'no'}")
         lmp.command(f"pair_coeff * * {path}")
     lmp.command(f"run {20 if args.scene == 'pack' else 500}")       # (not timed: the contacts of the pour form)
     lmp.command(f"run {args.steps}")
@@ -127,6 +127,7 @@ def main():
     p.add_argument("steps", type=int)
     p.add_argument("--tangential", default="mindlin_total")
     p.add_argument("--engines", default="native,plugin")
+    p.add_argument("--energy", action="store_true", help="the plugin accounts the work of the contact forces")
     p.add_argument("--dir", default=tempfile.gettempdir())
     args = p.parse_args()
     out = {}

@@ -68,9 +68,9 @@ def state(lmp):
     return {k: gather(lmp, k) for k in ("x", "v", "omega", "f", "torque")}
 
 
-def forces_on(lmp, engine, t, out, frame_spin, walls=(), r_max=None):
+def forces_on(lmp, engine, t, out, frame_spin, walls=(), r_max=None, energy=False):
     """The contact forces of the engine, with the walls (r_max: the largest radius the run reaches, where atoms
-    grow): (the bridge, or None)."""
+    grow; energy: the plugin accounts the work of the contact forces): (the bridge, or None)."""
     if engine == "native":
         for c in native_commands(t, walls):
             lmp.command(c)
@@ -80,7 +80,7 @@ def forces_on(lmp, engine, t, out, frame_spin, walls=(), r_max=None):
         path = table_file.save(t, os.path.join(out, f"table_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
         lmp.command(f"pair_style dem/contact vmax {V_MAX!r} frame_spin {'yes' if frame_spin else 'no'}"
-                    + (f" rmax {r_max!r}" if r_max else ""))
+                    + (f" rmax {r_max!r}" if r_max else "") + (" energy yes" if energy else ""))
         lmp.command(f"pair_coeff * * {path}")
         for k, wall in enumerate(walls):
             lmp.command(f"fix wall{k} all dem/contact/wall {fix_words(wall)}")
@@ -356,9 +356,10 @@ def collide(a):
     for c in (f"timestep {a.dt!r}", "fix 1 all nve/sphere", "neighbor 0.0003 bin",
               "neigh_modify delay 0 every 1 check yes", "comm_modify vel yes"):
         lmp.command(c)
-    forces_on(lmp, "plugin", t, a.dir, False, [PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))] if strike else [])
+    forces_on(lmp, "plugin", t, a.dir, False, [PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))] if strike else [],
+              energy=True)
     if not strike:
-        lmp.command("compute contacts all dem/contact/local")
+        lmp.command("compute contacts all dem/contact/local work")
     out = dict(before=kinetic(lmp))
     lmp.command(f"run {a.steps // 2}")
     out["rows"] = contact_rows(lmp, "plugin", None)

@@ -11,12 +11,13 @@
 #include "update.h"
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 using namespace LAMMPS_NS;
 
 namespace {
-const int N_COLUMNS = 16;
+const int N_COLUMNS = 14, N_WORK_COLUMNS = 2;
 // a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (as the bridge's contacts())
 const double SLIDING_TOL = 1e-9;
 PairDemContact *our_pair(LAMMPS *lmp)
@@ -26,11 +27,13 @@ PairDemContact *our_pair(LAMMPS *lmp)
 }    // namespace
 
 ComputeDemContactLocal::ComputeDemContactLocal(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), nmax(0), rows(nullptr)
+    Compute(lmp, narg, arg), nmax(0), rows(nullptr), work(false)
 {
-  if (narg != 3) error->all(FLERR, "compute dem/contact/local takes no arguments: compute ID all dem/contact/local");
+  if (narg > 4 || (narg == 4 && strcmp(arg[3], "work") != 0))
+    error->all(FLERR, "compute dem/contact/local takes one keyword, work: compute ID all dem/contact/local [work]");
+  work = narg == 4;
   local_flag = 1;
-  size_local_cols = N_COLUMNS;
+  size_local_cols = N_COLUMNS + (work ? N_WORK_COLUMNS : 0);
   size_local_rows = 0;
 }
 
@@ -38,7 +41,11 @@ ComputeDemContactLocal::~ComputeDemContactLocal() { memory->destroy(rows); }
 
 void ComputeDemContactLocal::init()
 {
-  if (!our_pair(lmp)) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
+  PairDemContact *pair = our_pair(lmp);
+  if (!pair) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
+  if (work && !pair->energy_on())
+    error->all(FLERR, "compute dem/contact/local work: the work of the contact forces is accounted with pair_style "
+                      "dem/contact ... energy yes");
 }
 
 void ComputeDemContactLocal::compute_local()
@@ -70,7 +77,7 @@ void ComputeDemContactLocal::compute_local()
   if (m > nmax) {
     memory->destroy(rows);
     nmax = m;
-    memory->create(rows, nmax, N_COLUMNS, "dem/contact/local:rows");
+    memory->create(rows, nmax, size_local_cols, "dem/contact/local:rows");
     array_local = rows;
   }
   size_local_rows = m;
@@ -107,8 +114,10 @@ void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, c
   }
   r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
   r[13] = wall;
-  r[14] = o[PairDemContact::OUT_WORK_N];
-  r[15] = o[PairDemContact::OUT_WORK_T];
+  if (work) {
+    r[14] = o[PairDemContact::OUT_WORK_N];
+    r[15] = o[PairDemContact::OUT_WORK_T];
+  }
 }
 
-double ComputeDemContactLocal::memory_usage() { return (double) nmax * N_COLUMNS * sizeof(double); }
+double ComputeDemContactLocal::memory_usage() { return (double) nmax * size_local_cols * sizeof(double); }

@@ -10,17 +10,21 @@
 
 using namespace LAMMPS_NS;
 
-// fix ID all DEM/CONTACT/HISTORY slots history_size (made by pair_style dem/contact and fix dem/contact/wall)
+// fix ID all DEM/CONTACT/HISTORY slots row_size energy (made by pair_style dem/contact and fix dem/contact/wall)
 FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr), dissipated(nullptr)
 {
-  if (narg != 5) error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact and fix dem/contact/wall only");
+  if (narg != 6)
+    error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact and fix dem/contact/wall only");
   slots = utils::inumeric(FLERR, arg[3], false, lmp);
   history_size = utils::inumeric(FLERR, arg[4], false, lmp);
+  const int energy = utils::inumeric(FLERR, arg[5], false, lmp);
   if (slots < 1 || history_size < 1) error->all(FLERR, "fix DEM/CONTACT/HISTORY: bad sizes");
   restart_peratom = 1;
   create_attribute = 1;
-  peratom_flag = 1;
+  // the energy dissipated, per atom and in all, where it is accounted (energy yes; the scalar says so when asked)
+  accounted = energy != 0;
+  peratom_flag = energy;
   size_peratom_cols = 0;
   peratom_freq = 1;
   scalar_flag = 1;
@@ -62,6 +66,10 @@ void FixDemContactHistory::post_run()
 // the energy the ended contacts of all atoms dissipated [J]
 double FixDemContactHistory::compute_scalar()
 {
+  if (!accounted)
+    error->all(FLERR,
+               "fix {}: the energy the contacts dissipated is accounted with pair_style dem/contact ... energy yes",
+               id);
   double mine = 0.0, all = 0.0;
   for (int i = 0; i < atom->nlocal; i++) mine += dissipated[i];
   MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, world);

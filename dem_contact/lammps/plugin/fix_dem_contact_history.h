@@ -44,6 +44,7 @@ class FixDemContactHistory : public Fix {
   double *hist;      // [nmax * slots * history_size]
   double **saved;    // [nmax][N_SAVED]
   double *dissipated;    // [nmax]
+  bool accounted;        // pair_style dem/contact ... energy yes
 
  private:
   int per_atom() const { return slots * (1 + history_size) + N_SAVED + 1; }

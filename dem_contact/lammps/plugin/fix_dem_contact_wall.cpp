@@ -31,7 +31,7 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
 const int ABI = 2;
-const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8;
+const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13 };
 // kernels.RI_...: columns of the table's per-row information
@@ -65,6 +65,7 @@ FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
   std::memset(report, 0, sizeof(report));
   std::memset(load_all, 0, sizeof(load_all));
   attach();
+  row_size = (int) kernel.history_size + (pair->energy_on() ? PairDemContact::N_EXTRA : 0);
   history_id = std::string("DEM_CONTACT_WALL_") + id;
 }
 
@@ -100,7 +101,7 @@ void FixDemContactWall::attach()
 void FixDemContactWall::post_constructor()
 {
   history = dynamic_cast<FixDemContactHistory *>(modify->add_fix(
-      fmt::format("{} all DEM/CONTACT/HISTORY {} {}", history_id, kernel.slots, kernel.history_size)));
+      fmt::format("{} all DEM/CONTACT/HISTORY {} {} {}", history_id, kernel.slots, row_size, pair->energy_on())));
 }
 
 void FixDemContactWall::init()
@@ -115,7 +116,7 @@ void FixDemContactWall::init()
                "the fix: define the fix again (unfix, fix) after the pair style",
                id);
   history = dynamic_cast<FixDemContactHistory *>(modify->get_fix_by_id(history_id));
-  if (!history || history->slots != kernel.slots || history->history_size != kernel.history_size)
+  if (!history || history->slots != kernel.slots || history->history_size != row_size)
     error->all(FLERR, "fix {} dem/contact/wall: its contact rows (fix {}) are missing or of other sizes", id,
                history_id);
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
@@ -193,6 +194,7 @@ void FixDemContactWall::evaluate(bool setup)
   // last step of a run saves them.
   int64_t flags = setup ? REAPPLY : ADVANCE | (update->ntimestep == update->laststep ? SAVE : 0);
   if (pair->frame_spin_on()) flags |= FRAME_SPIN;
+  if (pair->energy_on()) flags |= ENERGY;
   double box[7];
   for (int d = 0; d < 3; d++) {
     box[d] = domain->prd[d];
@@ -211,7 +213,7 @@ void FixDemContactWall::evaluate(bool setup)
       : step(nlocal, atom->x[0], atom->v[0], atom->omega[0], atom->radius, atom->rmass, atom->type, atom->mask,
              groupbit, kernel.walls, kernel.wall_rows, t, kernel.mat, kernel.params, kernel.n_rows, kernel.wall_row,
              kernel.n_types, kernel.n_mats, kernel.rowinfo, kernel.type_size, kernel.size_free, history->keys[0],
-             history->hist, kernel.slots, kernel.history_size, history->saved[0], history->dissipated,
+             history->hist, kernel.slots, row_size, history->saved[0], history->dissipated,
              setup ? 0.0 : update->dt, flags,
              (double) update->ntimestep, box, atom->f[0], atom->torque[0], report, out.data(), out_atoms.data(), cap);
   n_out = std::min(m, cap);

@@ -30,12 +30,12 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           int64_t frame_spin, double dt, double *out, double *work, int64_t *prow, double *pc,
                           int64_t nlocal, double *f, double *torque, int64_t flags, double *virial);
 // the flags of a step (pair_kernel.WRITE_OUT, SCATTER, VIRIAL)
-const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4;
-const int N_WORK = 21;   // pair_kernel.N_WORK
+const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4, ENERGY = 8;
+const int N_WORK = 20;   // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 // kernels.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
-const int ABI = 4;       // pair_kernel.ABI
+const int ABI = 5;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;
@@ -57,7 +57,8 @@ std::string python_text(const std::string &s)
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
-    warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), fix(nullptr), epoch(0), nlocal_last(-1)
+    warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0), row_size(0), fix(nullptr), epoch(0),
+    nlocal_last(-1)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -89,11 +90,12 @@ void PairDemContact::allocate()
     for (int j = i; j <= n; j++) setflag[i][j] = 0;
 }
 
-// pair_style dem/contact vmax V [slots N] [frame_spin yes|no] [rmax R]
+// pair_style dem/contact vmax V [slots N] [frame_spin yes|no] [rmax R] [energy yes|no]
 void PairDemContact::settings(int narg, char **arg)
 {
   vmax = 0.0;
   rmax = 0.0;
+  energy = 0;
   for (int k = 0; k < narg; k += 2) {
     std::string key = arg[k];
     if (k + 1 >= narg) error->all(FLERR, "pair_style dem/contact: keyword {} needs a value", key);
@@ -105,8 +107,11 @@ void PairDemContact::settings(int narg, char **arg)
       frame_spin = utils::logical(FLERR, arg[k + 1], false, lmp);
     else if (key == "rmax")
       rmax = utils::numeric(FLERR, arg[k + 1], false, lmp);
+    else if (key == "energy")
+      energy = utils::logical(FLERR, arg[k + 1], false, lmp);
     else
-      error->all(FLERR, "pair_style dem/contact: unknown keyword {} (valid: vmax, slots, frame_spin, rmax)", key);
+      error->all(FLERR, "pair_style dem/contact: unknown keyword {} (valid: vmax, slots, frame_spin, rmax, energy)",
+                 key);
   }
   if (!(vmax > 0.0) || !std::isfinite(vmax))
     error->all(FLERR,
@@ -149,6 +154,26 @@ void PairDemContact::coeff(int narg, char **arg)
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) setflag[i][j] = 1;
   if (comm->me == 0) utils::logmesg(lmp, "pair dem/contact: {} from {}\n", kernel.laws, table_path);
+  history_fix();
+}
+
+// the fix that keeps the contact rows in the atoms: made by pair_coeff (so that an input refers to its energy
+// before the first run: f_DEM_CONTACT_HISTORY), or found (a second pair_coeff)
+void PairDemContact::history_fix()
+{
+  row_size = (int) kernel.history_size + (energy ? N_EXTRA : 0);
+  auto existing = modify->get_fix_by_id(FIX_ID);
+  if (existing) {
+    fix = dynamic_cast<FixDemContactHistory *>(existing);
+    if (!fix || fix->slots != slots || fix->history_size != row_size)
+      error->all(FLERR,
+                 "pair dem/contact: the contact rows (fix {}) have other sizes than this table's and slots: define "
+                 "pair_style dem/contact again to start them anew",
+                 FIX_ID);
+  } else {
+    fix = dynamic_cast<FixDemContactHistory *>(
+        modify->add_fix(fmt::format("{} all DEM/CONTACT/HISTORY {} {} {}", FIX_ID, slots, row_size, energy)));
+  }
 }
 
 void PairDemContact::init_style()
@@ -163,16 +188,7 @@ void PairDemContact::init_style()
   if (!attached) error->all(FLERR, "pair dem/contact: no table file; give pair_coeff * * TABLE_FILE");
 
   neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_NEWTON_OFF);
-
-  auto existing = modify->get_fix_by_id(FIX_ID);
-  if (existing) {
-    fix = dynamic_cast<FixDemContactHistory *>(existing);
-    if (!fix || fix->slots != slots || fix->history_size != kernel.history_size)
-      error->all(FLERR, "pair dem/contact: fix {} exists with other sizes; define pair_style dem/contact once", FIX_ID);
-  } else {
-    fix = dynamic_cast<FixDemContactHistory *>(modify->add_fix(
-        fmt::format("{} all DEM/CONTACT/HISTORY {} {}", FIX_ID, slots, kernel.history_size)));
-  }
+  history_fix();
 
   // the per-contact output at every step where a compute reads it
   keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
@@ -377,8 +393,7 @@ int PairDemContact::find_row(int i, double key, bool &fresh)
   if (free_row >= 0) {
     k[free_row] = key;
     fresh = true;
-    std::memset(fix->hist + ((size_t) i * slots + free_row) * kernel.history_size, 0,
-                sizeof(double) * kernel.history_size);
+    std::memset(fix->hist + ((size_t) i * slots + free_row) * row_size, 0, sizeof(double) * row_size);
   }
   return free_row;
 }
@@ -402,16 +417,18 @@ void PairDemContact::free_ended(int i, int hs)
       const tagint partner = (tagint) k[s];
       k[s] = 0.0;
       double *h = fix->hist + ((size_t) i * slots + s) * hs;
-      // (the overlap now, a gap: the partner's image closest to atom i, if it is here)
-      double delta_end = 0.0;
-      int j = atom->map_style != Atom::MAP_NONE ? atom->map(partner) : -1;
-      if (j >= 0) {
-        j = domain->closest_image(i, j);
-        double **x = atom->x;
-        const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-        delta_end = std::min(0.0, atom->radius[i] + atom->radius[j] - std::sqrt(dx * dx + dy * dy + dz * dz));
+      if (energy) {
+        // (the overlap now, a gap: the partner's image closest to atom i, if it is here)
+        double delta_end = 0.0;
+        int j = atom->map_style != Atom::MAP_NONE ? atom->map(partner) : -1;
+        if (j >= 0) {
+          j = domain->closest_image(i, j);
+          double **x = atom->x;
+          const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+          delta_end = std::min(0.0, atom->radius[i] + atom->radius[j] - std::sqrt(dx * dx + dy * dy + dz * dz));
+        }
+        fix->dissipated[i] += 0.5 * ended_work(h, hs, delta_end);
       }
-      fix->dissipated[i] += 0.5 * ended_work(h, hs, delta_end);
       std::memset(h, 0, sizeof(double) * hs);
     }
 }
@@ -466,7 +483,7 @@ void PairDemContact::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
   const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-  const int hs = (int) kernel.history_size;
+  const int hs = row_size;
   const bool setup = update->setupflag != 0;
   tagint *tag = atom->tag;
   double **x = atom->x, *radius = atom->radius;
@@ -606,7 +623,8 @@ void PairDemContact::compute(int eflag, int vflag)
   // compute dem/contact/local: the per-contact output, added here.
   const bool last = !setup && update->ntimestep == update->laststep;
   const bool direct = !setup && !last && !vflag_atom && !eflag_atom && !cvflag_atom;
-  int64_t flags = (direct ? SCATTER : WRITE_OUT) | (keep_out ? WRITE_OUT : 0) | (direct && vflag_global ? VIRIAL : 0);
+  int64_t flags = (direct ? SCATTER : WRITE_OUT) | (keep_out ? WRITE_OUT : 0) | (direct && vflag_global ? VIRIAL : 0) |
+      (energy ? ENERGY : 0);
   double vsum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   auto step = (StepFn) kernel.step;
   int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, x[0], atom->v[0], atom->omega[0], radius, atom->rmass,

@@ -1,7 +1,7 @@
 /* pair_style dem/contact: dem_contact's contact laws for spheres (atom_style sphere, units si) in LAMMPS's own
    pair loop.
 
-     pair_style dem/contact vmax V [slots N] [frame_spin yes|no] [rmax R]
+     pair_style dem/contact vmax V [slots N] [frame_spin yes|no] [rmax R] [energy yes|no]
      pair_coeff * * TABLE_FILE
 
    vmax: the largest normal impact speed [m/s] (the time step is checked against the contact time at it, and
@@ -9,7 +9,8 @@
    yes, as the bridge): pass the spin of the contact frame about the normal to the tangential law; no: keep the
    tangential history fixed in space, as LAMMPS's granular models; rmax: the largest radius atoms reach in the
    run [m] (default: each type's largest at the run's start, or the radius a fix inserts), where fix adapt grows
-   them (the neighbour cutoff).
+   them (the neighbour cutoff); energy (default no): account the work of each contact's forces (compute
+   dem/contact/local work, the energy dissipated per atom: the history fix's per-atom vector and scalar).
 
    The table file (dem_contact.lammps.table_file.save) holds the parameter rows of every pair of atom types and
    their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
@@ -68,7 +69,7 @@ class PairDemContact : public Pair {
   };
   // the plugin's values after the law's history in a contact row (pair_kernel.X_..., N_EXTRA): X_WORK, the work
   // the contact's forces have done on it since it began, is the energy it dissipated when it ends
-  enum { X_DELTA = 1, X_WORK = 2, N_EXTRA = 3 };
+  enum { X_DELTA = 1, X_WORK = 2, N_EXTRA = 4 };
   // the work done on an ended contact of row h (hs values): its X_WORK, with the last part of the normal work, from
   // the last step's overlap and normal force (the law's V_N, slot 0) to the overlap now, delta_end (a gap, < 0),
   // and no force, by the trapezoid rule (pair_kernel.ended_work)
@@ -97,6 +98,8 @@ class PairDemContact : public Pair {
   const std::string &table_file() const { return table_path; }
   double speed_limit() const { return vmax; }
   int frame_spin_on() const { return frame_spin; }
+  // whether the work of the contact forces is accounted (energy yes: N_EXTRA values more in each row)
+  int energy_on() const { return energy; }
 
  private:
   double vmax, rmax;
@@ -104,6 +107,7 @@ class PairDemContact : public Pair {
   std::string table_path;
   DemContactAttach kernel;
   bool attached, warned_onset, sized, keep_out, deep_checked, radii_change;
+  int energy, row_size;    // energy yes|no; the values of a contact row: the law's history (+ N_EXTRA)
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
   int64_t epoch;
@@ -124,6 +128,7 @@ class PairDemContact : public Pair {
   bool any_resized(int nall);
   void mark(int i);
   void free_ended(int i, int hs);
+  void history_fix();
   void check_deep(int64_t n);
   void check_grown(int nlocal);
 };
