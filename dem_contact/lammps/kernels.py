@@ -301,6 +301,18 @@ def sphere_pair(x, v, omega, radius, a, b, dx, dy, dz, r2, rs):
 
 
 @njit(inline="always", cache=True)
+def put_contact(normals, overlaps, velocities, n, nx, ny, nz, delta, vx, vy, vz):
+    """The law's inputs of contact n: its unit normal, overlap and slip velocity."""
+    normals[n, 0] = nx
+    normals[n, 1] = ny
+    normals[n, 2] = nz
+    overlaps[n] = delta
+    velocities[n, 0] = vx
+    velocities[n, 1] = vy
+    velocities[n, 2] = vz
+
+
+@njit(inline="always", cache=True)
 def wall_slip(x, v, omega, radius, walls, i, w, gap, nx, ny, nz, frame_spin):
     """(vx, vy, vz, wn) of the contact of sphere i with wall w (body 1 the sphere, n from the sphere to the
     wall, the contact point c = x + gap n on the wall's surface): the slip velocity, the sphere's surface
@@ -722,13 +734,7 @@ def gather_contacts(nlocal, x, v, omega, radius, rmass, tag, typ, walls, wall_ma
                 _contact_row(params, pair_rows[n], pc, prow[n], rowinfo, rs, ms)
         body[n, 0] = a
         body[n, 1] = b
-        normals[n, 0] = nx
-        normals[n, 1] = ny
-        normals[n, 2] = nz
-        overlaps[n] = delta
-        velocities[n, 0] = vx
-        velocities[n, 1] = vy
-        velocities[n, 2] = vz
+        put_contact(normals, overlaps, velocities, n, nx, ny, nz, delta, vx, vy, vz)
         n += 1
     for k in range(nt):
         i = touched[k]

@@ -194,13 +194,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                     report[R_FAST_ATOM] = i + 1
                 report[R_FAST_STEPS] = min(report[R_FAST_STEPS], tc / dt)
         body[m] = i
-        normals[m, 0] = nx
-        normals[m, 1] = ny
-        normals[m, 2] = nz
-        overlaps[m] = delta
-        velocities[m, 0] = vx
-        velocities[m, 1] = vy
-        velocities[m, 2] = vz
+        K.put_contact(normals, overlaps, velocities, m, nx, ny, nz, delta, vx, vy, vz)
         for d in range(3):
             spins[m, d] = omega[i, d] - (walls[0, W.OMEGA + d] if frame_spin else 0.0)
         m += 1

@@ -102,7 +102,8 @@ def main():
         deep=scene(walled, gap=-5e-4, wall="plane -0.0005 0 0 1 0 0", warnings=True),
         work_without_energy=scene(good_table(), extra=["compute c all dem/contact/local work"]),
         energy_without_energy=scene(good_table(), extra=["thermo_style custom step f_DEM_CONTACT_HISTORY"]),
-        grown=scene(good_table(), style="sphere 1", extra=["variable d equal 0.002+step*1e-5", "fix grow all adapt 1 atom diameter v_d"]),
+        grown=scene(good_table(), style="sphere 1",
+                    extra=["variable d equal 0.002+step*1e-5", "fix grow all adapt 1 atom diameter v_d"]),
         grown_rmax=scene(good_table(), style="sphere 1", pair="pair_style dem/contact vmax 1.0 rmax 0.0012",
                          extra=["variable d equal 0.002+step*1e-5", "fix grow all adapt 1 atom diameter v_d"]),
     )

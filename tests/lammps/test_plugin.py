@@ -105,7 +105,8 @@ def test_the_work_of_the_contacts_is_the_energy_the_atoms_lose(plugin, tmp_path)
     elastic energy, 8/15 E* R*^(1/2) delta^(5/2) (Johnson 1985, Contact Mechanics, eq. 4.23), to the time step's
     accuracy."""
     def run(scene, normal, mu, steps=400):
-        return _scenes(scene, "plugin", tmp_path, 1, "--normal", normal, "--mu", str(mu), "--steps", str(steps))["plugin"]
+        return _scenes(scene, "plugin", tmp_path, 1, "--normal", normal, "--mu", str(mu),
+                       "--steps", str(steps))["plugin"]
 
     elastic = run("collide", "hertz", 0.0)
     assert abs(elastic["dissipated"] - (elastic["before"] - elastic["after"])) < 1e-12 * elastic["before"]
@@ -210,7 +211,7 @@ def test_bad_input_has_one_message_each(plugin, tmp_path):
     assert out.pop("runs") is None and out.pop("wall_runs") is None and out.pop("grown_rmax") is None
     deep = out.pop("deep")
     assert "pair dem/contact: 1 contacts start with an overlap deeper than a head-on impact" in deep
-    assert "dem/contact/wall: 1 contacts with the wall start with an overlap deeper" in deep
+    assert "dem/contact/wall: 1 contacts start with an overlap deeper" in deep
     expect = dict(missing="does not exist", corrupt="cannot be read as JSON", other_version="was written by dem_contact",
                   unknown_law="needs the tangential law 'glue'", bad_params="is corrupt",
                   atomic="use atom_style sphere", no_vmax="needs vmax V", bad_keyword="unknown keyword colour",
@@ -218,7 +219,8 @@ def test_bad_input_has_one_message_each(plugin, tmp_path):
                   other_lammps="built for LAMMPS 1 Jan 2020", fast="above vmax",
                   wall_kind="unknown wall kind 'sphere'", wall_numbers="plane needs 6 numbers",
                   wall_before_pair="needs pair_style dem/contact and its pair_coeff", wall_not_in_table="has no walls",
-                  wall_index="wall 3 is not a wall of the table file", wall_curvature="or give the cylinder the word flat",
+                  wall_index="wall 3 is not a wall of the table file",
+                  wall_curvature="or give the cylinder the word flat",
                   wall_behind="the centre of atom 1 is behind the wall", wall_stl="nowhere.stl cannot be read",
                   grown="give pair_style dem/contact rmax R", work_without_energy="energy yes",
                   energy_without_energy="is accounted with pair_style dem/contact ... energy yes")

@@ -27,7 +27,8 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               int64_t mat, const double *params, int64_t n_rows, const int64_t *wall_row,
                               int64_t n_types, int64_t n_mats, const double *rowinfo, const double *type_size,
                               int64_t size_free, double *keys, double *H, int64_t slots, int64_t hs, double *saved,
-                              double *dissipated, double dt, int64_t flags, double step_no, const double *box, double *f, double *torque,
+                              double *dissipated, double dt, int64_t flags, double step_no, const double *box,
+                              double *f, double *torque,
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
 const int ABI = 2;
@@ -35,25 +36,16 @@ const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13 };
 // kernels.RI_...: columns of the table's per-row information
-const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_DEEPEST = 4, RI_CURV = 5, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
+const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_CURV = 5, N_ROWINFO = 7;
 // as pair dem/contact: the fewest time steps per contact time
 const double MIN_STEPS_PER_CONTACT = 10.0;
 
-std::string python_text(const std::string &s)
-{
-  std::string hex;
-  char b[3];
-  for (unsigned char c : s) {
-    std::snprintf(b, sizeof(b), "%02x", c);
-    hex += b;
-  }
-  return "bytes.fromhex('" + hex + "').decode()";
-}
 }    // namespace
 
 FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), evaluated_step(-1), history(nullptr), pair(nullptr), load_summed(false),
-    warned_onset(false), keep_out(false), deep_checked(false), n_out(0), clock_offset(0.0), clock_last(0.0), has_clock(0)
+    warned_onset(false), keep_out(false), deep_checked(false), n_out(0), clock_offset(0.0), clock_last(0.0),
+    has_clock(0)
 {
   for (int k = 3; k < narg; k++) words += (k > 3 ? "\n" : "") + std::string(arg[k]);
   vector_flag = 1;
@@ -87,8 +79,9 @@ void FixDemContactWall::attach()
   table_path = pair->table_file();
   std::memset(&kernel, 0, sizeof(kernel));
   kernel.abi = ABI;
-  std::string code = "import dem_contact.lammps.wall_kernel as k\nk.attach(" + python_text(words) + ", " +
-      python_text(table_path) + ", " + std::to_string(atom->ntypes) + ", " + std::to_string((uintptr_t) &kernel) +
+  std::string code = "import dem_contact.lammps.wall_kernel as k\nk.attach(" + DemContact::python_text(words) + ", " +
+      DemContact::python_text(table_path) + ", " + std::to_string(atom->ntypes) + ", " +
+      std::to_string((uintptr_t) &kernel) +
       ")\n";
   std::string failed = DemContact::run_python(code);
   if (!failed.empty())
@@ -263,29 +256,22 @@ void FixDemContactWall::evaluate(bool setup)
 void FixDemContactWall::check_deep()
 {
   const double vmax = pair->speed_limit();
-  int count = 0, total = 0;
-  double worst = 0.0, all_worst = 0.0;
+  int count = 0;
+  double worst = 0.0;
   for (int64_t k = 0; k < n_out; k++) {
     const int i = (int) out_atoms[k];
     const int row = (int) kernel.wall_row[(atom->type[i] - 1) * kernel.n_mats + kernel.mat];
     const double *info = kernel.rowinfo + (size_t) row * N_ROWINFO;
-    const double r = atom->radius[i], m = atom->rmass[i];
+    const double r = atom->radius[i];
     const double rs = info[RI_CURV] == 0.0 ? r : 1.0 / (1.0 / r + info[RI_CURV]);
-    const double deep = info[RI_DEEPEST] * std::pow(vmax, info[RI_DEEP_ALPHA]) * std::pow(m * m / rs / info[RI_Q], 0.2);
-    const double ratio = out[(size_t) PairDemContact::N_OUT * k + PairDemContact::OUT_DELTA] / deep;
+    const double ratio = out[(size_t) PairDemContact::N_OUT * k + PairDemContact::OUT_DELTA] /
+        PairDemContact::deepest(info, vmax, rs, atom->rmass[i]);
     if (ratio > 1.0) {
       count++;
       worst = std::max(worst, ratio);
     }
   }
-  MPI_Allreduce(&count, &total, 1, MPI_INT, MPI_SUM, world);
-  MPI_Allreduce(&worst, &all_worst, 1, MPI_DOUBLE, MPI_MAX, world);
-  if (total && comm->me == 0)
-    error->warning(FLERR,
-                   "fix {} dem/contact/wall: {} contacts with the wall start with an overlap deeper than a head-on "
-                   "impact at vmax = {} m/s would press them (up to {:.3g} times that overlap): their first contact "
-                   "force releases the energy of the overlap; place the atoms apart, or give the vmax that reaches it",
-                   id, total, vmax, all_worst);
+  PairDemContact::tell_deep(lmp, fmt::format("fix {} dem/contact/wall", id), count, worst, vmax);
 }
 
 // the wall's load summed over the ranks: force (3) [N], torque about its centre (3) [N m], power given to the

@@ -42,22 +42,12 @@ const double MIN_STEPS_PER_CONTACT = 10.0;
 // tolerance on an atom's radius and mass against its type's (relative)
 const double SIZE_TOL = 1e-9;
 
-// a Python literal of any text
-std::string python_text(const std::string &s)
-{
-  std::string hex;
-  char b[3];
-  for (unsigned char c : s) {
-    std::snprintf(b, sizeof(b), "%02x", c);
-    hex += b;
-  }
-  return "bytes.fromhex('" + hex + "').decode()";
-}
 }    // namespace
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
-    warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0), row_size(0), fix(nullptr), epoch(0),
+    warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0),
+    row_size(0), fix(nullptr), epoch(0),
     nlocal_last(-1)
 {
   single_enable = 0;
@@ -128,7 +118,7 @@ void PairDemContact::attach_table(const char *path)
 {
   std::memset(&kernel, 0, sizeof(kernel));
   kernel.abi = ABI;
-  std::string code = "import dem_contact.lammps.pair_kernel as k\nk.attach(" + python_text(path) + ", " +
+  std::string code = "import dem_contact.lammps.pair_kernel as k\nk.attach(" + DemContact::python_text(path) + ", " +
       std::to_string(atom->ntypes) + ", " + std::to_string((uintptr_t) &kernel) + ")\n";
   std::string failed = DemContact::run_python(code);
   if (!failed.empty())
@@ -316,38 +306,48 @@ void PairDemContact::check_onset(double vn, int a, int b)
   }
 }
 
+// the overlap of a head-on impact at vmax (Johnson 1985, Contact Mechanics, eq. 11.23: (m*^2 / R*)^(1/5))
+double PairDemContact::deepest(const double *info, double vmax, double rs, double ms)
+{
+  return info[RI_DEEPEST] * std::pow(vmax, info[RI_DEEP_ALPHA]) * std::pow(ms * ms / rs / info[RI_Q], 0.2);
+}
+
+void PairDemContact::tell_deep(LAMMPS *lmp, const std::string &who, int count, double worst, double vmax)
+{
+  int total = 0;
+  double all_worst = 0.0;
+  MPI_Allreduce(&count, &total, 1, MPI_INT, MPI_SUM, lmp->world);
+  MPI_Allreduce(&worst, &all_worst, 1, MPI_DOUBLE, MPI_MAX, lmp->world);
+  if (total && lmp->comm->me == 0)
+    lmp->error->warning(FLERR,
+                        "{}: {} contacts start with an overlap deeper than a head-on impact at vmax = {} m/s would "
+                        "press them (up to {:.3g} times that overlap): their first contact force releases the energy "
+                        "of the overlap; place the atoms apart, or give the vmax that reaches it",
+                        who, total, vmax, all_worst);
+}
+
 // at the first set-up: a warning where contacts start deeper than a head-on impact at vmax would press them
-// (their first force releases the energy of that overlap); the overlap at vmax from the table's at 1 m/s, by the
-// law's exponent of the speed there and Hertz's scaling with m*^2 / R* (Johnson 1985, Contact Mechanics, eq.
-// 11.23)
+// (their first force releases the energy of that overlap)
 void PairDemContact::check_deep(int64_t n)
 {
   const int nlocal = atom->nlocal;
   double *radius = atom->radius, *rmass = atom->rmass;
-  int count = 0, total = 0;
-  double worst = 0.0, all_worst = 0.0;
+  int count = 0;
+  double worst = 0.0;
   for (int64_t k = 0; k < n; k++) {
     const int a = (int) pairs[2 * k], b = (int) pairs[2 * k + 1];
     if (a >= nlocal) continue;    // (counted by the rank that owns atom a)
     const int row = (int) kernel.sphere_row[(atom->type[a] - 1) * kernel.n_types + atom->type[b] - 1];
-    const double *info = kernel.rowinfo + (size_t) row * N_ROWINFO;
     const double rs = radius[a] * radius[b] / (radius[a] + radius[b]);
     const double ms = rmass[a] * rmass[b] / (rmass[a] + rmass[b]);
-    const double deep = info[RI_DEEPEST] * std::pow(vmax, info[RI_DEEP_ALPHA]) * std::pow(ms * ms / rs / info[RI_Q], 0.2);
-    const double ratio = out[(size_t) N_OUT * k + OUT_DELTA] / deep;
+    const double ratio = out[(size_t) N_OUT * k + OUT_DELTA] /
+        deepest(kernel.rowinfo + (size_t) row * N_ROWINFO, vmax, rs, ms);
     if (ratio > 1.0) {
       count++;
       worst = std::max(worst, ratio);
     }
   }
-  MPI_Allreduce(&count, &total, 1, MPI_INT, MPI_SUM, world);
-  MPI_Allreduce(&worst, &all_worst, 1, MPI_DOUBLE, MPI_MAX, world);
-  if (total && comm->me == 0)
-    error->warning(FLERR,
-                   "pair dem/contact: {} contacts start with an overlap deeper than a head-on impact at vmax = {} m/s "
-                   "would press them (up to {:.3g} times that overlap): their first contact force releases the energy "
-                   "of the overlap; place the atoms apart, or give the vmax that reaches it",
-                   total, vmax, all_worst);
+  tell_deep(lmp, "pair dem/contact", count, worst, vmax);
 }
 
 // no atom larger than the radius its type's contacts are searched for (the neighbour cutoff), nor, where the

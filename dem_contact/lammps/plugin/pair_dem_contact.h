@@ -87,6 +87,13 @@ class PairDemContact : public Pair {
   double init_one(int, int) override;
   double memory_usage() override;
 
+  // the overlap of a head-on impact at vmax of a contact of the table's row information info (at 1 m/s) with
+  // R* rs and m* ms: the row's, by the law's exponent of the speed and Hertz's scaling with m*^2 / R*
+  static double deepest(const double *info, double vmax, double rs, double ms);
+  // a warning (rank 0) of the contacts over the ranks, count here, that start deeper than that (worst: the
+  // largest ratio here)
+  static void tell_deep(class LAMMPS *lmp, const std::string &who, int count, double worst, double vmax);
+
   // the contacts of the last step evaluated (not a run's set-up): its number (-1: none), the contacts'
   // atoms (local indices, body 1 the lower id; valid until atoms move between ranks or are sorted) and
   // their rows of N_OUT values

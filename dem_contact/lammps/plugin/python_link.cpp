@@ -1,5 +1,6 @@
 #include "python_link.h"
 
+#include <cstdio>
 #include <cwchar>
 #include <dlfcn.h>
 
@@ -56,4 +57,15 @@ std::string DemContact::run_python(const std::string &code)
   release(gil);
   if (rc != 0) return "the Python statements failed (traceback above): " + code;
   return "";
+}
+
+std::string DemContact::python_text(const std::string &s)
+{
+  std::string hex;
+  char b[3];
+  for (unsigned char c : s) {
+    std::snprintf(b, sizeof(b), "%02x", c);
+    hex += b;
+  }
+  return "bytes.fromhex('" + hex + "').decode()";
 }

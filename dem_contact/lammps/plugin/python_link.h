@@ -8,6 +8,8 @@
 namespace DemContact {
 // Run the Python statements `code`; "" on success, else what went wrong (the traceback went to stderr).
 std::string run_python(const std::string &code);
+// a Python expression of the text s, whatever characters it has
+std::string python_text(const std::string &s);
 }    // namespace DemContact
 
 #endif
