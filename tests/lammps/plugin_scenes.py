@@ -32,7 +32,7 @@ from dem_contact.lammps import LammpsContacts, native_commands, new_lammps
 from dem_contact.lammps import plugin_build, table_file
 from dem_contact.laws.model import reference_speed
 from dem_contact.materials import Material, Sphere, Wall
-from dem_contact.walls import CylinderWall, PlaneWall
+from dem_contact.walls import CylinderWall, MeshWall, PlaneWall, write_stl
 
 GLASS = Material(E=5e7, nu=0.25, rho=2500.0)
 POLYMER = Material(E=2e7, nu=0.4, rho=1100.0)
@@ -49,9 +49,12 @@ def table(sds, types=2, mu=0.5, walls=()):
 
 
 def fix_words(wall):
-    """The words of fix dem/contact/wall for a PlaneWall or CylinderWall."""
+    """The words of fix dem/contact/wall for a PlaneWall, a CylinderWall or a MeshWall (read from the STL file
+    STL_FILES[id(wall)])."""
     num = lambda v: " ".join(repr(float(c)) for c in v)  # noqa: E731
-    if isinstance(wall, PlaneWall):
+    if isinstance(wall, MeshWall):
+        words = f"mesh {STL_FILES[id(wall)]}"
+    elif isinstance(wall, PlaneWall):
         words = f"plane {num(wall.point)} {num(wall.normal)}"
     else:
         words = (f"cylinder {num(wall.point)} {num(wall.axis)} {float(wall.radius)!r} "
@@ -268,6 +271,18 @@ def pack(a):
 
 
 FLOOR = PlaneWall((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), velocity=(0.05, 0.0, 0.0))
+#: the STL file of each MeshWall of a scene (by id)
+STL_FILES = {}
+
+
+def floor_mesh(a, L):
+    """The floor as a mesh: a square of two triangles, from -L to 2 L along x and y (the periodic box and its
+    images), sliding as FLOOR (an STL file per rank: the ranks write at once)."""
+    path = os.path.join(a.dir, f"floor_{os.environ.get('PMI_RANK', '0')}.stl")
+    write_stl(path, [[-L, -L, 0.0], [2 * L, -L, 0.0], [2 * L, 2 * L, 0.0], [-L, 2 * L, 0.0]], [[0, 1, 2], [0, 2, 3]])
+    wall = MeshWall.from_stl(path, velocity=FLOOR.velocity)
+    STL_FILES[id(wall)] = path
+    return wall
 DRUM_R = 5.0e-3
 DRUM = CylinderWall((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), DRUM_R, angular_velocity=(0.0, 20.0, 0.0))
 
@@ -277,7 +292,7 @@ def walled(a):
     about its axis y (drum): periodic in the directions the wall leaves open, split between the ranks along
     x."""
     floor = a.scene == "floor"
-    walls = [FLOOR] if floor else [DRUM]
+    walls = [floor_mesh(a, 8.0 * R2) if a.mesh else FLOOR] if floor else [DRUM]
     mats = [Wall(GLASS)] if floor else [Wall(GLASS, curvature=DRUM.curvature_for_rstar)]
     t = table(a.sds, walls=mats)
     lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
@@ -383,6 +398,7 @@ def main():
     p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (pair)")
     p.add_argument("--frame-spin", action="store_true")
     p.add_argument("--grow", action="store_true", help="pair: both atoms grow during the run (fix adapt)")
+    p.add_argument("--mesh", action="store_true", help="floor: the floor an STL mesh (engines plugin, bridge)")
     p.add_argument("--pieces", type=int, default=1)
     p.add_argument("--restart-write", type=int, default=0)
     p.add_argument("--restart-read", action="store_true")

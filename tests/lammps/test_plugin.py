@@ -193,6 +193,18 @@ def test_walls_as_the_bridge_and_wall_gran(plugin, tmp_path):
                 assert np.allclose(rows, bridge_rows, rtol=1e-12, atol=1e-12 * np.abs(bridge_rows).max())
 
 
+def test_a_mesh_wall_as_the_bridge_and_as_the_plane(plugin, tmp_path):
+    """The floor as an STL mesh of two triangles (fix dem/contact/wall mesh FILE), sliding: the bridge's forces
+    and loads to 1e-12, and the atoms' those of the plane floor to 1e-12 (the same flat surface; the loads'
+    torques are about the mesh's own centre, its mean vertex)."""
+    got = _scenes("floor", "plugin,bridge", tmp_path, 1, "--steps", "300", "--sds", "--mesh")
+    plane = _scenes("floor", "plugin", tmp_path, 1, "--steps", "300", "--sds")["plugin"]
+    assert _rel(got["plugin"], got["bridge"]) < 1e-12
+    assert _loads_equal(got["plugin"], got["bridge"])
+    assert _rel(got["plugin"], plane) < 1e-12
+    assert np.allclose(np.array(got["plugin"]["loads"])[:, :3], np.array(plane["loads"])[:, :3], rtol=1e-12, atol=0.0)
+
+
 def test_walls_in_pieces_and_from_restarts(plugin, tmp_path):
     """The floor with its dashpots (twisting and rolling sds) in three runs, and written to a restart file on one
     rank then continued on two: the one run (a run's set-up reapplies the wall forces of the step before; the
