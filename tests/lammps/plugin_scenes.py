@@ -385,9 +385,31 @@ def collide(a):
     return lmp, out
 
 
+def piston(a):
+    """A sphere at rest, 1000 steps, then a plane wall defined 0.5 mm above its top moving down at 1 m/s
+    (fix dem/contact/wall ... velocity): the wall's load after 240 and after 260 more steps (it reaches the
+    sphere after 250, if it starts from where it is given)."""
+    t = pair_table([Sphere(R1, GLASS)], [Wall(GLASS)], mu=0.3, normal="hertz", tangential="mindlin_total",
+                   v_ref=reference_speed(1.0))
+    lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
+    for c in ("units si", "atom_style sphere", "boundary f f f", "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
+              "create_box 1 box", "create_atoms 1 single 0 0 0.005", f"set type 1 diameter {2 * R1!r}",
+              f"set type 1 density {GLASS.rho!r}", "timestep 2e-6", "fix 1 all nve/sphere", "neighbor 0.0003 bin",
+              "neigh_modify delay 0 every 1 check yes", "comm_modify vel yes"):
+        lmp.command(c)
+    forces_on(lmp, "plugin", t, a.dir, False)
+    lmp.command("run 1000")
+    lmp.command(f"fix press all dem/contact/wall plane 0 0 {0.005 + R1 + 5e-4!r} 0 0 -1 velocity 0 0 -1")
+    out = {}
+    for steps in (240, 20):
+        lmp.command(f"run {steps}")
+        out[steps] = [lmp.extract_fix("press", 0, 1, q) for q in range(3)]
+    return lmp, out
+
+
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum", "collide", "strike"))
+    p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum", "collide", "strike", "piston"))
     p.add_argument("--dt", type=float, default=1e-6, help="collide, strike: the time step [s]")
     p.add_argument("--normal", default="hertz", help="collide, strike: the normal law (hertz, hertz_damped)")
     p.add_argument("engines", help="comma-separated: plugin, bridge, native (each run in turn)")
@@ -407,7 +429,7 @@ def main():
     for engine in a.engines.split(","):
         a.engine = engine
         lmp, result[engine] = dict(pair=pair, pour=pour, pack=pack, floor=walled, drum=walled, collide=collide,
-                                   strike=collide)[a.scene](a)
+                                   strike=collide, piston=piston)[a.scene](a)
         rank = lmp.extract_setting("world_rank")
         lmp.close()
     if rank == 0:

@@ -205,6 +205,15 @@ def test_a_mesh_wall_as_the_bridge_and_as_the_plane(plugin, tmp_path):
     assert np.allclose(np.array(got["plugin"]["loads"])[:, :3], np.array(plane["loads"])[:, :3], rtol=1e-12, atol=0.0)
 
 
+def test_a_moving_wall_starts_where_it_is_given(plugin, tmp_path):
+    """A plane wall defined 0.5 mm above a resting sphere after 1,000 steps of a run, moving down at 1 m/s: it
+    touches the sphere 250 steps later (its motion counts from when the fix is defined, as fix wall/gran's), not
+    at once (nor behind the sphere's centre, as from LAMMPS's time 0)."""
+    got = _scenes("piston", "plugin", tmp_path)["plugin"]
+    assert got["240"] == [0.0, 0.0, 0.0]
+    assert got["20"][2] > 0.0 and got["20"][:2] == [0.0, 0.0]
+
+
 def test_walls_in_pieces_and_from_restarts(plugin, tmp_path):
     """The floor with its dashpots (twisting and rolling sds) in three runs, and written to a restart file on one
     rank then continued on two: the one run (a run's set-up reapplies the wall forces of the step before; the

@@ -57,6 +57,8 @@ FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
   std::memset(report, 0, sizeof(report));
   std::memset(load_all, 0, sizeof(load_all));
   attach();
+  // the wall's clock starts now: the pose given is the wall's when the fix is defined (as fix wall/gran's motions)
+  clock_offset = -now();
   row_size = (int) kernel.history_size + (pair->energy_on() ? PairDemContact::N_EXTRA : 0);
   history_id = std::string("DEM_CONTACT_WALL_") + id;
 }
@@ -154,8 +156,8 @@ void FixDemContactWall::check_time_step()
                tc_min / MIN_STEPS_PER_CONTACT);
 }
 
-// the wall's clock [s]: LAMMPS's time (thermo time) plus the offset that keeps it going on across a
-// reset_timestep
+// the wall's clock [s]: LAMMPS's time (thermo time) plus the offset that starts it when the fix is defined and
+// keeps it going on across a reset_timestep
 double FixDemContactWall::now() const
 {
   return update->atime + (double) (update->ntimestep - update->atimestep) * update->dt + clock_offset;

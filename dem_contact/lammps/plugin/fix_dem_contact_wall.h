@@ -82,7 +82,8 @@ class FixDemContactWall : public Fix {
   int row_size;    // the values of a contact row: the law's history (+ N_EXTRA with pair_style ... energy yes)
   std::vector<double> out;
   std::vector<int64_t> out_atoms;
-  // the wall's clock: LAMMPS's time plus offset; the clock at the last step evaluated (has_clock)
+  // the wall's clock: LAMMPS's time plus offset (0 when the fix is defined); the clock at the last step evaluated
+  // (has_clock)
   double clock_offset, clock_last;
   int has_clock;
 
