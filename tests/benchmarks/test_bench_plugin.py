@@ -1,7 +1,8 @@
 """Cost of a contact update of pair_style dem/contact (the LAMMPS plugin) against LAMMPS's own pair granular
 hertz/material + mindlin, side by side in one process: the CPU time of LAMMPS's Pair section per contact update
 (tests/lammps/plugin_bench.py), in extra_info; on a pressed 2,000-sphere pack and a 20,000-sphere pour, for
-mindlin_total (the arithmetic of LAMMPS's model) and the library's default law, and the pack on two ranks.
+mindlin_total (the arithmetic of LAMMPS's model) and the library's default law, the pack on two ranks, and the
+cost of the energy accounting (pair_style ... energy yes).
 
     pytest tests/benchmarks/test_bench_plugin.py --benchmark-only --benchmark-json plugin.json
 """
@@ -23,11 +24,11 @@ ROOT = Path(__file__).resolve().parents[2]
 MPIRUN = shutil.which("mpirun", path=os.path.join(sys.prefix, "bin")) or shutil.which("mpirun")
 
 
-def _bench(scene, n, steps, tangential, ranks=1, engines="native,plugin"):
+def _bench(scene, n, steps, tangential, ranks=1, engines="native,plugin", energy=False):
     from dem_contact.lammps import plugin_build
     plugin_build.build()
     cmd = [sys.executable, "tests/lammps/plugin_bench.py", scene, str(n), str(steps), "--tangential", tangential,
-           "--engines", engines]
+           "--engines", engines] + (["--energy"] if energy else [])
     lib = os.path.join(sys.prefix, "lib")
     r = subprocess.run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], capture_output=True, text=True,
                        cwd=ROOT, env=dict(os.environ, LD_LIBRARY_PATH=lib, PYTHONPATH=str(ROOT)))
@@ -53,3 +54,14 @@ def test_bench_plugin_two_ranks(benchmark):
                              iterations=1)["plugin"]
     benchmark.extra_info.update(one_rank_pair_s=one["pair_s"], two_ranks_pair_s=two["pair_s"],
                                 speedup=one["pair_s"] / two["pair_s"])
+
+
+def test_bench_plugin_energy_accounting(benchmark):
+    """pair_style dem/contact ... energy yes (the work of each contact's forces accounted) against no, on the
+    pressed pack with mindlin_total."""
+    _bench("pack", 216, 20, "mindlin_total", engines="plugin")
+    without = _bench("pack", 2000, 300, "mindlin_total", engines="plugin")["plugin"]
+    out = benchmark.pedantic(_bench, args=("pack", 2000, 300, "mindlin_total"),
+                             kwargs=dict(engines="plugin", energy=True), rounds=1, iterations=1)["plugin"]
+    benchmark.extra_info.update(ns_per_update=out["ns_per_update"], without_ns_per_update=without["ns_per_update"],
+                                ratio=out["ns_per_update"] / without["ns_per_update"])
