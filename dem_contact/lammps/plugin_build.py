@@ -68,7 +68,9 @@ def lammps_version() -> str:
     return f"{d.day} {d:%b} {d.year}"
 
 
-def _python_library() -> str:
+def python_library() -> str:
+    """The path of this Python's shared library, which the plugin loads in lmp (PluginBuildError if it has
+    none)."""
     libdir = sysconfig.get_config_var("LIBDIR") or ""
     name = sysconfig.get_config_var("INSTSONAME") or sysconfig.get_config_var("LDLIBRARY") or ""
     path = os.path.join(libdir, name)
@@ -94,7 +96,7 @@ def _command(version: str) -> list:
     if not os.path.exists(python):
         python = sys.executable
     number = datetime.datetime.strptime(version, "%d %b %Y").strftime("%Y%m%d")
-    defines = {"DEM_CONTACT_LAMMPS_VERSION": version, "DEM_CONTACT_LIBPYTHON": _python_library(),
+    defines = {"DEM_CONTACT_LAMMPS_VERSION": version, "DEM_CONTACT_LIBPYTHON": python_library(),
                "DEM_CONTACT_PYTHON": python}
     return ([cxx, "-std=c++17", "-O2", "-fPIC", "-shared", "-DLAMMPS_SMALLBIG", f"-I{include}", f"-I{mpi}",
              f"-I{SOURCE_DIR}"] + [f'-D{k}="{v}"' for k, v in defines.items()] + [f"-DDEM_CONTACT_LAMMPS_VERSION_NUMBER={number}"]

