@@ -479,7 +479,11 @@ def _attach(words, path, n_types, out, address):
     if not 0 <= wall.wall < n_mats:
         raise InputError(f"wall {wall.wall} is not a wall of the table file {path} (it has "
                          f"walls 0 ... {n_mats - 1})")
-    rows, mats = pack([wall], n_mats)
+    try:
+        rows, mats = pack([wall], n_mats)
+    except InputError as e:
+        # (the walls room names the wall walls[0]: here it is the fix's)
+        raise InputError(str(e).replace("walls[0].", "the wall's ")) from None
     want = float(getattr(wall, "curvature_for_rstar", 0.0))
     have = float(saved.rowinfo[table.wall_row[0, wall.wall], K.RI_CURV])
     if have != want:

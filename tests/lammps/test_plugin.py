@@ -231,6 +231,7 @@ def test_walls_in_pieces_and_from_restarts(plugin, tmp_path):
 def test_bad_input_has_one_message_each(plugin, tmp_path):
     out = json.loads(_run([sys.executable, "tests/lammps/plugin_errors.py", str(tmp_path)]))
     assert out.pop("runs") is None and out.pop("wall_runs") is None and out.pop("grown_rmax") is None
+    assert out.pop("anew_after_none") is None
     deep = out.pop("deep")
     assert "pair dem/contact: 1 contacts start with an overlap deeper than a head-on impact" in deep
     assert "dem/contact/wall: 1 contacts start with an overlap deeper" in deep
@@ -244,7 +245,7 @@ def test_bad_input_has_one_message_each(plugin, tmp_path):
                   wall_index="wall 3 is not a wall of the table file",
                   wall_curvature="or give the cylinder the word flat",
                   wall_behind="the centre of atom 1 is behind the wall", wall_stl="nowhere.stl cannot be read",
-                  grown="give pair_style dem/contact rmax R", work_without_energy="energy yes",
+                  grown="give pair_style dem/contact rmax R", changed_energy="give pair_style none first", work_without_energy="energy yes",
                   energy_without_energy="is accounted with pair_style dem/contact ... energy yes")
     assert set(out) == set(expect)
     for case, words in expect.items():

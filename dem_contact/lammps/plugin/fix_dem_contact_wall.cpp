@@ -59,7 +59,8 @@ FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
   attach();
   // the wall's clock starts now: the pose given is the wall's when the fix is defined (as fix wall/gran's motions)
   clock_offset = -now();
-  row_size = (int) kernel.history_size + (pair->energy_on() ? PairDemContact::N_EXTRA : 0);
+  energy = pair->energy_on();
+  row_size = (int) kernel.history_size + (energy ? PairDemContact::N_EXTRA : 0);
   history_id = std::string("DEM_CONTACT_WALL_") + id;
 }
 
@@ -96,7 +97,7 @@ void FixDemContactWall::attach()
 void FixDemContactWall::post_constructor()
 {
   history = dynamic_cast<FixDemContactHistory *>(modify->add_fix(
-      fmt::format("{} all DEM/CONTACT/HISTORY {} {} {}", history_id, kernel.slots, row_size, pair->energy_on())));
+      fmt::format("{} all DEM/CONTACT/HISTORY {} {} {}", history_id, kernel.slots, row_size, energy)));
 }
 
 void FixDemContactWall::init()
@@ -110,6 +111,11 @@ void FixDemContactWall::init()
                "fix {} dem/contact/wall: pair_style dem/contact was defined again, or read another table file, after "
                "the fix: define the fix again (unfix, fix) after the pair style",
                id);
+  if (p->energy_on() != energy)
+    error->all(FLERR,
+               "fix {} dem/contact/wall was defined with pair_style dem/contact ... energy {}: define the fix again "
+               "(unfix, fix) after changing energy",
+               id, energy ? "yes" : "no");
   history = dynamic_cast<FixDemContactHistory *>(modify->get_fix_by_id(history_id));
   if (!history || history->slots != kernel.slots || history->history_size != row_size)
     error->all(FLERR, "fix {} dem/contact/wall: its contact rows (fix {}) are missing or of other sizes", id,
@@ -189,7 +195,7 @@ void FixDemContactWall::evaluate(bool setup)
   // last step of a run saves them.
   int64_t flags = setup ? REAPPLY : ADVANCE | (update->ntimestep == update->laststep ? SAVE : 0);
   if (pair->frame_spin_on()) flags |= FRAME_SPIN;
-  if (pair->energy_on()) flags |= ENERGY;
+  if (energy) flags |= ENERGY;
   double box[7];
   for (int d = 0; d < 3; d++) {
     box[d] = domain->prd[d];

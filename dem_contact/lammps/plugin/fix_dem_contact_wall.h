@@ -79,6 +79,7 @@ class FixDemContactWall : public Fix {
   double report[14], load_all[7];
   bool load_summed, warned_onset, keep_out, deep_checked;
   int64_t n_out;
+  int energy;      // pair_style dem/contact ... energy yes when the fix was defined
   int row_size;    // the values of a contact row: the law's history (+ N_EXTRA with pair_style ... energy yes)
   std::vector<double> out;
   std::vector<int64_t> out_atoms;

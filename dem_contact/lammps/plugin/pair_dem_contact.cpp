@@ -157,8 +157,8 @@ void PairDemContact::history_fix()
     fix = dynamic_cast<FixDemContactHistory *>(existing);
     if (!fix || fix->slots != slots || fix->history_size != row_size)
       error->all(FLERR,
-                 "pair dem/contact: the contact rows (fix {}) have other sizes than this table's and slots: define "
-                 "pair_style dem/contact again to start them anew",
+                 "pair dem/contact: the contact rows (fix {}) were made for other slots, energy or table laws: keep "
+                 "them for the whole simulation, or give pair_style none first to start the contacts anew",
                  FIX_ID);
   } else {
     fix = dynamic_cast<FixDemContactHistory *>(
