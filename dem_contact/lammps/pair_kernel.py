@@ -7,7 +7,9 @@ with the lower id is body 1. This kernel computes what ``kernels.gather_contacts
 (normal, overlap, slip velocity with the full radii, per-contact R* and m* for atoms not of their type's size),
 runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
 returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
-models), the overlap, the tangential force, the normal and the friction coefficient. The C++ side adds them to LAMMPS's forces and torques and tallies the virial.
+models), the overlap, the tangential force, the normal and the friction coefficient (and with ``energy yes`` the
+work of the contact's forces, ``account_work``), or adds the forces and torques to LAMMPS's itself, with the
+virial.
 
 ``attach`` is what the plugin calls (from its embedded or the running Python interpreter) when a table file is
 named by ``pair_coeff``: it reads the table (``dem.pairs.PairTable.load``), compiles the step for the table's
@@ -23,9 +25,8 @@ import numpy as np
 from numba import carray, cfunc, njit, types
 
 from ..dem.contact3d import _LOOPS, _torque_laws_of as torque_laws_of
-from ..laws.dispatch import uses_rate
+from ..laws.dispatch import tangential_base, uses_rate
 from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_TANGENTIAL_LAW
-from ..laws.dispatch import tangential_base
 from ..laws.vector import V_N, W_WORK, renamed
 from . import kernels as K
 
@@ -135,7 +136,7 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
     torques = work[15 * n:18 * n].reshape((n, 3))
     overlaps = work[18 * n:19 * n]
     wn = work[19 * n:20 * n]
-    w_cols = work_columns(nid, params)
+    w_cols = work_columns(nid, params) if energy else np.empty(0, dtype=np.int64)
     rows = params
     if sized:
         pc[:params.shape[0]] = params

@@ -137,7 +137,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
     spins = np.empty((n, 3))
     overlaps = np.empty(n)
     wn = np.empty(n)
-    w_cols = PK.work_columns(nid, params)
+    w_cols = PK.work_columns(nid, params) if energy else np.empty(0, dtype=np.int64)
     forces = np.empty((n, 3))
     tforces = np.empty((n, 3))
     torques = np.zeros((n, 3))
