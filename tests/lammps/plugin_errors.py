@@ -107,6 +107,10 @@ def main():
                                                    f"pair_coeff * * {good_table()}"]),
         work_without_energy=scene(good_table(), extra=["compute c all dem/contact/local work"]),
         energy_without_energy=scene(good_table(), extra=["thermo_style custom step f_DEM_CONTACT_HISTORY"]),
+        # (a third sphere touching atom 1 on the other side: two contacts, one row)
+        too_many=scene(good_table(), pair="pair_style dem/contact vmax 1.0 slots 1",
+                       extra=[f"create_atoms 1 single {-2 * R + 2e-5!r} 0 0", f"set type 1 diameter {2 * R!r}",
+                              f"set type 1 density {MAT.rho!r}"]),
         grown=scene(good_table(), style="sphere 1",
                     extra=["variable d equal 0.002+step*1e-5", "fix grow all adapt 1 atom diameter v_d"]),
         grown_rmax=scene(good_table(), style="sphere 1", pair="pair_style dem/contact vmax 1.0 rmax 0.0012",

@@ -245,7 +245,7 @@ def test_bad_input_has_one_message_each(plugin, tmp_path):
                   wall_index="wall 3 is not a wall of the table file",
                   wall_curvature="or give the cylinder the word flat",
                   wall_behind="the centre of atom 1 is behind the wall", wall_stl="nowhere.stl cannot be read",
-                  grown="give pair_style dem/contact rmax R", changed_energy="give pair_style none first", work_without_energy="energy yes",
+                  grown="give pair_style dem/contact rmax R", too_many="more than 1 contacts at once", changed_energy="give pair_style none first", work_without_energy="energy yes",
                   energy_without_energy="is accounted with pair_style dem/contact ... energy yes")
     assert set(out) == set(expect)
     for case, words in expect.items():

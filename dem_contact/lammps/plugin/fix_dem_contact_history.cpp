@@ -12,7 +12,8 @@ using namespace LAMMPS_NS;
 
 // fix ID all DEM/CONTACT/HISTORY slots row_size energy (made by pair_style dem/contact and fix dem/contact/wall)
 FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr), dissipated(nullptr)
+    Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr), dissipated(nullptr), keeper(nullptr),
+    stale(false)
 {
   if (narg != 6)
     error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact and fix dem/contact/wall only");
@@ -47,12 +48,16 @@ FixDemContactHistory::~FixDemContactHistory()
   memory->destroy(dissipated);
 }
 
-int FixDemContactHistory::setmask() { return 0; }
+int FixDemContactHistory::setmask() { return FixConst::PRE_EXCHANGE; }
+
+// a step where LAMMPS builds its lists anew (atoms may move): the rows made current
+void FixDemContactHistory::pre_exchange() { refresh(); }
 
 // after a run: the state the forces saved at its last step belong to is that at the end of the step, the
 // velocities and spins after its final integration (the pair style saw those of the half step)
 void FixDemContactHistory::post_run()
 {
+  refresh();
   const double step = (double) update->ntimestep;
   double **v = atom->v, **omega = atom->omega;
   for (int i = 0; i < atom->nlocal; i++)
@@ -92,6 +97,7 @@ void FixDemContactHistory::grow_arrays(int nmax)
 
 void FixDemContactHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
+  refresh();
   std::memcpy(keys[j], keys[i], sizeof(double) * slots);
   std::memcpy(hist + (size_t) j * slots * history_size, hist + (size_t) i * slots * history_size,
               sizeof(double) * slots * history_size);
@@ -110,6 +116,7 @@ void FixDemContactHistory::set_arrays(int i)
 
 int FixDemContactHistory::pack_exchange(int i, double *buf)
 {
+  refresh();
   int m = 0;
   for (int s = 0; s < slots; s++) buf[m++] = keys[i][s];
   const double *h = hist + (size_t) i * slots * history_size;
@@ -133,6 +140,7 @@ int FixDemContactHistory::unpack_exchange(int i, double *buf)
 // restart data of an atom: its count, slots, history_size, then as pack_exchange
 int FixDemContactHistory::pack_restart(int i, double *buf)
 {
+  refresh();
   buf[1] = slots;
   buf[2] = history_size;
   int m = 3 + pack_exchange(i, buf + 3);

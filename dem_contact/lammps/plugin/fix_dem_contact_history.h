@@ -8,13 +8,29 @@
    set-up reapplies when nothing has changed, also after a restart file (on any number of ranks), and the energy
    its ended contacts dissipated (dissipated[i], J: half of each contact with another atom, all of a wall
    contact; the work its forces did on the contact over its life), which this fix gives as its per-atom vector
-   (dump custom: f_ID) and their sum over the atoms as its global scalar. */
+   (dump custom: f_ID) and their sum over the atoms as its global scalar.
+
+   Where a keeper holds the rows' newest values elsewhere while atoms keep their indices (the pair style keeps
+   its contacts' histories by neighbour-list entry between list builds), the fix asks it to write them into the
+   rows first (RowKeeper::store_rows) whenever they are needed: before atoms move between ranks or in memory
+   (pre_exchange, pack_exchange, copy_arrays: exchange, sorting, deletion), before a restart file is written,
+   and at the end of a run. */
 #ifndef DEM_CONTACT_FIX_HISTORY_H
 #define DEM_CONTACT_FIX_HISTORY_H
 
 #include "fix.h"
 
 namespace LAMMPS_NS {
+
+// what holds the newest values of a history fix's rows between moves of the atoms
+class RowKeeper {
+ public:
+  // write them into the rows (atoms still at the indices they had since the keeper last read the rows)
+  virtual void store_rows() = 0;
+
+ protected:
+  ~RowKeeper() = default;
+};
 
 class FixDemContactHistory : public Fix {
  public:
@@ -25,6 +41,7 @@ class FixDemContactHistory : public Fix {
   FixDemContactHistory(class LAMMPS *, int, char **);
   ~FixDemContactHistory() override;
   int setmask() override;
+  void pre_exchange() override;
   void post_run() override;
   double compute_scalar() override;
 
@@ -45,6 +62,16 @@ class FixDemContactHistory : public Fix {
   double **saved;    // [nmax][N_SAVED]
   double *dissipated;    // [nmax]
   bool accounted;        // pair_style dem/contact ... energy yes
+  RowKeeper *keeper;     // (null: the rows are the newest)
+  bool stale;            // the keeper holds newer values than the rows
+  // the rows made current (by the keeper, where they are stale)
+  void refresh()
+  {
+    if (stale && keeper) {
+      stale = false;
+      keeper->store_rows();
+    }
+  }
 
  private:
   int per_atom() const { return slots * (1 + history_size) + N_SAVED + 1; }

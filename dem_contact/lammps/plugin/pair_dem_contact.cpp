@@ -47,8 +47,7 @@ const double SIZE_TOL = 1e-9;
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
     warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0),
-    row_size(0), fix(nullptr), epoch(0),
-    nlocal_last(-1)
+    row_size(0), fix(nullptr), n_contacts(0)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -63,7 +62,10 @@ PairDemContact::~PairDemContact()
 {
   // (the arrays attach() keeps for this pair style stay with the Python process: a pair style made later at
   // the same address replaces them; no Python call here, which may run while the interpreter finalizes)
-  if (fix && modify->get_fix_by_id(FIX_ID)) modify->delete_fix(FIX_ID);
+  if (fix && modify->get_fix_by_id(FIX_ID)) {
+    fix->keeper = nullptr;
+    modify->delete_fix(FIX_ID);
+  }
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -164,6 +166,7 @@ void PairDemContact::history_fix()
     fix = dynamic_cast<FixDemContactHistory *>(
         modify->add_fix(fmt::format("{} all DEM/CONTACT/HISTORY {} {} {}", FIX_ID, slots, row_size, energy)));
   }
+  fix->keeper = this;
 }
 
 void PairDemContact::init_style()
@@ -380,45 +383,100 @@ double PairDemContact::init_one(int i, int j)
   return cut;
 }
 
-// the row of atom i keyed `key`, else a free row taken (zeroed; fresh = true), else -1
-int PairDemContact::find_row(int i, double key, bool &fresh)
+// the row of local atom i keyed `key` (-1: none)
+int PairDemContact::row_of(int i, double key) const
 {
-  fresh = false;
-  double *k = fix->keys[i];
-  int free_row = -1;
-  for (int s = 0; s < slots; s++) {
-    if (k[s] == key) return s;
-    if (free_row < 0 && k[s] == 0.0) free_row = s;
-  }
-  if (free_row >= 0) {
-    k[free_row] = key;
-    fresh = true;
-    std::memset(fix->hist + ((size_t) i * slots + free_row) * row_size, 0, sizeof(double) * row_size);
-  }
-  return free_row;
-}
-
-// atom i (local) is in a contact at this step
-void PairDemContact::mark(int i)
-{
-  if (atom_epoch[i] != epoch) {
-    atom_epoch[i] = epoch;
-    touched.push_back(i);
-  }
-}
-
-// the rows of local atom i that no contact used at this step: freed (key and history zeroed), the energy each
-// contact dissipated added to the atom's, half of it (the partner's copy gives the other half)
-void PairDemContact::free_ended(int i, int hs)
-{
-  double *k = fix->keys[i];
+  const double *k = fix->keys[i];
   for (int s = 0; s < slots; s++)
-    if (k[s] != 0.0 && seen[(size_t) i * slots + s] != epoch) {
-      const tagint partner = (tagint) k[s];
-      k[s] = 0.0;
-      double *h = fix->hist + ((size_t) i * slots + s) * hs;
-      if (energy) {
-        // (the overlap now, a gap: the partner's image closest to atom i, if it is here)
+    if (k[s] == key) return s;
+  return -1;
+}
+
+// a row of the pool for a contact of atoms i (local) and j that begins or is read from the atoms' rows:
+// a free one, else a new one (the pool may move: rows are addressed by their index)
+int64_t PairDemContact::take_row(int i, int j, int nlocal)
+{
+  int64_t r;
+  if (!free_rows.empty()) {
+    r = free_rows.back();
+    free_rows.pop_back();
+  } else {
+    r = (int64_t) pairing.size();
+    pairing.emplace_back();
+    if (live.size() < pairing.size() * row_size) live.resize(2 * pairing.size() * row_size + 64 * row_size);
+  }
+  std::memset(live.data() + r * row_size, 0, sizeof(double) * row_size);
+  pairing[r] = {i, j < nlocal ? j : -1, atom->tag[i], atom->tag[j]};
+  return r;
+}
+
+// the contact of pool row r ended at overlap delta_end (a gap, <= 0): the energy it dissipated given half to
+// each of its local atoms (the rank of a partner that is a ghost here gives it the other half), the row freed
+void PairDemContact::end_row(int64_t r, double delta_end)
+{
+  if (energy) {
+    const double half = 0.5 * ended_work(live.data() + r * row_size, row_size, delta_end);
+    fix->dissipated[pairing[r].i] += half;
+    if (pairing[r].j >= 0) fix->dissipated[pairing[r].j] += half;
+  }
+  pairing[r].ti = 0;
+  free_rows.push_back(r);
+}
+
+// At a list build (a run's set-up, or a step where LAMMPS built its lists anew): the contacts of the atoms'
+// rows (written by store_rows before the atoms moved, or read from a restart file) taken into the pool, by
+// neighbour-list entry. A row that no entry of the list takes ended where its atoms moved apart (the energy
+// it dissipated given to its atom, half, from the overlap now: the closest image of its partner, if here).
+void PairDemContact::load_rows()
+{
+  const int nlocal = atom->nlocal;
+  const int inum = list->inum;
+  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  tagint *tag = atom->tag;
+  entry_start.resize(inum + 1);
+  entry_start[0] = 0;
+  for (int ii = 0; ii < inum; ii++) entry_start[ii + 1] = entry_start[ii] + numneigh[ilist[ii]];
+  entry_row.assign(entry_start[inum], -1);
+  pairing.clear();
+  free_rows.clear();
+  claimed.assign((size_t) nlocal * slots, 0);
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      // the contact's row: atom i's, else (i came from another rank, or had none) atom j's
+      int owner = i, s = row_of(i, (double) tag[j]);
+      if (s < 0 && j < nlocal) {
+        owner = j;
+        s = row_of(j, (double) tag[i]);
+      }
+      if (s < 0) continue;
+      if (claimed[(size_t) owner * slots + s])
+        error->one(FLERR,
+                   "pair dem/contact: atom {} touches two images of atom {} through a periodic boundary: the box is "
+                   "narrower than two diameters along a periodic direction; make it wider",
+                   tag[i], tag[j]);
+      claimed[(size_t) owner * slots + s] = 1;
+      // (both atoms here: the partner's copy is the same contact)
+      const int other = owner == i ? j : i;
+      if (other < nlocal) {
+        const int t = row_of(other, (double) tag[owner]);
+        if (t >= 0) claimed[(size_t) other * slots + t] = 1;
+      }
+      const int64_t r = take_row(i, j, nlocal);
+      std::memcpy(live.data() + r * row_size, fix->hist + ((size_t) owner * slots + s) * row_size,
+                  sizeof(double) * row_size);
+      entry_row[entry_start[ii] + jj] = r;
+    }
+  }
+  // rows no entry took: ended. Every row is free now (the pool holds the contacts until store_rows)
+  for (int i = 0; i < nlocal; i++) {
+    double *k = fix->keys[i];
+    for (int s = 0; s < slots; s++) {
+      if (k[s] == 0.0) continue;
+      if (energy && !claimed[(size_t) i * slots + s]) {
+        const tagint partner = (tagint) k[s];
         double delta_end = 0.0;
         int j = atom->map_style != Atom::MAP_NONE ? atom->map(partner) : -1;
         if (j >= 0) {
@@ -427,10 +485,37 @@ void PairDemContact::free_ended(int i, int hs)
           const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
           delta_end = std::min(0.0, atom->radius[i] + atom->radius[j] - std::sqrt(dx * dx + dy * dy + dz * dz));
         }
-        fix->dissipated[i] += 0.5 * ended_work(h, hs, delta_end);
+        fix->dissipated[i] += 0.5 * ended_work(fix->hist + ((size_t) i * slots + s) * row_size, row_size, delta_end);
       }
-      std::memset(h, 0, sizeof(double) * hs);
+      k[s] = 0.0;
     }
+  }
+}
+
+// the pool's contacts written into the rows of their local atoms (both, where both are here), as the fix asks
+// before atoms move (RowKeeper): the atoms are where the list was built
+void PairDemContact::store_rows()
+{
+  fill.assign(atom->nmax, 0);
+  for (int i = 0; i < atom->nlocal; i++) std::memset(fix->keys[i], 0, sizeof(double) * slots);
+  for (size_t r = 0; r < pairing.size(); r++) {
+    const Pairing &w = pairing[r];
+    if (w.ti == 0) continue;
+    for (int side = 0; side < 2; side++) {
+      const int i = side ? w.j : w.i;
+      if (i < 0) continue;
+      const tagint partner = side ? w.ti : w.tj;
+      if (fill[i] >= slots)
+        error->one(FLERR,
+                   "pair dem/contact: atom {} has more than {} contacts at once: give pair_style dem/contact a "
+                   "larger slots N (history rows per atom)",
+                   side ? w.tj : w.ti, slots);
+      const int s = fill[i]++;
+      fix->keys[i][s] = (double) partner;
+      std::memcpy(fix->hist + ((size_t) i * slots + s) * row_size, live.data() + r * row_size,
+                  sizeof(double) * row_size);
+    }
+  }
 }
 
 // at a run's set-up: the forces of the last step again, where every atom has them from this step (the last
@@ -491,108 +576,77 @@ void PairDemContact::compute(int eflag, int vflag)
   double *special_lj = force->special_lj;
   const bool reapply = setup && reapply_saved();
 
-  epoch++;
-  if ((int) seen.size() < nlocal * slots) seen.assign((size_t) 2 * nlocal * slots + 16, 0);
-  if ((int) atom_epoch.size() < nlocal) atom_epoch.assign((size_t) 2 * nlocal + 16, 0);
-  touched.clear();
-  pairs.clear();
-  hrow.clear();
-  second.clear();
-  int overflow = -1;
-  tagint self_image = 0, twice = 0;
+  // the contacts' histories by list entry, taken from the atoms' rows where LAMMPS built its lists (or a run
+  // begins); the atoms' rows are stale from this step on (the fix asks store_rows for them)
+  if (setup || neighbor->ago == 0) load_rows();
+  fix->stale = true;
+
+  tagint self_image = 0;
   double fastest = 0.0;
   int fastest_a = -1, fastest_b = -1;
-
   const int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  const int64_t entries = entry_start[inum];
+  if ((int64_t) hrow.size() < entries + 1) {
+    pairs.resize(2 * (entries + entries / 4 + 16));
+    hrow.resize(entries + entries / 4 + 16);
+  }
+  int64_t *pair_at = pairs.data(), *row_at = hrow.data(), *entry_at = entry_row.data();
+  int64_t n = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
+    int64_t *at = entry_at + entry_start[ii];
     for (int jj = 0; jj < jnum; jj++) {
       int j = jlist[jj];
       if (special_lj[sbmask(j)] == 0.0) continue;    // excluded pairs (special_bonds lj 0), as pair granular
       j &= NEIGHMASK;
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double rs = radius[i] + radius[j];
-      if (dx * dx + dy * dy + dz * dz >= rs * rs) continue;
+      const double rs = radius[i] + radius[j], r2 = dx * dx + dy * dy + dz * dz;
+      if (r2 >= rs * rs) {
+        // (a contact that ended: its energy accounted at the gap now)
+        if (at[jj] >= 0) {
+          end_row(at[jj], rs - std::sqrt(r2));
+          at[jj] = -1;
+        }
+        continue;
+      }
       if (tag[i] == tag[j]) {
         self_image = tag[i];
         continue;
       }
       const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
-      // the row that keeps the history: the lower id's where both atoms are here, else the local atom's
-      const int p = a < nlocal ? a : b, q = a < nlocal ? b : a;
-      bool fresh;
-      int r = find_row(p, (double) tag[q], fresh);
-      if (r < 0) {
-        overflow = tag[p];
-        continue;
-      }
-      int64_t row = (int64_t) p * slots + r;
-      if (seen[row] == epoch) {
-        twice = tag[p];
-        continue;
-      }
-      seen[row] = epoch;
-      mark(p);
-      if (fresh) {
+      if (at[jj] < 0) {
+        at[jj] = take_row(i, j, nlocal);
         // the normal speed a contact begins at (approach > 0)
-        const double r_ = std::sqrt(dx * dx + dy * dy + dz * dz);
         double **v = atom->v;
-        const double vn = ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / r_;
+        const double vn =
+            ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / std::sqrt(r2);
         if (vn > fastest) {
           fastest = vn;
           fastest_a = a;
           fastest_b = b;
         }
       }
-      int64_t other = -1;
-      if (q < nlocal) {
-        bool other_fresh;
-        int s = find_row(q, (double) tag[p], other_fresh);
-        if (s < 0) {
-          overflow = tag[q];
-          continue;
-        }
-        other = (int64_t) q * slots + s;
-        seen[other] = epoch;
-        mark(q);
-      }
-      pairs.push_back(a);
-      pairs.push_back(b);
-      hrow.push_back(row);
-      second.push_back(other);
+      pair_at[2 * n] = a;
+      pair_at[2 * n + 1] = b;
+      row_at[n] = at[jj];
+      n++;
     }
   }
-  if (overflow >= 0)
+  if (self_image)
     error->one(FLERR,
-               "pair dem/contact: atom {} has more than {} contacts at once: give pair_style dem/contact a larger "
-               "slots N (history rows per atom)",
-               overflow, slots);
-  if (self_image || twice)
-    error->one(FLERR,
-               "pair dem/contact: atom {} touches {} through a periodic boundary: the box is narrower than two "
+               "pair dem/contact: atom {} touches itself through a periodic boundary: the box is narrower than two "
                "diameters along a periodic direction; make it wider",
-               self_image ? self_image : twice, self_image ? "itself" : "two images of one partner");
+               self_image);
 
   if (!setup && fastest > vmax) check_onset(fastest, fastest_a, fastest_b);
 
-  // rows of local atoms whose contact ended: freed. Only atoms that had rows after the last step or have a
-  // contact now can hold one, while atoms keep their indices (until LAMMPS rebuilds its lists: then all)
-  if (setup || neighbor->ago == 0 || nlocal != nlocal_last) {
-    for (int i = 0; i < nlocal; i++) free_ended(i, hs);
-  } else {
-    for (int i : held) free_ended(i, hs);
-  }
-  held.swap(touched);
-  touched.clear();
-  nlocal_last = nlocal;
-
-  const int64_t n = (int64_t) hrow.size();
+  n_contacts = n;
   out.resize((size_t) N_OUT * n + 1);
-  double *H = fix->hist;
-  int64_t h_rows = (int64_t) nlocal * slots;
+  double *H = live.data();
+  int64_t h_rows = (int64_t) pairing.size();
   int64_t *rows = hrow.data();
   double dt = update->dt;
   if (setup) {
@@ -645,10 +699,6 @@ void PairDemContact::compute(int eflag, int vflag)
     check_deep(n);
     deep_checked = true;
   }
-  if (!setup)
-    for (int64_t k = 0; k < n; k++)
-      if (second[k] >= 0) std::memcpy(H + second[k] * hs, H + hrow[k] * hs, sizeof(double) * hs);
-
   if (direct) return;
   acc.assign((size_t) 6 * nlocal + 1, 0.0);
   for (int64_t k = 0; k < n; k++) {
@@ -699,6 +749,7 @@ bool PairDemContact::any_resized(int nall)
 
 double PairDemContact::memory_usage()
 {
-  return (double) (seen.capacity() + pairs.capacity() + hrow.capacity() + second.capacity()) * sizeof(int64_t) +
-      (double) (out.capacity() + scratch.capacity() + acc.capacity()) * sizeof(double);
+  return (double) (entry_row.capacity() + pairs.capacity() + hrow.capacity()) * sizeof(int64_t) +
+      (double) (out.capacity() + scratch.capacity() + acc.capacity() + live.capacity()) * sizeof(double) +
+      (double) pairing.capacity() * sizeof(Pairing);
 }

@@ -15,8 +15,8 @@
    The table file (dem_contact.lammps.table_file.save) holds the parameter rows of every pair of atom types and
    their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
    both, in one canonical order, body 1 the lower atom id, from the same inputs, so both copies of its history
-   stay equal and no history is communicated), keeps each contact's history rows in the per-atom rows of its fix
-   (FixDemContactHistory), and hands the touching pairs to the package's compiled step once per step
+   stay equal and no history is communicated), keeps each contact's history by neighbour-list entry between list
+   builds and in the per-atom rows of its fix (FixDemContactHistory) when atoms move, and hands the touching pairs to the package's compiled step once per step
    (dem_contact/lammps/pair_kernel.py), reached through Python (python_link.h). It adds the returned forces and
    torques to the local atoms and tallies the virial. */
 #ifdef PAIR_CLASS
@@ -24,6 +24,7 @@
 #ifndef DEM_CONTACT_PAIR_H
 #define DEM_CONTACT_PAIR_H
 
+#include "fix_dem_contact_history.h"
 #include "pair.h"
 
 #include <cstdint>
@@ -50,9 +51,7 @@ struct DemContactAttach {
 
 namespace LAMMPS_NS {
 
-class FixDemContactHistory;
-
-class PairDemContact : public Pair {
+class PairDemContact : public Pair, public RowKeeper {
  public:
   // columns of the per-contact output of a step (dem_contact/lammps/pair_kernel.py, OUT_...)
   enum {
@@ -86,6 +85,7 @@ class PairDemContact : public Pair {
   void init_style() override;
   double init_one(int, int) override;
   double memory_usage() override;
+  void store_rows() override;
 
   // the overlap of a head-on impact at vmax of a contact of the table's row information info (at 1 m/s) with
   // R* rs and m* ms: the row's, by the law's exponent of the speed and Hertz's scaling with m*^2 / R*
@@ -98,7 +98,7 @@ class PairDemContact : public Pair {
   // atoms (local indices, body 1 the lower id; valid until atoms move between ranks or are sorted) and
   // their rows of N_OUT values
   bigint evaluated_step;
-  int64_t contact_count() const { return (int64_t) hrow.size(); }
+  int64_t contact_count() const { return n_contacts; }
   const int64_t *contact_atoms() const { return pairs.data(); }
   const double *contact_values() const { return out.data(); }
   // what fix dem/contact/wall takes from the pair style: its table file, vmax and frame_spin
@@ -117,24 +117,35 @@ class PairDemContact : public Pair {
   int energy, row_size;    // energy yes|no; the values of a contact row: the law's history (+ N_EXTRA)
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
-  int64_t epoch;
-  std::vector<int64_t> seen, atom_epoch, pairs, hrow, second, scratch_rows, prow;
-  std::vector<int> touched, held;    // local atoms in a contact at this step, and at the last
+  // Between list builds the contacts' histories live in a pool (live: rows of row_size values), one row per
+  // contact, found by the neighbour-list entry of its pair (entry_row[entry_start[ii] + jj]: -1, none); per
+  // pool row its atoms (i local, j local or -1 for a ghost) and their ids (ti = 0: a free row)
+  struct Pairing {
+    int i, j;
+    tagint ti, tj;
+  };
+  std::vector<double> live;
+  std::vector<Pairing> pairing;
+  std::vector<int64_t> entry_start, entry_row, free_rows;
+  std::vector<char> claimed;
+  std::vector<int> fill;
+  std::vector<int64_t> pairs, hrow, scratch_rows, prow;
   std::vector<double> out, scratch, acc, work, pc;
-  int nlocal_last;
+  int64_t n_contacts;
 
   void allocate();
   void attach_table(const char *path);
   void check_atoms();
   void check_time_step();
-  int find_row(int i, double key, bool &fresh);
+  int row_of(int i, double key) const;
+  int64_t take_row(int i, int j, int nlocal);
+  void end_row(int64_t r, double delta_end);
+  void load_rows();
   double contact_time(int a, int b, double vn);
   void check_onset(double vn, int a, int b);
   bool reapply_saved();
   void save_forces(int nlocal);
   bool any_resized(int nall);
-  void mark(int i);
-  void free_ended(int i, int hs);
   void history_fix();
   void check_deep(int64_t n);
   void check_grown(int nlocal);
