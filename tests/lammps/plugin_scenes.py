@@ -16,8 +16,9 @@ Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 - pack: 64 spheres on a cubic lattice 1% closer than touching, periodic, with random velocities and spins (six
   lasting contacts each, many across the subdomains and the periodic boundaries), sorted every 50 steps.
 
-Options: --restart-write N: run N steps and write DIR/SCENE.restart; --restart-read: read it (on any number of
-ranks) and run --steps more; --pieces K: the run in K runs; --sds; --frame-spin.
+Options: --restart-write N: run N steps and write DIR/SCENE.restart; --restart-during N: the same file written
+during the run, at step N (LAMMPS's restart command, plugin); --restart-read: read it (on any number of ranks)
+and run --steps more; --pieces K: the run in K runs; --sds; --frame-spin.
 --newton on|off, --steps N, --mu (the pair's friction coefficient).
 """
 import argparse
@@ -148,6 +149,8 @@ def advance(lmp, a, t, restart, walls=()):
     the walls' loads and this rank's contacts)."""
     bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin, walls)
     steps = a.restart_write or a.steps
+    if a.restart_during:
+        lmp.command(f"restart {a.restart_during} {restart} {restart}.next")
     for _ in range(a.pieces):
         run(lmp, bridge, steps // a.pieces)
     if a.restart_write:
@@ -424,6 +427,7 @@ def main():
     p.add_argument("--mesh", action="store_true", help="floor: the floor an STL mesh (engines plugin, bridge)")
     p.add_argument("--pieces", type=int, default=1)
     p.add_argument("--restart-write", type=int, default=0)
+    p.add_argument("--restart-during", type=int, default=0)
     p.add_argument("--restart-read", action="store_true")
     a = p.parse_args()
     result = {}
