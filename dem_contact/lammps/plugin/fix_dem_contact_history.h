@@ -3,7 +3,8 @@
 
    Every atom has `slots` rows. Row s of atom i: its key keys[i][s] (the partner's atom id; 0: free) and the
    law's history hist[(i * slots + s) * history_size ...] (dem_contact's 3D history row). A contact of two
-   atoms has a row in each; the pair style keeps them equal. Per atom also the contact force and torque of the
+   atoms has a row in each where both are on the rank, equal (the pair style writes them; fix dem/contact/wall
+   keeps one per wall contact). Per atom also the contact force and torque of the
    last step of a run, the state they were computed at and that step (saved[i][...]), which the next run's
    set-up reapplies when nothing has changed, also after a restart file (on any number of ranks), and the energy
    its ended contacts dissipated (dissipated[i], J: half of each contact with another atom, all of a wall
