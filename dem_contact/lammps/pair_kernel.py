@@ -1,11 +1,11 @@
 """The contact work of ``pair_style dem/contact`` (the LAMMPS plugin) for one step, compiled by numba and
 called by the plugin's C++ pair style through a C function pointer (a numba ``cfunc``), once per step.
 
-The pair style walks LAMMPS's neighbour list, finds the touching pairs and their history rows (kept per atom by
-its fix, which moves them with the atoms), and hands them over in the canonical order of the bridge: the atom
-with the lower id is body 1. This kernel computes what ``kernels.gather_contacts`` computes for a sphere pair
-(normal, overlap, slip velocity with the full radii, per-contact R* and m* for atoms not of their type's size),
-runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
+The pair style walks LAMMPS's neighbour list, finds the touching pairs and their history rows, and hands them
+over in the canonical order of the bridge (the atom with the lower id is body 1) with the law's inputs it
+gathered as ``kernels.gather_contacts`` does for a sphere pair (normal, overlap, slip velocity with the full
+radii, relative spin, the spin of the contact frame). This kernel gives atoms not of their type's size their
+per-contact R* and m*, runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
 returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
 models), the overlap, the tangential force, the normal and the friction coefficient (and with ``energy yes`` the
 work of the contact's forces, ``account_work``), or adds the forces and torques to LAMMPS's itself, with the
@@ -26,12 +26,12 @@ from numba import carray, cfunc, njit, types
 
 from ..dem.contact3d import _LOOPS, _torque_laws_of as torque_laws_of
 from ..laws.dispatch import tangential_base, uses_rate
-from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_TANGENTIAL_LAW
+from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_ROLLING_LAW, P_TANGENTIAL_LAW, P_TWIST_LAW
 from ..laws.vector import V_N, W_WORK, renamed
 from . import kernels as K
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 5
+ABI = 6
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
 #: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient, the work the
@@ -69,9 +69,9 @@ VIRIAL = 4
 ENERGY = 8
 
 
-#: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's inputs and outputs,
-#: each a contiguous block (normals, velocities, spins, forces, tforces, torques: n x 3; overlaps, wn: n)
-N_WORK = 20
+#: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's outputs, each a
+#: contiguous block (forces, tforces, torques: n x 3)
+N_WORK = 9
 
 
 @njit(inline="always", cache=True)
@@ -96,13 +96,19 @@ def account_work(H, r, w_col, delta, vx, vy, vz, nx, ny, nz, dt):
 
 
 @njit(inline="always", cache=True)
+def work_column(nid, params, row):
+    """The column of the tangential law's running work W_WORK in a history row of parameter row ``row`` (after
+    the normal, twist and rolling laws' states: ``laws.dispatch.tangential_base``)."""
+    qid, rid = torque_laws_of(params, row)
+    return tangential_base(nid, qid, rid) + W_WORK
+
+
+@njit(inline="always", cache=True)
 def work_columns(nid, params):
-    """int64[n_rows]: per parameter row, the column of the tangential law's running work W_WORK in a history row
-    (after the normal, twist and rolling laws' states: ``laws.dispatch.tangential_base``)."""
+    """int64[n_rows]: ``work_column`` of every parameter row."""
     cols = np.empty(params.shape[0], dtype=np.int64)
     for row in range(params.shape[0]):
-        qid, rid = torque_laws_of(params, row)
-        cols[row] = tangential_base(nid, qid, rid) + W_WORK
+        cols[row] = work_column(nid, params, row)
     return cols
 
 
@@ -115,53 +121,40 @@ def ended_work(H, r, delta_end):
     return H[r, x0 + X_WORK] + 0.5 * H[r, V_N] * (delta_end - H[r, x0 + X_DELTA])
 
 
-def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row, rowinfo, type_size, sized,
-          frame_spin, dt, out, work, prow, pc, nlocal, f, torque, write_out, scatter, with_virial, virial, energy):
-    """The m = n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows
-    ``hrow`` (advanced in place; the caller passes copies where nothing may advance): the law's inputs as
-    ``kernels.gather_contacts`` lays them out, the tangential family's loop (``loop``, bound per family), and
-    what the pair style asks: ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and
-    torques added to f, torque float64[nall, 3] for the first ``nlocal`` atoms, with the virial's six
-    components added to ``virial`` (``with_virial``). work float64[N_WORK * n], prow int64[n]: scratch; pc
-    float64[n_rows + n, N_PARAMS] (only where ``sized``: atoms not of their type's size get their own rows
-    there); ``energy``: the rows carry N_EXTRA values after the law's history, the work of the contact's forces
-    (``account_work``). Returns the number of contacts whose force or torques are not finite."""
+def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius, rmass, typ, params, rowinfo,
+          type_size, sized, dt, out, work, prow, pc, nlocal, f, torque, write_out, scatter, with_virial, virial,
+          energy):
+    """The n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows ``hrow``
+    (advanced in place; the caller passes copies where nothing may advance), and the law's inputs the pair style
+    gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (as ``kernels.gather_contacts`` computes
+    them for a sphere pair: ``kernels.sphere_pair``, ``kernels.frame_spin_rate``), spins float64[n, 3] (the
+    relative spins, where the table has twist or rolling laws; else [0, 3]) and prow int64[n] (each pair's
+    parameter row). The tangential family's loop (``loop``, bound per family), then what the pair style asks:
+    ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and torques added to f, torque
+    float64[nall, 3] for the first ``nlocal`` atoms, with the virial's six components added to ``virial``
+    (``with_virial``). work float64[N_WORK * n]: scratch; pc float64[n_rows + n, N_PARAMS] (only where
+    ``sized``: atoms not of their type's size get their own rows there, prow pointing at them); ``energy``: the
+    rows carry N_EXTRA values after the law's history, the work of the contact's forces (``account_work``).
+    Returns the number of contacts whose force or torques are not finite."""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
-    normals = work[0:3 * n].reshape((n, 3))
-    velocities = work[3 * n:6 * n].reshape((n, 3))
-    spins = work[6 * n:9 * n].reshape((n, 3))
-    forces = work[9 * n:12 * n].reshape((n, 3))
-    tforces = work[12 * n:15 * n].reshape((n, 3))
-    torques = work[15 * n:18 * n].reshape((n, 3))
-    overlaps = work[18 * n:19 * n]
-    wn = work[19 * n:20 * n]
+    turning = spins.shape[0] > 0
+    forces = work[0:3 * n].reshape((n, 3))
+    tforces = work[3 * n:6 * n].reshape((n, 3))
+    torques = work[6 * n:(9 if turning else 6) * n].reshape((n if turning else 0, 3))
     w_cols = work_columns(nid, params) if energy else np.empty(0, dtype=np.int64)
+    nr = params.shape[0]
     rows = params
     if sized:
-        pc[:params.shape[0]] = params
+        pc[:nr] = params
         rows = pc
-    for k in range(n):
-        a = pairs[k, 0]
-        b = pairs[k, 1]
-        dx = x[b, 0] - x[a, 0]
-        dy = x[b, 1] - x[a, 1]
-        dz = x[b, 2] - x[a, 2]
-        nx, ny, nz, overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2] = K.sphere_pair(
-            x, v, omega, radius, a, b, dx, dy, dz, dx * dx + dy * dy + dz * dz, radius[a] + radius[b])
-        normals[k, 0] = nx
-        normals[k, 1] = ny
-        normals[k, 2] = nz
-        for d in range(3):
-            spins[k, d] = omega[a, d] - omega[b, d]
-            torques[k, d] = 0.0
-        row = sphere_row[typ[a] - 1, typ[b] - 1]
-        prow[k] = row
-        if sized and (K._resized(radius, rmass, typ, type_size, a) or K._resized(radius, rmass, typ, type_size, b)):
-            rs, ms = K._effective(radius, rmass, a, b, rowinfo, row)
-            prow[k] = params.shape[0] + k
-            K._contact_row(params, row, pc, prow[k], rowinfo, rs, ms)
-        wn[k] = K.frame_spin_rate(omega, a, b, nx, ny, nz) if frame_spin else 0.0
+        for k in range(n):
+            a = pairs[k, 0]
+            b = pairs[k, 1]
+            if K._resized(radius, rmass, typ, type_size, a) or K._resized(radius, rmass, typ, type_size, b):
+                rs, ms = K._effective(radius, rmass, a, b, rowinfo, prow[k])
+                K._contact_row(params, prow[k], pc, nr + k, rowinfo, rs, ms)
+                prow[k] = nr + k
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(n):
@@ -172,34 +165,36 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
                 velocities[k, d] -= kick * normals[k, d]
     loop(nid, tid, rows, prow, H, hrow, normals, overlaps, velocities, spins, wn, dt, forces, tforces,  # noqa: F821
          torques)
-    nr = params.shape[0]
-    for k in range(n if energy else 0):
-        # (a contact's own row, of atoms not of their type's size, has its pair of types' laws)
-        row = prow[k] if prow[k] < nr else sphere_row[typ[pairs[k, 0]] - 1, typ[pairs[k, 1]] - 1]
-        account_work(H, hrow[k], w_cols[row], overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2],
-                     normals[k, 0], normals[k, 1], normals[k, 2], dt)
-    bad = 0
+    if energy:
+        for k in range(n):
+            r = prow[k]
+            account_work(H, hrow[k], w_cols[r] if r < nr else work_column(nid, rows, r), overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2],
+                         normals[k, 0], normals[k, 1], normals[k, 2], dt)
+    # (one sum of every force and torque: not finite where any is)
+    check = 0.0
     for k in range(n):
         a = pairs[k, 0]
         b = pairs[k, 1]
         cx, cy, cz = K.normal_cross(normals, tforces, k)
         delta = overlaps[k]
-        # torque on a sphere: (R - delta/2) n x Ft on both bodies of the pair
+        # torque on a sphere: (R - delta/2) n x Ft on both bodies of the pair, and the twist and rolling laws'
         arm_a = radius[a] - 0.5 * delta
         arm_b = radius[b] - 0.5 * delta
+        qx = qy = qz = 0.0
+        if turning:
+            qx = torques[k, 0]
+            qy = torques[k, 1]
+            qz = torques[k, 2]
         fx = forces[k, 0]
         fy = forces[k, 1]
         fz = forces[k, 2]
-        tax = arm_a * cx + torques[k, 0]
-        tay = arm_a * cy + torques[k, 1]
-        taz = arm_a * cz + torques[k, 2]
-        tbx = arm_b * cx - torques[k, 0]
-        tby = arm_b * cy - torques[k, 1]
-        tbz = arm_b * cz - torques[k, 2]
-        if not (math.isfinite(fx) and math.isfinite(fy) and math.isfinite(fz) and math.isfinite(tax)
-                and math.isfinite(tay) and math.isfinite(taz) and math.isfinite(tbx) and math.isfinite(tby)
-                and math.isfinite(tbz)):
-            bad += 1
+        tax = arm_a * cx + qx
+        tay = arm_a * cy + qy
+        taz = arm_a * cz + qz
+        tbx = arm_b * cx - qx
+        tby = arm_b * cy - qy
+        tbz = arm_b * cz - qz
+        check += (fx + fy + fz) + (tax + tay + taz) + (tbx + tby + tbz)
         if write_out:
             out[k, OUT_F] = fx
             out[k, OUT_F + 1] = fy
@@ -247,17 +242,33 @@ def _step(n, pairs, hrow, H, x, v, omega, radius, rmass, typ, params, sphere_row
                 virial[3] += h * dx * fy
                 virial[4] += h * dx * fz
                 virial[5] += h * dy * fz
-    return bad
+    return 0 if math.isfinite(check) else _not_finite(n, forces, tforces, torques)
 
 
-def _entry(n, pairs, hrow, H, h_rows, hs, x, v, omega, radius, rmass, typ, nall, params, n_rows, sphere_row,
-           n_types, rowinfo, type_size, sized, frame_spin, dt, out, work, prow, pc, nlocal, f, torque, flags, virial):
+@njit(cache=True)
+def _not_finite(n, forces, tforces, torques):
+    """The number of contacts whose force, tangential force or twist and rolling torques are not finite."""
+    bad = 0
+    for k in range(n):
+        ok = True
+        for d in range(3):
+            ok = ok and math.isfinite(forces[k, d]) and math.isfinite(tforces[k, d])
+            if torques.shape[0] > 0:
+                ok = ok and math.isfinite(torques[k, d])
+        bad += 0 if ok else 1
+    return max(bad, 1)
+
+
+def _entry(n, pairs, hrow, H, h_rows, hs, normals, overlaps, velocities, spins, wn, turning, x, radius, rmass, typ,
+           nall, params, n_rows, rowinfo, type_size, n_types, sized, dt, out, work, prow, pc, nlocal, f, torque, flags,
+           virial):
     """The C entry of ``_step``: raw pointers of the pair style's buffers and LAMMPS's per-atom arrays."""
     return step(n, carray(pairs, (n, 2)), carray(hrow, (n,)), carray(H, (h_rows, hs)),  # noqa: F821
-                carray(x, (nall, 3)), carray(v, (nall, 3)), carray(omega, (nall, 3)), carray(radius, (nall,)),
-                carray(rmass, (nall,)), carray(typ, (nall,)), carray(params, (n_rows, N_PARAMS)),
-                carray(sphere_row, (n_types, n_types)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
-                carray(type_size, (n_types, 2)), sized != 0, frame_spin != 0, dt, carray(out, (n, N_OUT)),
+                carray(normals, (n, 3)), carray(overlaps, (n,)), carray(velocities, (n, 3)),
+                carray(spins, (n if turning else 0, 3)), carray(wn, (n,)), carray(x, (nall, 3)),
+                carray(radius, (nall,)), carray(rmass, (nall,)), carray(typ, (nall,)),
+                carray(params, (n_rows, N_PARAMS)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
+                carray(type_size, (n_types, 2)), sized != 0, dt, carray(out, (n, N_OUT)),
                 carray(work, (N_WORK * n,)), carray(prow, (n,)), carray(pc, (n_rows + (n if sized else 0), N_PARAMS)),
                 nlocal, carray(f, (nall, 3)), carray(torque, (nall, 3)), (flags & WRITE_OUT) != 0,
                 (flags & SCATTER) != 0, (flags & VIRIAL) != 0, carray(virial, (6,)), (flags & ENERGY) != 0)
@@ -267,9 +278,9 @@ _I64P = types.CPointer(types.int64)
 _F64P = types.CPointer(types.float64)
 #: the C signature of the step (``pair_dem_contact.cpp``, ``StepFn``)
 SIGNATURE = types.int64(types.int64, _I64P, _I64P, _F64P, types.int64, types.int64, _F64P, _F64P, _F64P, _F64P,
-                        _F64P, types.CPointer(types.int32), types.int64, _F64P, types.int64, _I64P, types.int64,
-                        _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _I64P, _F64P,
-                        types.int64, _F64P, _F64P, types.int64, _F64P)
+                        _F64P, types.int64, _F64P, _F64P, _F64P, types.CPointer(types.int32), types.int64, _F64P,
+                        types.int64, _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _I64P,
+                        _F64P, types.int64, _F64P, _F64P, types.int64, _F64P)
 
 _CFUNCS = {}
 
@@ -300,6 +311,7 @@ class Attach(ctypes.Structure):
         ("type_size", ctypes.c_void_p),
         ("size_free", ctypes.c_int64),
         ("history_size", ctypes.c_int64),
+        ("turning", ctypes.c_int64),
         ("tc_unit", ctypes.c_void_p),
         ("alpha", ctypes.c_void_p),
         ("laws", ctypes.c_char * 512),
@@ -348,6 +360,7 @@ def _attach(path, n_types, out, address):
     out.n_types = nt
     out.size_free = int(saved.size_free)
     out.history_size = table.history_size
+    out.turning = int(bool(np.any(table.params[:, P_TWIST_LAW] > 1) or np.any(table.params[:, P_ROLLING_LAW] > 1)))
     out.laws = saved.laws.encode()[:511]
     out.error = b""
 

@@ -24,18 +24,18 @@ using namespace LAMMPS_NS;
 namespace {
 // the compiled step (pair_kernel.SIGNATURE): per-contact force on body 1, torques on both bodies, overlap
 typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, int64_t h_rows, int64_t hs,
-                          double *x, double *v, double *omega, double *radius, double *rmass, int *type,
-                          int64_t nall, const double *params, int64_t n_rows, const int64_t *sphere_row,
-                          int64_t n_types, const double *rowinfo, const double *type_size, int64_t sized,
-                          int64_t frame_spin, double dt, double *out, double *work, int64_t *prow, double *pc,
-                          int64_t nlocal, double *f, double *torque, int64_t flags, double *virial);
+                          double *normals, double *overlaps, double *velocities, double *spins, double *wn,
+                          int64_t turning, double *x, double *radius, double *rmass, int *type, int64_t nall,
+                          const double *params, int64_t n_rows, const double *rowinfo, const double *type_size,
+                          int64_t n_types, int64_t sized, double dt, double *out, double *work, int64_t *prow,
+                          double *pc, int64_t nlocal, double *f, double *torque, int64_t flags, double *virial);
 // the flags of a step (pair_kernel.WRITE_OUT, SCATTER, VIRIAL)
 const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4, ENERGY = 8;
-const int N_WORK = 20;   // pair_kernel.N_WORK
+const int N_WORK = 9;    // pair_kernel.N_WORK
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 // kernels.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
-const int ABI = 5;       // pair_kernel.ABI
+const int ABI = 6;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;
@@ -47,7 +47,7 @@ const double SIZE_TOL = 1e-9;
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
     warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0),
-    row_size(0), fix(nullptr), n_contacts(0)
+    row_size(0), fix(nullptr), n_contacts(0), cap(0)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -587,11 +587,22 @@ void PairDemContact::compute(int eflag, int vflag)
   const int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   const int64_t entries = entry_start[inum];
-  if ((int64_t) hrow.size() < entries + 1) {
-    pairs.resize(2 * (entries + entries / 4 + 16));
-    hrow.resize(entries + entries / 4 + 16);
+  if (cap < entries + 1) {
+    cap = entries + entries / 4 + 16;
+    pairs.resize(2 * cap);
+    hrow.resize(cap);
+    prow.resize(cap);
+    inputs.resize(N_INPUTS * cap);
   }
-  int64_t *pair_at = pairs.data(), *row_at = hrow.data(), *entry_at = entry_row.data();
+  int64_t *pair_at = pairs.data(), *row_at = hrow.data(), *entry_at = entry_row.data(), *prow_at = prow.data();
+  // the law's inputs, blocks of cap contacts: normals, slip velocities and relative spins (3 each), overlaps,
+  // spins of the contact frame about the normal
+  double *normals = inputs.data(), *velocities = normals + 3 * cap, *spins = velocities + 3 * cap;
+  double *overlaps = spins + 3 * cap, *wn = overlaps + cap;
+  double **v = atom->v, **omega = atom->omega;
+  const int *type = atom->type;
+  const int64_t ntypes = kernel.n_types;
+  const bool turning = kernel.turning != 0;
   int64_t n = 0;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -620,7 +631,6 @@ void PairDemContact::compute(int eflag, int vflag)
       if (at[jj] < 0) {
         at[jj] = take_row(i, j, nlocal);
         // the normal speed a contact begins at (approach > 0)
-        double **v = atom->v;
         const double vn =
             ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / std::sqrt(r2);
         if (vn > fastest) {
@@ -632,6 +642,30 @@ void PairDemContact::compute(int eflag, int vflag)
       pair_at[2 * n] = a;
       pair_at[2 * n + 1] = b;
       row_at[n] = at[jj];
+      prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
+      // The law's inputs, body 1 a (kernels.sphere_pair's arithmetic, as the bridge gathers them): the unit
+      // normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
+      // w_b) x n, the relative spin w_a - w_b, and the mean spin of the two bodies about the normal
+      // (kernels.frame_spin_rate; frame_spin no: 0)
+      const double ex = x[b][0] - x[a][0], ey = x[b][1] - x[a][1], ez = x[b][2] - x[a][2];
+      const double r = std::sqrt(ex * ex + ey * ey + ez * ez), rinv = 1.0 / r;
+      const double nx = ex * rinv, ny = ey * rinv, nz = ez * rinv;
+      const double ra = radius[a], rb = radius[b];
+      const double wx = ra * omega[a][0] + rb * omega[b][0], wy = ra * omega[a][1] + rb * omega[b][1],
+                   wz = ra * omega[a][2] + rb * omega[b][2];
+      double *nk = normals + 3 * n, *vk = velocities + 3 * n;
+      nk[0] = nx;
+      nk[1] = ny;
+      nk[2] = nz;
+      overlaps[n] = (ra + rb) - r;
+      vk[0] = v[a][0] - v[b][0] + (wy * nz - wz * ny);
+      vk[1] = v[a][1] - v[b][1] + (wz * nx - wx * nz);
+      vk[2] = v[a][2] - v[b][2] + (wx * ny - wy * nx);
+      if (turning)
+        for (int d = 0; d < 3; d++) spins[3 * n + d] = omega[a][d] - omega[b][d];
+      wn[n] = frame_spin ? 0.5 * ((omega[a][0] + omega[b][0]) * nx + (omega[a][1] + omega[b][1]) * ny +
+                                  (omega[a][2] + omega[b][2]) * nz)
+                         : 0.0;
       n++;
     }
   }
@@ -670,7 +704,6 @@ void PairDemContact::compute(int eflag, int vflag)
     sized = kernel.size_free && any_resized(nall);
   }
   if ((int64_t) work.size() < N_WORK * n + 1) work.resize(2 * N_WORK * n + 64);
-  if ((int64_t) prow.size() < n + 1) prow.resize(2 * n + 16);
   if (sized && (int64_t) pc.size() < (kernel.n_rows + n) * N_PARAMS) pc.resize((kernel.n_rows + 2 * n + 16) * N_PARAMS);
   // An ordinary step: the kernel adds the forces, torques and global virial to LAMMPS's. A run's set-up (whose
   // forces may be the saved ones), its last step (whose forces are saved), a per-atom virial or energy, or a
@@ -681,11 +714,12 @@ void PairDemContact::compute(int eflag, int vflag)
       (energy ? ENERGY : 0);
   double vsum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   auto step = (StepFn) kernel.step;
-  int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, x[0], atom->v[0], atom->omega[0], radius, atom->rmass,
-                         atom->type, nall, kernel.params, kernel.n_rows, kernel.sphere_row, kernel.n_types,
-                         kernel.rowinfo, kernel.type_size, sized, frame_spin, dt, out.data(), work.data(),
-                         prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal, f[0],
-                         torque[0], flags, vsum)
+  double *in = inputs.data();
+  int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, in, in + 9 * cap, in + 3 * cap, in + 6 * cap,
+                         in + 10 * cap, kernel.turning, x[0], radius, atom->rmass, atom->type, nall, kernel.params,
+                         kernel.n_rows, kernel.rowinfo, kernel.type_size, kernel.n_types, sized, dt, out.data(),
+                         work.data(), prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal,
+                         f[0], torque[0], flags, vsum)
                   : 0;
   if (flags & VIRIAL)
     for (int d = 0; d < 6; d++) virial[d] += vsum[d];
@@ -750,6 +784,6 @@ bool PairDemContact::any_resized(int nall)
 double PairDemContact::memory_usage()
 {
   return (double) (entry_row.capacity() + pairs.capacity() + hrow.capacity()) * sizeof(int64_t) +
-      (double) (out.capacity() + scratch.capacity() + acc.capacity() + live.capacity()) * sizeof(double) +
+      (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity()) * sizeof(double) +
       (double) pairing.capacity() * sizeof(Pairing);
 }

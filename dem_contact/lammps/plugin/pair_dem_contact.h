@@ -44,6 +44,7 @@ struct DemContactAttach {
   const double *type_size;
   int64_t size_free;
   int64_t history_size;
+  int64_t turning;    // the table has twist or rolling laws (the step takes the relative spins)
   const double *tc_unit;
   const double *alpha;
   char laws[512];
@@ -129,9 +130,11 @@ class PairDemContact : public Pair, public RowKeeper {
   std::vector<int64_t> entry_start, entry_row, free_rows;
   std::vector<char> claimed;
   std::vector<int> fill;
+  // the step's contacts (room for cap): atoms, pool rows, parameter rows, and the law's inputs (N_INPUTS blocks)
+  enum { N_INPUTS = 11 };
   std::vector<int64_t> pairs, hrow, scratch_rows, prow;
-  std::vector<double> out, scratch, acc, work, pc;
-  int64_t n_contacts;
+  std::vector<double> inputs, out, scratch, acc, work, pc;
+  int64_t n_contacts, cap;
 
   void allocate();
   void attach_table(const char *path);
