@@ -69,16 +69,11 @@ VIRIAL = 4
 ENERGY = 8
 
 
-#: values per contact of the scratch the pair style passes (float64[N_WORK * n]): the law's outputs, each a
-#: contiguous block (forces, tforces, torques: n x 3)
-N_WORK = 9
-
-
 @njit(inline="always", cache=True)
 def account_work(H, r, w_col, delta, vx, vy, vz, nx, ny, nz, dt):
     """After the law's step of the contact of row r of H (whose last N_EXTRA values are the plugin's), with
     overlap delta, slip velocity v and normal n (the law's inputs; w_col: the column of the tangential law's
-    running work W_WORK, ``work_columns``): the normal force's work advanced by the trapezoid rule, 0.5 (N_last
+    running work W_WORK, ``work_column``): the normal force's work advanced by the trapezoid rule, 0.5 (N_last
     + N) (delta - delta_last), as the law's W_WORK is, and the total with W_WORK; the overlap and the normal
     force kept for the next step. A contact that begins (X_DELTA still 0) starts from its overlap at the last
     step, a gap, delta - dt (v . n), as the time integration moved the bodies, and no force: so the work of its
@@ -122,8 +117,8 @@ def ended_work(H, r, delta_end):
 
 
 def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius, rmass, typ, params, rowinfo,
-          type_size, sized, dt, out, work, prow, pc, nlocal, f, torque, write_out, scatter, with_virial, virial,
-          energy):
+          type_size, sized, dt, out, forces, tforces, torques, prow, pc, nlocal, f, torque, write_out, scatter,
+          with_virial, virial, energy):
     """The n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows ``hrow``
     (advanced in place; the caller passes copies where nothing may advance), and the law's inputs the pair style
     gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (as ``kernels.gather_contacts`` computes
@@ -132,17 +127,15 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
     parameter row). The tangential family's loop (``loop``, bound per family), then what the pair style asks:
     ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and torques added to f, torque
     float64[nall, 3] for the first ``nlocal`` atoms, with the virial's six components added to ``virial``
-    (``with_virial``). work float64[N_WORK * n]: scratch; pc float64[n_rows + n, N_PARAMS] (only where
+    (``with_virial``). forces, tforces float64[n, 3], torques float64[n, 3] (where spins has n rows, else
+    [0, 3]): scratch for the law's outputs; pc float64[n_rows + n, N_PARAMS] (only where
     ``sized``: atoms not of their type's size get their own rows there, prow pointing at them); ``energy``: the
     rows carry N_EXTRA values after the law's history, the work of the contact's forces (``account_work``).
-    Returns the number of contacts whose force or torques are not finite."""
+    Returns the number of contacts whose force or torques are not finite. (Nothing here allocates: the step
+    also runs compiled ahead of time, without numba's runtime, ``aot``.)"""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
     turning = spins.shape[0] > 0
-    forces = work[0:3 * n].reshape((n, 3))
-    tforces = work[3 * n:6 * n].reshape((n, 3))
-    torques = work[6 * n:(9 if turning else 6) * n].reshape((n if turning else 0, 3))
-    w_cols = work_columns(nid, params) if energy else np.empty(0, dtype=np.int64)
     nr = params.shape[0]
     rows = params
     if sized:
@@ -167,8 +160,7 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
          torques)
     if energy:
         for k in range(n):
-            r = prow[k]
-            account_work(H, hrow[k], w_cols[r] if r < nr else work_column(nid, rows, r), overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2],
+            account_work(H, hrow[k], work_column(nid, rows, prow[k]), overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2],
                          normals[k, 0], normals[k, 1], normals[k, 2], dt)
     # (one sum of every force and torque: not finite where any is)
     check = 0.0
@@ -260,16 +252,19 @@ def _not_finite(n, forces, tforces, torques):
 
 
 def _entry(n, pairs, hrow, H, h_rows, hs, normals, overlaps, velocities, spins, wn, turning, x, radius, rmass, typ,
-           nall, params, n_rows, rowinfo, type_size, n_types, sized, dt, out, work, prow, pc, nlocal, f, torque, flags,
-           virial):
+           nall, params, n_rows, rowinfo, type_size, n_types, sized, dt, out, forces, tforces, torques, prow, pc, nlocal,
+           f, torque, flags, virial):
     """The C entry of ``_step``: raw pointers of the pair style's buffers and LAMMPS's per-atom arrays."""
+    m = n if turning else 0
+    n_pc = n_rows + (n if sized else 0)
     return step(n, carray(pairs, (n, 2)), carray(hrow, (n,)), carray(H, (h_rows, hs)),  # noqa: F821
                 carray(normals, (n, 3)), carray(overlaps, (n,)), carray(velocities, (n, 3)),
-                carray(spins, (n if turning else 0, 3)), carray(wn, (n,)), carray(x, (nall, 3)),
+                carray(spins, (m, 3)), carray(wn, (n,)), carray(x, (nall, 3)),
                 carray(radius, (nall,)), carray(rmass, (nall,)), carray(typ, (nall,)),
                 carray(params, (n_rows, N_PARAMS)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
                 carray(type_size, (n_types, 2)), sized != 0, dt, carray(out, (n, N_OUT)),
-                carray(work, (N_WORK * n,)), carray(prow, (n,)), carray(pc, (n_rows + (n if sized else 0), N_PARAMS)),
+                carray(forces, (n, 3)), carray(tforces, (n, 3)), carray(torques, (m, 3)),
+                carray(prow, (n,)), carray(pc, (n_pc, N_PARAMS)),
                 nlocal, carray(f, (nall, 3)), carray(torque, (nall, 3)), (flags & WRITE_OUT) != 0,
                 (flags & SCATTER) != 0, (flags & VIRIAL) != 0, carray(virial, (6,)), (flags & ENERGY) != 0)
 
@@ -279,8 +274,8 @@ _F64P = types.CPointer(types.float64)
 #: the C signature of the step (``pair_dem_contact.cpp``, ``StepFn``)
 SIGNATURE = types.int64(types.int64, _I64P, _I64P, _F64P, types.int64, types.int64, _F64P, _F64P, _F64P, _F64P,
                         _F64P, types.int64, _F64P, _F64P, _F64P, types.CPointer(types.int32), types.int64, _F64P,
-                        types.int64, _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _I64P,
-                        _F64P, types.int64, _F64P, _F64P, types.int64, _F64P)
+                        types.int64, _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _F64P,
+                        _F64P, _I64P, _F64P, types.int64, _F64P, _F64P, types.int64, _F64P)
 
 _CFUNCS = {}
 

@@ -27,11 +27,13 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           double *normals, double *overlaps, double *velocities, double *spins, double *wn,
                           int64_t turning, double *x, double *radius, double *rmass, int *type, int64_t nall,
                           const double *params, int64_t n_rows, const double *rowinfo, const double *type_size,
-                          int64_t n_types, int64_t sized, double dt, double *out, double *work, int64_t *prow,
-                          double *pc, int64_t nlocal, double *f, double *torque, int64_t flags, double *virial);
+                          int64_t n_types, int64_t sized, double dt, double *out, double *forces, double *tforces,
+                          double *torques, int64_t *prow, double *pc, int64_t nlocal, double *f, double *torque,
+                          int64_t flags, double *virial);
 // the flags of a step (pair_kernel.WRITE_OUT, SCATTER, VIRIAL)
 const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4, ENERGY = 8;
-const int N_WORK = 9;    // pair_kernel.N_WORK
+// the law's outputs per contact (force, tangential force, twist and rolling torque: 3 each)
+const int N_WORK = 9;
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 // kernels.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
@@ -718,7 +720,7 @@ void PairDemContact::compute(int eflag, int vflag)
   int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, in, in + 9 * cap, in + 3 * cap, in + 6 * cap,
                          in + 10 * cap, kernel.turning, x[0], radius, atom->rmass, atom->type, nall, kernel.params,
                          kernel.n_rows, kernel.rowinfo, kernel.type_size, kernel.n_types, sized, dt, out.data(),
-                         work.data(), prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal,
+                         work.data(), work.data() + 3 * n, work.data() + 6 * n, prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal,
                          f[0], torque[0], flags, vsum)
                   : 0;
   if (flags & VIRIAL)
