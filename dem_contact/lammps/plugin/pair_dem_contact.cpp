@@ -2,6 +2,9 @@
 
 #include "fix_dem_contact_history.h"
 #include "python_link.h"
+#ifdef DEM_CONTACT_AOT
+#include "aot.h"
+#endif
 
 #include "atom.h"
 #include "comm.h"
@@ -122,6 +125,13 @@ void PairDemContact::attach_table(const char *path)
 {
   std::memset(&kernel, 0, sizeof(kernel));
   kernel.abi = ABI;
+#ifdef DEM_CONTACT_AOT
+  // (the step compiled ahead of time: no Python)
+  std::string wrong = dem_contact_aot_attach(path, atom->ntypes, kernel, aot_table);
+  if (!wrong.empty()) error->all(FLERR, "pair dem/contact: {}", wrong);
+  attached = true;
+  return;
+#endif
   std::string code = "import dem_contact.lammps.pair_kernel as k\nk.attach(" + DemContact::python_text(path) + ", " +
       std::to_string(atom->ntypes) + ", " + std::to_string((uintptr_t) &kernel) + ")\n";
   std::string failed = DemContact::run_python(code);
@@ -139,10 +149,14 @@ void PairDemContact::coeff(int narg, char **arg)
   if (!allocated) allocate();
   table_path = arg[2];
   if (comm->me == 0)
+#ifdef DEM_CONTACT_AOT
+    utils::logmesg(lmp, "pair dem/contact: reading {} (the step of its laws compiled ahead of time)\n", table_path);
+#else
     utils::logmesg(lmp,
                    "pair dem/contact: reading {} and loading the compiled step of its laws (compiled at the first "
                    "run in this environment, up to a minute, then cached)\n",
                    table_path);
+#endif
   attach_table(arg[2]);
   int n = atom->ntypes;
   for (int i = 1; i <= n; i++)
@@ -723,6 +737,14 @@ void PairDemContact::compute(int eflag, int vflag)
                          work.data(), work.data() + 3 * n, work.data() + 6 * n, prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal,
                          f[0], torque[0], flags, vsum)
                   : 0;
+#ifdef DEM_CONTACT_AOT
+  if (dem_contact_aot_raised) {
+    dem_contact_aot_raised = 0;
+    error->one(FLERR, "pair dem/contact: the step compiled ahead of time failed at step {} (told above); run the "
+                      "same input with the plugin that reaches the package through Python for the message",
+               update->ntimestep);
+  }
+#endif
   if (flags & VIRIAL)
     for (int d = 0; d < 6; d++) virial[d] += vsum[d];
   if (bad)

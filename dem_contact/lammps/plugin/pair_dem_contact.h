@@ -26,6 +26,9 @@
 
 #include "fix_dem_contact_history.h"
 #include "pair.h"
+#ifdef DEM_CONTACT_AOT
+#include "aot.h"
+#endif
 
 #include <cstdint>
 #include <string>
@@ -114,6 +117,9 @@ class PairDemContact : public Pair, public RowKeeper {
   int slots, frame_spin;
   std::string table_path;
   DemContactAttach kernel;
+#ifdef DEM_CONTACT_AOT
+  DemContactAotTable aot_table;    // (the table file's arrays, read without Python)
+#endif
   bool attached, warned_onset, sized, keep_out, deep_checked, radii_change;
   int energy, row_size;    // energy yes|no; the values of a contact row: the law's history (+ N_EXTRA)
   FixDemContactHistory *fix;

