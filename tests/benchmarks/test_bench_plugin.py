@@ -65,3 +65,25 @@ def test_bench_plugin_energy_accounting(benchmark):
                              kwargs=dict(engines="plugin", energy=True), rounds=1, iterations=1)["plugin"]
     benchmark.extra_info.update(ns_per_update=out["ns_per_update"], without_ns_per_update=without["ns_per_update"],
                                 ratio=out["ns_per_update"] / without["ns_per_update"])
+
+
+@pytest.mark.parametrize("tangential", ["mindlin_total", "mdr_adaptive"])
+def test_bench_plugin_in_lmp(benchmark, tangential):
+    """The pressed pack in ``lmp -in`` (tests/lammps/plugin_bench_lmp.py): pair granular, the plugin reaching the
+    step through Python, and the plugin with the step compiled ahead of time (no Python)."""
+    def run(n, steps):
+        from dem_contact.lammps import plugin_build
+        plugin_build.build()
+        r = subprocess.run([sys.executable, "tests/lammps/plugin_bench_lmp.py", str(n), str(steps), "--tangential",
+                            tangential], capture_output=True, text=True, cwd=ROOT,
+                           env=dict(os.environ, LD_LIBRARY_PATH=os.path.join(sys.prefix, "lib"), PYTHONPATH=str(ROOT)))
+        assert r.returncode == 0, r.stderr[-3000:]
+        return json.loads(r.stdout)
+
+    run(216, 20)          # (built and compiled, off the clock)
+    out = benchmark.pedantic(run, args=(2197, 1000), rounds=1, iterations=1)
+    native = out["native"]["ns_per_update"]
+    benchmark.extra_info.update(native_ns_per_update=native, python_ns_per_update=out["python"]["ns_per_update"],
+                                aot_ns_per_update=out["aot"]["ns_per_update"],
+                                python_ratio=out["python"]["ns_per_update"] / native,
+                                aot_ratio=out["aot"]["ns_per_update"] / native)
