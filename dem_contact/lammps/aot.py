@@ -114,7 +114,7 @@ def _tables(laws, entries) -> str:
     from ..laws import table as LT
     from ..laws.slots import N_PARAMS, P_NORMAL_LAW, P_ROLLING_LAW, P_TANGENTIAL_LAW, P_TWIST_LAW
     from ..version import __version__
-    from .kernels import N_ROWINFO
+    from .contact_terms import N_ROWINFO
 
     host = llvm.get_host_cpu_features()
     features = " ".join(f for f in FEATURES if host.get(f, False))

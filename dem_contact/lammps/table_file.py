@@ -22,7 +22,7 @@ from ..dem.pairs import PairTable
 from ..errors import InputError
 from ..laws import table as LT
 from ..laws.slots import N_PARAMS, P_MSTAR, P_NORMAL_LAW, P_ROLLING_LAW, P_RSTAR, P_TANGENTIAL_LAW, P_TWIST_LAW
-from . import kernels as K
+from . import contact_terms as T
 
 #: the file's format name
 FORMAT = "dem_contact pair table"
@@ -39,9 +39,9 @@ _SIZE_PROBE = (1.7, 0.6)
 def size_free(table) -> tuple:
     """(whether every row of the table takes atoms of any radius, why not): the parameter row of the pair of
     types built for other radii (a Scene with the first body 1.7 times larger and the second 0.6 times) must
-    be the row with that pair's R* and m* (``kernels._contact_row``: the slots of ``kernels.SIZE_SLOTS``
+    be the row with that pair's R* and m* (``contact_terms.contact_row``: the slots of ``contact_terms.SIZE_SLOTS``
     scaled by powers of R*, the rest unchanged), and its contact time must scale as Hertz's
-    (``kernels.size_factor``)."""
+    (``contact_terms.size_factor``)."""
     from ..materials import Sphere
 
     for row, sc in enumerate(table.scenes):
@@ -58,7 +58,7 @@ def size_free(table) -> tuple:
         ratio = other.pair.R_star / sc.pair.R_star
         expect[P_RSTAR] = other.pair.R_star
         expect[P_MSTAR] = other.pair.m_star
-        for slot, power in K.SIZE_SLOTS:
+        for slot, power in T.SIZE_SLOTS:
             expect[slot] = p[slot] * ratio**power
         if not np.allclose(q, expect, rtol=1e-12, atol=0.0):
             return False, f"the parameters of {name} depend on the radii otherwise than through R* and m*"
@@ -70,28 +70,28 @@ def size_free(table) -> tuple:
 
 
 def row_info(table, v_max) -> np.ndarray:
-    """float64[n_rows, kernels.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
+    """float64[n_rows, contact_terms.N_ROWINFO]: per row of the table, R*, m*^2 / R*, the contact time at v_max and
     its exponent of the speed (t_c(v) = t_c(v_max) (v_max / v)^alpha, from t_c(2 v_max)), the overlap of a
     head-on impact at v_max (the normal law's own), a wall row's curvature (``materials.Wall.curvature``), and
     the exponent of the speed in that overlap (from the overlap at 2 v_max)."""
-    info = np.zeros((len(table.scenes), K.N_ROWINFO))
+    info = np.zeros((len(table.scenes), T.N_ROWINFO))
     for row, sc in enumerate(table.scenes):
         tc = sc.contact_time(v_max)
-        info[row, K.RI_RSTAR] = sc.pair.R_star
-        info[row, K.RI_Q] = sc.pair.m_star**2 / sc.pair.R_star
-        info[row, K.RI_TC] = tc
-        info[row, K.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
-        info[row, K.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
-        info[row, K.RI_DEEP_ALPHA] = math.log(sc.max_contact_radius(2.0 * v_max) ** 2 / sc.pair.R_star
-                                              / info[row, K.RI_DEEPEST]) / math.log(2.0)
-        info[row, K.RI_CURV] = getattr(sc.body2, "curvature", 0.0)
+        info[row, T.RI_RSTAR] = sc.pair.R_star
+        info[row, T.RI_Q] = sc.pair.m_star**2 / sc.pair.R_star
+        info[row, T.RI_TC] = tc
+        info[row, T.RI_ALPHA] = math.log(tc / sc.contact_time(2.0 * v_max)) / math.log(2.0)
+        info[row, T.RI_DEEPEST] = sc.max_contact_radius(v_max) ** 2 / sc.pair.R_star
+        info[row, T.RI_DEEP_ALPHA] = math.log(sc.max_contact_radius(2.0 * v_max) ** 2 / sc.pair.R_star
+                                              / info[row, T.RI_DEEPEST]) / math.log(2.0)
+        info[row, T.RI_CURV] = getattr(sc.body2, "curvature", 0.0)
     return info
 
 
 @dataclass(frozen=True)
 class TableFile:
     """A table file read back: the PairTable (without Scenes), and per type (float64[n_types, 2]) radius and
-    mass (its density follows), size_free, rowinfo float64[n_rows, kernels.N_ROWINFO] at 1 m/s, the
+    mass (its density follows), size_free, rowinfo float64[n_rows, contact_terms.N_ROWINFO] at 1 m/s, the
     contact time of each row at 1 m/s ``tc_unit`` and its exponent of the speed ``alpha`` (t_c(v) =
     tc_unit v^-alpha), and ``laws``: the rows' law names, for messages."""
 
@@ -128,7 +128,7 @@ def save(table: PairTable, path) -> str:
     spheres = [table.scenes[table.sphere_row[k, k]].sphere for k in range(nt)]
     free, why = size_free(table)
     info = row_info(table, 1.0)
-    alpha = info[:, K.RI_ALPHA].copy()
+    alpha = info[:, T.RI_ALPHA].copy()
     doc = dict(
         format=FORMAT, version=__version__,
         normal=LT.FAMILIES["normal"][table.normal_id].NAME,
@@ -136,7 +136,7 @@ def save(table: PairTable, path) -> str:
         laws=_law_names(table.params), params=table.params.tolist(), sphere_row=table.sphere_row.tolist(),
         wall_row=table.wall_row.tolist(), history_size=int(table.history_size),
         radius=[s.radius for s in spheres], mass=[s.mass for s in spheres], size_free=bool(free), size_free_why=why,
-        rowinfo=info.tolist(), tc_unit=info[:, K.RI_TC].tolist(), alpha=alpha.tolist(),
+        rowinfo=info.tolist(), tc_unit=info[:, T.RI_TC].tolist(), alpha=alpha.tolist(),
         rows=[str(d) for d in table.describe()])
     path = os.fspath(path)
     with open(path, "w") as f:
@@ -205,7 +205,7 @@ def load(path) -> TableFile:
     n_rows = len(laws)
     return TableFile(table=table, type_size=np.ascontiguousarray(size),
                      size_free=bool(doc.get("size_free")),
-                     rowinfo=_array(doc, "rowinfo", float, (n_rows, K.N_ROWINFO), path),
+                     rowinfo=_array(doc, "rowinfo", float, (n_rows, T.N_ROWINFO), path),
                      tc_unit=_array(doc, "tc_unit", float, (n_rows,), path),
                      alpha=_array(doc, "alpha", float, (n_rows,), path),
                      laws=f"{doc['normal']} + {doc['tangential']}")

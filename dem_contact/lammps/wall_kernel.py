@@ -40,6 +40,7 @@ from ..laws.slots import N_PARAMS, P_MU, P_NORMAL_LAW, P_TANGENTIAL_LAW
 from ..laws.vector import V_N, renamed
 from ..walls import search as WS
 from ..walls import table as W
+from . import contact_terms as T
 from . import kernels as K
 from . import pair_kernel as PK
 
@@ -177,24 +178,24 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                 for q in range(H.shape[1]):
                     Hl[m, q] = H[i * slots + s, q]
             hrow[m] = m
-        vx, vy, vz, wn[m] = K.wall_slip(x, v, omega, radius, walls, i, 0, gap, nx, ny, nz, frame_spin)
+        vx, vy, vz, wn[m] = T.wall_slip(x, v, omega, radius, walls, i, 0, gap, nx, ny, nz, frame_spin)
         row = wall_row[typ[i] - 1, mat]
         prow[m] = row
-        if size_free and K._resized(radius, rmass, typ, type_size, i):
-            rs, ms = K._effective(radius, rmass, i, -1, rowinfo, row)
+        if size_free and T.resized(radius, rmass, typ, type_size, i):
+            rs, ms = T.effective(radius, rmass, i, -1, rowinfo, row)
             prow[m] = params.shape[0] + m
-            K._contact_row(params, row, pc, prow[m], rowinfo, rs, ms)
+            T.contact_row(params, row, pc, prow[m], rowinfo, rs, ms)
         if advance and fresh:
             vn = vx * nx + vy * ny + vz * nz
             if vn > v_max:
-                rs, ms = K._effective(radius, rmass, i, -1, rowinfo, row)
-                tc = rowinfo[row, K.RI_TC] * K.size_factor(rowinfo, row, rs, ms) * vn ** -rowinfo[row, K.RI_ALPHA]
+                rs, ms = T.effective(radius, rmass, i, -1, rowinfo, row)
+                tc = rowinfo[row, T.RI_TC] * T.size_factor(rowinfo, row, rs, ms) * vn ** -rowinfo[row, T.RI_ALPHA]
                 if vn > report[R_FAST_V]:
                     report[R_FAST_V] = vn
                     report[R_FAST_ATOM] = i + 1
                 report[R_FAST_STEPS] = min(report[R_FAST_STEPS], tc / dt)
         body[m] = i
-        K.put_contact(normals, overlaps, velocities, m, nx, ny, nz, delta, vx, vy, vz)
+        T.put_contact(normals, overlaps, velocities, m, nx, ny, nz, delta, vx, vy, vz)
         for d in range(3):
             spins[m, d] = omega[i, d] - (walls[0, W.OMEGA + d] if frame_spin else 0.0)
         m += 1
@@ -228,7 +229,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
         if energy:
             PK.account_work(Hl, hrow[k], w_cols[wall_row[typ[i] - 1, mat]], overlaps[k], velocities[k, 0],
                             velocities[k, 1], velocities[k, 2], normals[k, 0], normals[k, 1], normals[k, 2], dt)
-        cx, cy, cz = K.normal_cross(normals, tforces, k)
+        cx, cy, cz = T.normal_cross(normals, tforces, k)
         # torque on the sphere: R n x Ft (the bridge's arm against a wall) and the twist and rolling torques
         r = radius[i]
         tx = r * cx + torques[k, 0]
@@ -240,7 +241,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
         acc[i, 3] += tx
         acc[i, 4] += ty
         acc[i, 5] += tz
-        K.add_wall_load(x, radius, walls, 0, i, overlaps[k], normals, forces, torques, k, load)
+        T.add_wall_load(x, radius, walls, 0, i, overlaps[k], normals, forces, torques, k, load)
         if k < out.shape[0]:
             out_atoms[k] = i
             out[k, PK.OUT_TA] = tx
@@ -293,7 +294,7 @@ def _entry(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, wall_
     return step(nlocal, carray(x, (nlocal, 3)), carray(v, (nlocal, 3)), carray(omega, (nlocal, 3)),  # noqa: F821
                 carray(radius, (nlocal,)), carray(rmass, (nlocal,)), carray(typ, (nlocal,)), carray(mask, (nlocal,)),
                 groupbit, carray(walls, (wall_rows, W.ROW_SIZE)), t, mat, carray(params, (n_rows, N_PARAMS)),
-                carray(wall_row, (n_types, n_mats)), carray(rowinfo, (n_rows, K.N_ROWINFO)),
+                carray(wall_row, (n_types, n_mats)), carray(rowinfo, (n_rows, T.N_ROWINFO)),
                 carray(type_size, (n_types, 2)), size_free != 0, carray(keys, (nlocal, slots)),
                 carray(H, (nlocal * slots, hs)), carray(saved, (nlocal, N_SAVED)), carray(dissipated, (nlocal,)), dt,
                 flags, step_no,
@@ -485,7 +486,7 @@ def _attach(words, path, n_types, out, address):
         # (the walls room names the wall walls[0]: here it is the fix's)
         raise InputError(str(e).replace("walls[0].", "the wall's ")) from None
     want = float(getattr(wall, "curvature_for_rstar", 0.0))
-    have = float(saved.rowinfo[table.wall_row[0, wall.wall], K.RI_CURV])
+    have = float(saved.rowinfo[table.wall_row[0, wall.wall], T.RI_CURV])
     if have != want:
         raise InputError(f"the wall has curvature {want!r} 1/m at its contacts, but its "
                          f"material (wall {wall.wall} of {path}) has curvature {have!r}: write the table with that "

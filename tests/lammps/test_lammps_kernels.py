@@ -2,6 +2,7 @@
 a brute-force search, and the atoms marked as able to change rank."""
 import numpy as np
 
+from dem_contact.lammps import contact_terms as T
 from dem_contact.lammps import kernels as K
 from dem_contact.walls import PlaneWall, pack
 
@@ -80,7 +81,7 @@ def _bridge_step(S, g, step, all_atoms, save):
         g["n"], g["x"], g["v"], g["omega"], g["radius"], g["rmass"], g["tag"], g["typ"], g["walls"],
         g["wall_mat"], *g["cand"], S["cand_rows"], S["keys"], S["sep"], np.inf, S["H"], t.normal_id, t.sphere_row, t.wall_row,
         g["dt"], True, S["rebuilt"], True, S["stat"], S["used"], g["near"], all_atoms, S["prev"], S["n_prev"],
-        S["touched"], t.params, np.ones((len(t.params), K.N_ROWINFO)), False, np.ones((t.sphere_row.shape[0], 2)), 1.0,
+        S["touched"], t.params, np.ones((len(t.params), T.N_ROWINFO)), False, np.ones((t.sphere_row.shape[0], 2)), 1.0,
         np.zeros(K.N_ONSET), *buf[:12])
     assert stale == 0
     _, body, src, dst, hrow, rows, normals, overlaps, vel, wn, _, _, forces, tforces, spins, torques = buf

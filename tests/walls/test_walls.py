@@ -141,6 +141,7 @@ def _scene(seed=3, n=60):
 def _bridge_wall_contacts(x, radius, walls, v, omega, table):
     """The wall contacts of the LAMMPS bridge's kernels (``gather_contacts``, one rank, no LAMMPS) with their
     law inputs: (sphere, wall, normals, overlaps, velocities, wn, pair_rows)."""
+    from dem_contact.lammps import contact_terms as CT
     from dem_contact.lammps import kernels as K
 
     n, slots = len(x), 64          # (enough rows: no contact is left out)
@@ -154,7 +155,7 @@ def _bridge_wall_contacts(x, radius, walls, v, omega, table):
         np.zeros((n, slots)), np.zeros((n, 4 * slots)), np.inf, np.zeros((n * slots, table.history_size)),
         table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, np.zeros((n, K.N_STAT)),
         np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
-        np.zeros(n, dtype=np.int64), table.params, np.ones((len(table.params), K.N_ROWINFO)), False,
+        np.zeros(n, dtype=np.int64), table.params, np.ones((len(table.params), CT.N_ROWINFO)), False,
         np.ones((table.sphere_row.shape[0], 2)), np.inf, np.zeros(K.N_ONSET), *buf[:12])
     _, body, _, _, _, prow, normals, overlaps, vel, wn = buf[:10]
     k = np.flatnonzero(body[:m, 1] < 0)
