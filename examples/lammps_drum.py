@@ -185,7 +185,7 @@ def native_torque(lmp, n_walls, n_types, natoms):
 
 def run(a):
     from dem_contact.lammps import Census, LammpsContacts, lammps_module, native_commands, new_lammps
-    from dem_contact.lammps.bridge import sum_ranks
+    from dem_contact.lammps.session import sum_ranks
     from dem_contact.walls import CylinderWall, PlaneWall
 
     if a.n < 2 or a.steps < 0 or a.every < 0 or not a.radius > 0.0 or not 0.0 <= a.sigma <= 0.4 \

