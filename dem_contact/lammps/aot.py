@@ -30,8 +30,12 @@ from . import plugin_build as PB
 
 #: the numba versions whose cache layout this reads (the package pins one)
 NUMBA = ("0.68.",)
-#: the x86 features the plugin checks at a table's load (those of the build machine among them)
-FEATURES = ("sse4.2", "avx", "avx2", "fma", "bmi2", "avx512f", "avx512dq", "avx512bw", "avx512vl")
+#: the x86 features the plugin checks at a table's load (those of the build machine among them: the names both
+#: LLVM and GCC's __builtin_cpu_supports know)
+FEATURES = ("sse3", "ssse3", "sse4.1", "sse4.2", "popcnt", "avx", "avx2", "fma", "bmi", "bmi2", "f16c", "lzcnt",
+            "movbe", "adx", "sha", "aes", "pclmul", "vaes", "vpclmulqdq", "gfni", "avx512f", "avx512cd", "avx512dq",
+            "avx512bw", "avx512vl", "avx512vbmi", "avx512ifma", "avx512vnni", "avx512vbmi2", "avx512bitalg",
+            "avx512vpopcntdq", "avx512bf16", "avx512fp16")
 #: what the compiled steps may leave undefined: numba's runtime, aot_runtime.cpp's, libm's and libc's
 PROVIDED = {"numba_ldexp", "numba_do_raise", "numba_gil_ensure", "numba_gil_release", "numba_unpickle",
             "numba_runtime_build_excinfo_struct", "PyBytes_FromStringAndSize", "PyErr_Clear", "PyErr_SetNone",
@@ -116,8 +120,11 @@ def _tables(laws, entries) -> str:
     from ..version import __version__
     from .contact_terms import N_ROWINFO
 
+    from ..laws.dispatch import tangential_base
+    from ..laws.slots import P_NSPRING
+
     host = llvm.get_host_cpu_features()
-    features = " ".join(f for f in FEATURES if host.get(f, False))
+    features = [f for f in FEATURES if host.get(f, False)]
     names = [" ".join(m.NAME for m in LT.FAMILIES[f]) for f in ("normal", "tangential", "twist", "rolling")]
     lines = ['#include "aot.h"', 'extern "C" {']
     lines += [f"void {e}();" for e in entries]
@@ -129,7 +136,18 @@ def _tables(laws, entries) -> str:
               f"const int dem_contact_aot_law_slots[4] = {{{P_NORMAL_LAW}, {P_TANGENTIAL_LAW}, {P_TWIST_LAW}, "
               f"{P_ROLLING_LAW}}};",
               f"const int dem_contact_aot_n_params = {N_PARAMS};", f"const int dem_contact_aot_n_rowinfo = {N_ROWINFO};",
-              f'const char *const dem_contact_aot_features = "{features}";', "}"]
+              "const char *dem_contact_aot_missing_feature() {", "#if defined(__x86_64__)", "  __builtin_cpu_init();"]
+    lines += [f'  if (!__builtin_cpu_supports("{f}")) return "{f}";' for f in features]
+    lines += ["#endif", "  return nullptr;", "}"]
+    # the history a row needs (laws.table.vector_history_size): tangential_base by (normal, twist, rolling)
+    n = [len(LT.FAMILIES[f]) for f in ("normal", "tangential", "twist", "rolling")]
+    bases = [tangential_base(a, q, r) for a in range(n[0]) for q in range(n[2]) for r in range(n[3])]
+    tangential = LT.FAMILIES["tangential"]
+    lines += ["const int dem_contact_aot_n_laws[4] = {" + ", ".join(map(str, n)) + "};",
+              "const int dem_contact_aot_tangential_base[] = {" + ", ".join(map(str, bases)) + "};",
+              "const int dem_contact_aot_vector_slots[] = {" + ", ".join(str(m.VECTOR_SLOTS) for m in tangential) + "};",
+              "const int dem_contact_aot_cells[] = {" + ", ".join(str(int(bool(m.CELLS))) for m in tangential) + "};",
+              f"const int dem_contact_aot_p_nspring = {P_NSPRING};", "}"]
     return "\n".join(lines) + "\n"
 
 

@@ -107,6 +107,10 @@ def main():
                                                    f"pair_coeff * * {good_table()}"]),
         work_without_energy=scene(good_table(), extra=["compute c all dem/contact/local work"]),
         energy_without_energy=scene(good_table(), extra=["thermo_style custom step f_DEM_CONTACT_HISTORY"]),
+        # (a periodic box 2.05 diameters wide: atom 1 touches atom 2 and has its other image in its neighbour
+        # list, apart; the second run reads the contact back from the atoms' rows)
+        narrow_box=scene(good_table(), extra=[f"change_box all x final {-2.05 * R!r} {2.05 * R!r} units box",
+                                              "run 5"]),
         # (a third sphere touching atom 1 on the other side: two contacts, one row)
         too_many=scene(good_table(), pair="pair_style dem/contact vmax 1.0 slots 1",
                        extra=[f"create_atoms 1 single {-2 * R + 2e-5!r} 0 0", f"set type 1 diameter {2 * R!r}",

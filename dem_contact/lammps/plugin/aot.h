@@ -29,8 +29,16 @@ extern const char *const dem_contact_aot_laws[4];
 extern const int dem_contact_aot_law_slots[4];
 extern const int dem_contact_aot_n_params;
 extern const int dem_contact_aot_n_rowinfo;
-// the x86 features of the machine the steps were compiled on that they may use, separated by spaces
-extern const char *const dem_contact_aot_features;
+// the history a parameter row needs (laws.table.vector_history_size): the laws per family, the first
+// tangential slot by (normal, twist, rolling) law ids (flattened in that order), each tangential law's fixed
+// slots and whether it has cells (2 slots each, params[row][P_NSPRING] of them)
+extern const int dem_contact_aot_n_laws[4];
+extern const int dem_contact_aot_tangential_base[];
+extern const int dem_contact_aot_vector_slots[];
+extern const int dem_contact_aot_cells[];
+extern const int dem_contact_aot_p_nspring;
+// an x86 feature of the machine the steps were compiled on that this one lacks (nullptr: none)
+const char *dem_contact_aot_missing_feature();
 // set where the compiled code took an error path (an exception in numba's terms); cleared by the caller
 extern int dem_contact_aot_raised;
 }

@@ -5,6 +5,7 @@
 
 #include "json.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -32,29 +33,6 @@ int index_of(const std::vector<std::string> &names, const std::string &name)
   for (size_t k = 0; k < names.size(); k++)
     if (names[k] == name) return (int) k;
   return -1;
-}
-
-// the x86 features the steps may use that this machine lacks ("" if none)
-std::string missing_features()
-{
-  std::string missing;
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_cpu_init();
-  for (const std::string &f : words(dem_contact_aot_features)) {
-    bool has = true;
-    if (f == "sse4.2") has = __builtin_cpu_supports("sse4.2");
-    else if (f == "avx") has = __builtin_cpu_supports("avx");
-    else if (f == "avx2") has = __builtin_cpu_supports("avx2");
-    else if (f == "fma") has = __builtin_cpu_supports("fma");
-    else if (f == "bmi2") has = __builtin_cpu_supports("bmi2");
-    else if (f == "avx512f") has = __builtin_cpu_supports("avx512f");
-    else if (f == "avx512dq") has = __builtin_cpu_supports("avx512dq");
-    else if (f == "avx512bw") has = __builtin_cpu_supports("avx512bw");
-    else if (f == "avx512vl") has = __builtin_cpu_supports("avx512vl");
-    if (!has) missing += (missing.empty() ? "" : " ") + f;
-  }
-#endif
-  return missing;
 }
 
 // doc[name] as numbers, rows x cols (cols 0: a list), into out; false where it is not
@@ -106,10 +84,10 @@ std::string dem_contact_aot_attach(const std::string &path, int ntypes, DemConta
     return "the table file " + path + " was written by dem_contact " + version + "; this plugin's step was " +
         "compiled ahead of time from " + dem_contact_aot_version + ": write the table with that version, or " +
         "build the plugin with this one (dem-contact lammps-plugin --ahead-of-time LAW)";
-  const std::string missing = missing_features();
-  if (!missing.empty())
-    return "this plugin's step was compiled ahead of time on a machine with the CPU features " + missing +
-        ", which this one lacks: build it on this machine (dem-contact lammps-plugin --ahead-of-time LAW)";
+  const char *missing = dem_contact_aot_missing_feature();
+  if (missing)
+    return std::string("this plugin's step was compiled ahead of time on a machine with the CPU feature ") +
+        missing + ", which this one lacks: build it on this machine (dem-contact lammps-plugin --ahead-of-time LAW)";
   if (!doc.contains("laws") || !doc["laws"].is_array()) return "the table file " + path + " is corrupt (no 'laws' list)";
   const json &laws = doc["laws"];
   const size_t n_rows = laws.size();
@@ -164,6 +142,31 @@ std::string dem_contact_aot_attach(const std::string &path, int ntypes, DemConta
     return "the table file " + path + " has the tangential law " + tangential + "; this plugin's step was " +
         "compiled ahead of time for " + compiled + ": build it for " + tangential +
         " (dem-contact lammps-plugin --ahead-of-time " + tangential + ")";
+  // every row of the table's normal and tangential laws, and the history rows long enough for its laws (the
+  // step writes where the laws' slots are: PairTable's checks)
+  const std::vector<std::string> normals = words(dem_contact_aot_laws[0]), tangentials = words(dem_contact_aot_laws[1]);
+  const int nid = index_of(normals, doc["normal"].get<std::string>()), tid = index_of(tangentials, tangential);
+  if (nid < 0 || tid < 0) return "the table file " + path + " is corrupt (its laws are not this version's)" + again;
+  const int *n_laws = dem_contact_aot_n_laws;
+  int64_t need = 0;
+  for (size_t r = 0; r < n_rows; r++) {
+    const double *p = t.params.data() + r * np;
+    if (p[dem_contact_aot_law_slots[0]] != nid + 1.0 || p[dem_contact_aot_law_slots[1]] != tid + 1.0)
+      return "the table file " + path + " is corrupt (row " + std::to_string(r) + " is not of its laws " +
+          doc["normal"].get<std::string>() + " + " + tangential + ")" + again;
+    const int q = std::max(0, (int) p[dem_contact_aot_law_slots[2]] - 1), rl = std::max(0, (int) p[dem_contact_aot_law_slots[3]] - 1);
+    const double cells = p[dem_contact_aot_p_nspring];
+    if (q >= n_laws[2] || rl >= n_laws[3] ||
+        (dem_contact_aot_cells[tid] && !(cells >= 2.0 && cells <= 1e6 && cells == (int64_t) cells)))
+      return "the table file " + path + " is corrupt (row " + std::to_string(r) + ": its twist or rolling law, or "
+          "its MDR cell count)" + again;
+    const int64_t row_need = dem_contact_aot_tangential_base[(nid * n_laws[2] + q) * n_laws[3] + rl] +
+        dem_contact_aot_vector_slots[tid] + (dem_contact_aot_cells[tid] ? 2 * (int64_t) cells : 0);
+    need = std::max(need, row_need);
+  }
+  if (doc["history_size"].get<int64_t>() < need)
+    return "the table file " + path + " is corrupt (history_size " + std::to_string(doc["history_size"].get<int64_t>()) +
+        ", its laws need " + std::to_string(need) + ")" + again;
   bool turning = false;
   for (size_t r = 0; r < n_rows; r++)
     turning = turning || t.params[r * np + dem_contact_aot_law_slots[2]] > 1.0 ||

@@ -48,10 +48,13 @@ FixDemContactHistory::~FixDemContactHistory()
   memory->destroy(dissipated);
 }
 
-int FixDemContactHistory::setmask() { return FixConst::PRE_EXCHANGE; }
+int FixDemContactHistory::setmask() { return FixConst::PRE_EXCHANGE | FixConst::MIN_PRE_EXCHANGE; }
 
-// a step where LAMMPS builds its lists anew (atoms may move): the rows made current
+// a step where LAMMPS builds its lists anew (atoms may move), in a run, a minimization or a run's set-up: the
+// rows made current
+void FixDemContactHistory::setup_pre_exchange() { refresh(); }
 void FixDemContactHistory::pre_exchange() { refresh(); }
+void FixDemContactHistory::min_pre_exchange() { refresh(); }
 
 // after a run: the state the forces saved at its last step belong to is that at the end of the step, the
 // velocities and spins after its final integration (the pair style saw those of the half step)

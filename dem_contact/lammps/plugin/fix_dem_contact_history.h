@@ -14,8 +14,8 @@
    Where a keeper holds the rows' newest values elsewhere while atoms keep their indices (the pair style keeps
    its contacts' histories by neighbour-list entry between list builds), the fix asks it to write them into the
    rows first (RowKeeper::store_rows) whenever they are needed: before atoms move between ranks or in memory
-   (pre_exchange, pack_exchange, copy_arrays: exchange, sorting, deletion), before a restart file is written,
-   and at the end of a run. */
+   (pre_exchange in a run, a minimization and a run's set-up; pack_exchange, copy_arrays: exchange, sorting,
+   deletion), before a restart file is written, and at the end of a run. */
 #ifndef DEM_CONTACT_FIX_HISTORY_H
 #define DEM_CONTACT_FIX_HISTORY_H
 
@@ -42,7 +42,9 @@ class FixDemContactHistory : public Fix {
   FixDemContactHistory(class LAMMPS *, int, char **);
   ~FixDemContactHistory() override;
   int setmask() override;
+  void setup_pre_exchange() override;
   void pre_exchange() override;
+  void min_pre_exchange() override;
   void post_run() override;
   double compute_scalar() override;
 

@@ -52,7 +52,7 @@ const double SIZE_TOL = 1e-9;
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
     warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0),
-    row_size(0), fix(nullptr), n_contacts(0), cap(0)
+    row_size(0), fix(nullptr), n_contacts(0), cap(0), loaded_nlocal(0)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -123,6 +123,7 @@ void PairDemContact::settings(int narg, char **arg)
 
 void PairDemContact::attach_table(const char *path)
 {
+  attached = false;    // (until the table is read: a failed pair_coeff leaves no table)
   std::memset(&kernel, 0, sizeof(kernel));
   kernel.abi = ABI;
 #ifdef DEM_CONTACT_AOT
@@ -441,11 +442,17 @@ void PairDemContact::end_row(int64_t r, double delta_end)
 
 // At a list build (a run's set-up, or a step where LAMMPS built its lists anew): the contacts of the atoms'
 // rows (written by store_rows before the atoms moved, or read from a restart file) taken into the pool, by
-// neighbour-list entry. A row that no entry of the list takes ended where its atoms moved apart (the energy
-// it dissipated given to its atom, half, from the overlap now: the closest image of its partner, if here).
+// neighbour-list entry of a pair that touches now. A row that no such entry takes ended where its atoms moved
+// apart (the energy it dissipated given to its atom, half, from the overlap now: the closest image of its
+// partner, if here).
 void PairDemContact::load_rows()
 {
+  // (rows a step wrote that no move asked for yet: the atoms are still where the pool's contacts were found)
+  fix->refresh();
   const int nlocal = atom->nlocal;
+  loaded_nlocal = nlocal;
+  double **x = atom->x, *radius = atom->radius;
+  double *special_lj = force->special_lj;
   const int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   tagint *tag = atom->tag;
@@ -460,7 +467,12 @@ void PairDemContact::load_rows()
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
+      if (special_lj[sbmask(jlist[jj])] == 0.0) continue;    // (excluded pairs: no contacts)
       const int j = jlist[jj] & NEIGHMASK;
+      // only pairs that touch now continue a contact (a row of a pair apart: ended, below)
+      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+      const double rs = radius[i] + radius[j];
+      if (dx * dx + dy * dy + dz * dz >= rs * rs) continue;
       // the contact's row: atom i's, else (i came from another rank, or had none) atom j's
       int owner = i, s = row_of(i, (double) tag[j]);
       if (s < 0 && j < nlocal) {
@@ -513,7 +525,8 @@ void PairDemContact::load_rows()
 void PairDemContact::store_rows()
 {
   fill.assign(atom->nmax, 0);
-  for (int i = 0; i < atom->nlocal; i++) std::memset(fix->keys[i], 0, sizeof(double) * slots);
+  // (the atoms of the pool's contacts: those here when it was loaded; atoms that came since keep their rows)
+  for (int i = 0; i < loaded_nlocal && i < atom->nlocal; i++) std::memset(fix->keys[i], 0, sizeof(double) * slots);
   for (size_t r = 0; r < pairing.size(); r++) {
     const Pairing &w = pairing[r];
     if (w.ti == 0) continue;

@@ -141,6 +141,7 @@ class PairDemContact : public Pair, public RowKeeper {
   std::vector<int64_t> pairs, hrow, scratch_rows, prow;
   std::vector<double> inputs, out, scratch, acc, work, pc;
   int64_t n_contacts, cap;
+  int loaded_nlocal;    // the local atoms when the pool was loaded (store_rows writes theirs)
 
   void allocate();
   void attach_table(const char *path);
