@@ -100,52 +100,55 @@ _MPICH_DOUBLE = 0x4C00080B
 _MPICH_SUM = 0x58000003
 
 
-def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
-    """The sum over the MPI ranks of the LAMMPS instance of the float64 array ``values`` (collective). None
-    where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
+def _over_ranks(lmp, values, collective):
+    """The float64 array ``values`` itself on one rank; over several, ``collective(a, libmpi, comm)`` through
+    MPICH (None where a call fails), or None where LAMMPS runs over an MPI other than MPICH."""
     a = np.ascontiguousarray(values, dtype=np.float64)
     if lmp.extract_setting("world_size") <= 1:
         return a.copy()
     mpi = _mpich_comm(lmp)
-    if mpi is None:
-        return None
+    return None if mpi is None else collective(a, *mpi)
+
+
+def sum_ranks(lmp, values: np.ndarray) -> np.ndarray | None:
+    """The sum over the MPI ranks of the LAMMPS instance of the float64 array ``values`` (collective). None
+    where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
     import ctypes
 
-    lib, comm = mpi
-    out = np.empty_like(a)
-    if lib.MPI_Allreduce(a.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p), a.size,
-                         _MPICH_DOUBLE, _MPICH_SUM, comm) != 0:
-        return None
-    return out
+    def allreduce(a, lib, comm):
+        out = np.empty_like(a)
+        vp = ctypes.c_void_p
+        if lib.MPI_Allreduce(a.ctypes.data_as(vp), out.ctypes.data_as(vp), a.size, _MPICH_DOUBLE, _MPICH_SUM, comm):
+            return None
+        return out
+
+    return _over_ranks(lmp, values, allreduce)
 
 
 def gather_rows(lmp, rows: np.ndarray) -> np.ndarray | None:
     """The float64 rows (float64[k, c], k may differ between ranks) of every MPI rank of the LAMMPS instance,
     stacked in the order of the ranks, on rank 0 (collective; the other ranks get an empty array). None where
     it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    a = np.ascontiguousarray(rows, dtype=np.float64)
-    if lmp.extract_setting("world_size") <= 1:
-        return a.copy()
-    mpi = _mpich_comm(lmp)
-    if mpi is None:
-        return None
     import ctypes
 
-    lib, comm = mpi
-    size = lmp.extract_setting("world_size")
-    counts = np.zeros(size, dtype=np.intc)
-    one = np.array([a.size], dtype=np.intc)
-    vp = ctypes.c_void_p
-    if lib.MPI_Gather(one.ctypes.data_as(vp), 1, _MPICH_INT, counts.ctypes.data_as(vp), 1, _MPICH_INT, 0, comm):
-        return None
-    displs = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.intc)
-    out = np.empty(int(counts.sum()))
-    if lib.MPI_Gatherv(a.ctypes.data_as(vp), int(a.size), _MPICH_DOUBLE, out.ctypes.data_as(vp),
-                       counts.ctypes.data_as(vp), displs.ctypes.data_as(vp), _MPICH_DOUBLE, 0, comm):
-        return None
-    if lmp.extract_setting("world_rank") != 0:
-        return np.zeros((0,) + a.shape[1:])
-    return out.reshape((-1,) + a.shape[1:])
+    def gather(a, lib, comm):
+        size = lmp.extract_setting("world_size")
+        counts = np.zeros(size, dtype=np.intc)
+        one = np.array([a.size], dtype=np.intc)
+        vp = ctypes.c_void_p
+        if lib.MPI_Gather(one.ctypes.data_as(vp), 1, _MPICH_INT, counts.ctypes.data_as(vp), 1, _MPICH_INT, 0,
+                          comm):
+            return None
+        displs = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.intc)
+        out = np.empty(int(counts.sum()))
+        if lib.MPI_Gatherv(a.ctypes.data_as(vp), int(a.size), _MPICH_DOUBLE, out.ctypes.data_as(vp),
+                           counts.ctypes.data_as(vp), displs.ctypes.data_as(vp), _MPICH_DOUBLE, 0, comm):
+            return None
+        if lmp.extract_setting("world_rank") != 0:
+            return np.zeros((0,) + a.shape[1:])
+        return out.reshape((-1,) + a.shape[1:])
+
+    return _over_ranks(lmp, rows, gather)
 
 
 def new_lammps(*cmdargs):
