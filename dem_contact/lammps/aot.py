@@ -1,14 +1,18 @@
-"""The LAMMPS plugin with its pair step compiled ahead of time: ``pair_style dem/contact`` in an ``lmp`` that
-runs no Python (``dem-contact lammps-plugin --ahead-of-time LAW[,LAW...]``).
+"""The LAMMPS plugin with its steps compiled ahead of time: ``pair_style dem/contact`` and ``fix
+dem/contact/wall`` (its planes and cylinders) in an ``lmp`` that runs no Python (``dem-contact lammps-plugin
+--ahead-of-time LAW[,LAW...]``).
 
-The step of each tangential law family named (``pair_kernel.step_function``: the same compiled code as in a
-run that reaches the package through Python) is taken from numba's cache as the native object numba made of
-it, its entry renamed ``dem_contact_aot_step_<law>`` and every other symbol made local, and linked into the
-plugin with numba's runtime (its memory functions, from numba's ``nrt.cpp``) and ``plugin/aot_runtime.cpp``
+The pair and wall steps of each tangential law family named (``pair_kernel.step_function``,
+``wall_kernel.step_function``: the same compiled code as in a run that reaches the package through Python) are
+taken from numba's cache as the native objects numba made of them, their entries renamed
+``dem_contact_aot_step_<law>`` and ``dem_contact_aot_wall_step_<law>`` and every other symbol made local, and
+linked into the plugin with numba's runtime (its memory functions, from numba's ``nrt.cpp``) and ``plugin/aot_runtime.cpp``
 (numba's ldexp, and the error paths of the compiled code, which report instead of raising). The plugin reads
 the table file itself (``plugin/aot_attach.cpp``: the checks of ``table_file.load``) for a table of the same
-package version whose tangential law is one of those compiled in. ``fix dem/contact/wall`` still reaches the
-package through Python.
+package version whose tangential law is one of those compiled in, and the words of a plane or cylinder wall
+(``plugin/aot_wall.cpp``: ``wall_kernel.parse`` and ``walls.table.pack`` for those kinds, with their checks); a
+mesh wall (its STL file read and packed by the walls room) needs the plugin that reaches the package through
+Python.
 
 What this depends on: numba's cache layout (the object code it keeps of a cfunc), checked at the build for the
 numba version this package pins (``NUMBA``), the GNU toolchain (``objcopy``, ``nm``), and the CPU: the object is
@@ -42,7 +46,7 @@ PROVIDED = {"numba_ldexp", "numba_do_raise", "numba_gil_ensure", "numba_gil_rele
             "PyErr_SetString", "PyErr_WriteUnraisable", "PyExc_RuntimeError", "PyExc_StopIteration",
             "PyExc_SystemError", "PyObject_Hash", "PyTuple_Pack", "PyUnicode_FromKindAndData",
             "PyUnicode_FromString", "Py_DecRef", "memcpy", "memset", "memmove", "log", "log2", "log10", "exp",
-            "exp2", "pow", "sqrt", "cbrt", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh",
+            "exp2", "pow", "sqrt", "cbrt", "sin", "cos", "sincos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh",
             "tanh", "hypot", "fmod", "floor", "ceil", "round", "trunc", "expm1", "log1p", "ldexp", "frexp"}
 
 
@@ -70,14 +74,10 @@ def _run(command, what):
     return r.stdout
 
 
-def step_object(law: str, path: str) -> str:
-    """Write the native object of the step of tangential family ``law`` (from numba's cache; compiled there
-    first where it is not) to ``path``, its entry named ``dem_contact_aot_step_<law>`` and every other symbol
-    local; returns the entry's name."""
+def _law_id(law: str) -> int:
     import numba
 
     from ..laws import table as LT
-    from . import pair_kernel
 
     if not numba.__version__.startswith(NUMBA):
         raise PB.PluginBuildError(f"numba {numba.__version__}: the step compiled ahead of time is read from the "
@@ -86,32 +86,55 @@ def step_object(law: str, path: str) -> str:
     ids = LT.ids("tangential")
     if law not in ids:
         raise PB.PluginBuildError(f"unknown tangential law {law!r} (laws: {', '.join(ids)})")
-    fn = pair_kernel.step_function(ids[law])
+    return ids[law]
+
+
+def _object(fn, entry: str, path: str, what: str) -> str:
+    """Write the native object numba keeps in its cache of the cfunc ``fn`` to ``path``, its entry named
+    ``entry`` and every other symbol local; returns ``entry``."""
     cache = fn._cache
     try:
         data = cache._cache_file.load(cache._index_key(fn._sig, fn._targetdescr.target_context.codegen()))
         name, kind, (obj, _bitcode) = data[0]
     except Exception as e:       # (another cache layout)
-        raise PB.PluginBuildError(f"the compiled step of {law} is not in numba's cache as this build reads it "
+        raise PB.PluginBuildError(f"{what} is not in numba's cache as this build reads it "
                                   f"({type(e).__name__}: {e})") from None
     if kind != "object" or not obj.startswith(b"\x7fELF"):
-        raise PB.PluginBuildError(f"the compiled step of {law} is not kept as a native object in numba's cache")
+        raise PB.PluginBuildError(f"{what} is not kept as a native object in numba's cache")
     with open(path, "wb") as f:
         f.write(obj)
-    entry = f"dem_contact_aot_step_{law}"
     objcopy = _tool("objcopy")
-    _run([objcopy, f"--redefine-sym={fn.native_name}={entry}", path], "renaming the step's entry")
-    _run([objcopy, f"--keep-global-symbol={entry}", path], "making the step's other symbols local")
-    undefined = {line.split()[-1] for line in _run([_tool("nm"), "-u", path], "listing the step's symbols")
+    _run([objcopy, f"--redefine-sym={fn.native_name}={entry}", path], f"renaming the entry of {what}")
+    _run([objcopy, f"--keep-global-symbol={entry}", path], f"making the other symbols of {what} local")
+    undefined = {line.split()[-1] for line in _run([_tool("nm"), "-u", path], f"listing the symbols of {what}")
                  .splitlines() if line.strip()}
     unknown = sorted(u for u in undefined - PROVIDED if not u.startswith("NRT_"))
     if unknown:
-        raise PB.PluginBuildError(f"the compiled step of {law} needs {', '.join(unknown)}, which the plugin does "
-                                  f"not provide ahead of time")
+        raise PB.PluginBuildError(f"{what} needs {', '.join(unknown)}, which the plugin does not provide ahead "
+                                  f"of time")
     return entry
 
 
-def _tables(laws, entries) -> str:
+def step_object(law: str, path: str) -> str:
+    """Write the native object of the pair step of tangential family ``law`` (from numba's cache; compiled there
+    first where it is not) to ``path``, its entry named ``dem_contact_aot_step_<law>`` and every other symbol
+    local; returns the entry's name."""
+    from . import pair_kernel
+
+    fn = pair_kernel.step_function(_law_id(law))
+    return _object(fn, f"dem_contact_aot_step_{law}", path, f"the compiled pair step of {law}")
+
+
+def wall_step_object(law: str, path: str) -> str:
+    """``step_object`` for the wall step of ``fix dem/contact/wall`` (``wall_kernel.step_function``), named
+    ``dem_contact_aot_wall_step_<law>``."""
+    from . import wall_kernel
+
+    fn = wall_kernel.step_function(_law_id(law))
+    return _object(fn, f"dem_contact_aot_wall_step_{law}", path, f"the compiled wall step of {law}")
+
+
+def _tables(laws, entries, wall_entries) -> str:
     """The C++ of the tables aot.h declares."""
     import llvmlite.binding as llvm
 
@@ -122,14 +145,19 @@ def _tables(laws, entries) -> str:
 
     from ..laws.dispatch import tangential_base
     from ..laws.slots import P_NSPRING
+    from ..walls import checks, cylinder, plane
+    from ..walls import contract as WC
+    from ..walls import table as WT
+    from . import wall_kernel
+    from .contact_terms import RI_CURV
 
     host = llvm.get_host_cpu_features()
     features = [f for f in FEATURES if host.get(f, False)]
     names = [" ".join(m.NAME for m in LT.FAMILIES[f]) for f in ("normal", "tangential", "twist", "rolling")]
     lines = ['#include "aot.h"', 'extern "C" {']
-    lines += [f"void {e}();" for e in entries]
+    lines += [f"void {e}();" for e in entries + wall_entries]
     lines += ["const DemContactAotStep dem_contact_aot_steps[] = {"]
-    lines += [f'  {{"{law}", (void *) &{e}}},' for law, e in zip(laws, entries)]
+    lines += [f'  {{"{law}", (void *) &{e}, (void *) &{w}}},' for law, e, w in zip(laws, entries, wall_entries)]
     lines += ["};", f"const int dem_contact_aot_n_steps = {len(laws)};",
               f'const char *const dem_contact_aot_version = "{__version__}";',
               "const char *const dem_contact_aot_laws[4] = {" + ", ".join(f'"{n}"' for n in names) + "};",
@@ -147,7 +175,15 @@ def _tables(laws, entries) -> str:
               "const int dem_contact_aot_tangential_base[] = {" + ", ".join(map(str, bases)) + "};",
               "const int dem_contact_aot_vector_slots[] = {" + ", ".join(str(m.VECTOR_SLOTS) for m in tangential) + "};",
               "const int dem_contact_aot_cells[] = {" + ", ".join(str(int(bool(m.CELLS))) for m in tangential) + "};",
-              f"const int dem_contact_aot_p_nspring = {P_NSPRING};", "}"]
+              f"const int dem_contact_aot_p_nspring = {P_NSPRING};"]
+    # the packed row of a plane or a cylinder wall (walls.contract, walls.table.pack) and the checks of its words
+    kinds = {mod.CLASS: kid for kid, mod in WT.KINDS}
+    layout = (WT.ROW_SIZE, WC.KIND, WC.KEY_BASE, WC.NELEM, WC.MOVES, WC.VEL, WC.OMEGA, WC.CENTRE, WC.CENTRE0,
+              WC.FIRST, WC.DATA, kinds["PlaneWall"], kinds["CylinderWall"], RI_CURV)
+    lines += ["const int dem_contact_aot_wall_layout[] = {" + ", ".join(map(str, layout)) + "};",
+              f"const double dem_contact_aot_unit_tol = {checks.UNIT_TOL!r};",
+              f"const double dem_contact_aot_surface_tol[2] = {{{plane.SURFACE_TOL!r}, {cylinder.SURFACE_TOL!r}}};",
+              f"const int dem_contact_aot_wall_abi = {wall_kernel.ABI};", "}"]
     return "\n".join(lines) + "\n"
 
 
@@ -165,13 +201,15 @@ def build(laws, quiet: bool = True) -> str:
     if not quiet:
         print(f"compiling the steps of {', '.join(laws)} ahead of time (from numba's cache; compiled first where "
               f"they are not there: up to minutes each) ...", file=sys.stderr)
-    objects, entries = [], []
+    objects, entries, wall_entries = [], [], []
     for law in laws:
         objects.append(os.path.join(work, f"step_{law}.o"))
         entries.append(step_object(law, objects[-1]))
+        objects.append(os.path.join(work, f"wall_step_{law}.o"))
+        wall_entries.append(wall_step_object(law, objects[-1]))
     tables = os.path.join(work, "aot_tables.cpp")
     with open(tables, "w") as f:
-        f.write(_tables(laws, entries))
+        f.write(_tables(laws, entries, wall_entries))
     runtime = os.path.join(os.path.dirname(numba.__file__), "core", "runtime")
     nrt = os.path.join(work, "nrt.o")
     cxx = os.environ.get("CXX", "g++")

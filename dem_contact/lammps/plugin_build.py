@@ -28,7 +28,7 @@ SOURCE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "plugin")
 SOURCES = ("dem_contact_plugin.cpp", "pair_dem_contact.cpp", "fix_dem_contact_history.cpp", "fix_dem_contact_wall.cpp",
            "compute_dem_contact_local.cpp", "python_link.cpp")
 #: the sources a plugin with steps compiled ahead of time adds (``aot``)
-AOT_SOURCES = ("aot_attach.cpp", "aot_runtime.cpp")
+AOT_SOURCES = ("aot_attach.cpp", "aot_wall.cpp", "aot_runtime.cpp")
 #: the file name (LAMMPS loads every ``*plugin.so`` of the folders on LAMMPS_PLUGIN_PATH)
 NAME = "demcontactplugin.so"
 

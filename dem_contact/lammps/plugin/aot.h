@@ -13,10 +13,12 @@
 struct DemContactAttach;
 
 extern "C" {
-// a step of one tangential law family (pair_kernel.step_function's C entry)
+// the steps of one tangential law family (the C entries of pair_kernel.step_function and
+// wall_kernel.step_function)
 struct DemContactAotStep {
   const char *law;
   void *step;
+  void *wall_step;
 };
 extern const DemContactAotStep dem_contact_aot_steps[];
 extern const int dem_contact_aot_n_steps;
@@ -37,6 +39,16 @@ extern const int dem_contact_aot_tangential_base[];
 extern const int dem_contact_aot_vector_slots[];
 extern const int dem_contact_aot_cells[];
 extern const int dem_contact_aot_p_nspring;
+// the packed row of a plane or cylinder wall (walls.contract): ROW_SIZE, the columns KIND, KEY_BASE, NELEM,
+// MOVES, VEL, OMEGA, CENTRE, CENTRE0, FIRST, DATA, the kind ids of a plane and a cylinder, and the column of a
+// table row's wall curvature (contact_terms.RI_CURV); the tolerance of a unit vector (walls.checks.UNIT_TOL), of
+// a motion that keeps a plane's and a cylinder's surface (their SURFACE_TOL), and wall_kernel.ABI
+enum { W_ROW_SIZE, W_KIND, W_KEY_BASE, W_NELEM, W_MOVES, W_VEL, W_OMEGA, W_CENTRE, W_CENTRE0, W_FIRST, W_DATA,
+       W_PLANE, W_CYLINDER, W_RI_CURV };
+extern const int dem_contact_aot_wall_layout[];
+extern const double dem_contact_aot_unit_tol;
+extern const double dem_contact_aot_surface_tol[2];
+extern const int dem_contact_aot_wall_abi;
 // an x86 feature of the machine the steps were compiled on that this one lacks (nullptr: none)
 const char *dem_contact_aot_missing_feature();
 // set where the compiled code took an error path (an exception in numba's terms); cleared by the caller
@@ -49,6 +61,22 @@ struct DemContactAotTable {
   std::vector<double> params, rowinfo, type_size, tc_unit, alpha;
   std::vector<int64_t> sphere_row;
 };
+
+// The wall of a fix dem/contact/wall read without Python (aot_wall fills them and points the wall's attach
+// structure at them)
+struct DemContactAotWall {
+  DemContactAotTable table;
+  std::vector<double> walls;
+  std::vector<int64_t> wall_row;
+};
+
+struct DemContactWallAttach;
+
+// Read the words of fix dem/contact/wall after its style (`words`) and the table file `path` for a box of
+// `ntypes` atom types into `wall`, and fill `k` as wall_kernel.attach does (a plane or a cylinder; the step: the
+// one compiled for the table's tangential law). Returns "" or what is wrong, with what to do.
+std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, const std::string &path, int ntypes,
+                                        DemContactWallAttach &k, DemContactAotWall &wall);
 
 // Read the table file `path` for a box of `ntypes` atom types into `table` and fill `k` as
 // pair_kernel.attach does (the step: the one compiled for the table's tangential law). Returns "" or what is

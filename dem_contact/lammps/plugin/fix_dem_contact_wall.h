@@ -5,7 +5,8 @@
          [centre CX CY CZ] [slots N]
 
    KIND ARGS: plane PX PY PZ NX NY NZ | cylinder PX PY PZ AX AY AZ RC in|out [flat] | mesh FILE [scale S]
-   (dem_contact/lammps/wall_kernel.py reads them). W: the wall's material, the W-th wall of the table file
+   (dem_contact/lammps/wall_kernel.py reads them; with the steps compiled ahead of time, aot_wall.cpp reads a
+   plane's or a cylinder's). W: the wall's material, the W-th wall of the table file
    (default 0). Define pair_style dem/contact and its pair_coeff first: the fix takes its table, vmax and
    frame_spin.
 
@@ -19,6 +20,10 @@
 #define DEM_CONTACT_FIX_WALL_H
 
 #include "fix.h"
+
+#ifdef DEM_CONTACT_AOT
+#include "aot.h"
+#endif
 
 #include <cstdint>
 #include <string>
@@ -73,6 +78,9 @@ class FixDemContactWall : public Fix {
 
  private:
   DemContactWallAttach kernel;
+#ifdef DEM_CONTACT_AOT
+  DemContactAotWall aot_wall;    // (the wall and the table's arrays, read without Python)
+#endif
   std::string words, table_path, history_id;
   FixDemContactHistory *history;
   PairDemContact *pair;
