@@ -32,11 +32,12 @@ def _oblique(seed):
 
 @njit
 def _kernels(walls, w, x, y, z, r):
-    s, nx, ny, nz = T.contact_of(walls, w, 0, x, y, z, r)
+    e = np.int64(0)     # (an int64, not the literal 0: the signature the package's kernels compile contact_of for)
+    s, nx, ny, nz = T.contact_of(walls, w, e, x, y, z, r)
     cx, cy, cz = x + s * nx, y + s * ny, z + s * nz
     vx, vy, vz = T.velocity(walls, w, cx, cy, cz)
     return s, nx, ny, nz, vx, vy, vz, T.curvature(walls, w, 0, cx, cy, cz), T.elements(walls, w), \
-        T.key_of(walls, w, 0, x, y, z)
+        T.key_of(walls, w, e, x, y, z)
 
 
 def test_plane_kernels_are_the_closed_form():
