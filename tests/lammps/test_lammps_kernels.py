@@ -15,7 +15,7 @@ def _points(n, seed, box=1.0):
 def test_candidates_are_every_close_pair_once_lower_id_first():
     nall, nlocal, skin = 400, 300, 0.01
     x, radius = _points(nall, 1)
-    tag = np.random.default_rng(2).permutation(nall).astype(np.int64) + 1     # ids unrelated to indices
+    tag = np.random.default_rng(2).permutation(nall).astype(np.int32) + 1     # ids unrelated to indices (LAMMPS's int32)
     planes = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0, 0.0, -1.0]])
     walls, _ = pack([PlaneWall(tuple(p[:3]), tuple(p[3:])) for p in planes])
     pairs, wall_pairs = K.candidates(nlocal, nall, x, radius, tag, walls, radius.max(), skin)
@@ -53,7 +53,7 @@ def test_wall_candidates_of_a_mesh_are_every_close_element_in_order():
     near = MeshWall(hopper.vertices * scale - 0.1, hopper.triangles)
     far = MeshWall(hopper.vertices * scale + 50.0, hopper.triangles)
     walls, _ = pack([near, PlaneWall((0.0, 0.0, 0.5), (0.0, 0.0, 1.0)), far])
-    tag = np.arange(nall, dtype=np.int64) + 1
+    tag = np.arange(nall, dtype=np.int32) + 1
     _, hits = K.candidates(nlocal, nall, x, radius, tag, walls, radius.max(), skin)
     want = [(i, w, e) for i in range(nlocal) for w in range(3) for e in range(W.elements(walls, w))
             if W.distance(walls, w, e, *x[i]) < radius[i] + skin]

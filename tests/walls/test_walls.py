@@ -139,6 +139,12 @@ def _scene(seed=3, n=60):
     return x, radius, walls, v, omega
 
 
+def _columns(n, m):
+    """Zeroed float64[n, m], columns of a wider array as the bridge's per-atom keys, separations and statistics
+    are (of LAMMPS's per-atom arrays): the layout the bridge's kernels are compiled for."""
+    return np.zeros((n, m + 1))[:, :m]
+
+
 def _bridge_wall_contacts(x, radius, walls, v, omega, table):
     """The wall contacts of the LAMMPS bridge's kernels (``gather_contacts``, one rank, no LAMMPS) with their
     law inputs: (sphere, wall, normals, overlaps, velocities, wn, pair_rows)."""
@@ -147,14 +153,14 @@ def _bridge_wall_contacts(x, radius, walls, v, omega, table):
 
     n, slots = len(x), 64          # (enough rows: no contact is left out)
     rows, mats = pack(walls, table.wall_row.shape[1])
-    tag = np.arange(1, n + 1, dtype=np.int64)
+    tag = np.arange(1, n + 1, dtype=np.int32)      # (LAMMPS's ids and types: int32)
     cand = K.candidates(n, n, x, radius, tag, rows, radius.max(), 1e-4)
     cand_rows = np.full((len(cand[0]) + len(cand[1]), 2), -1, dtype=np.int64)
     buf = K.contact_buffers(2 * len(cand_rows) + 16, table.params)
     m, _, _ = K.gather_contacts(
-        n, x, v, omega, radius, np.ones(n), tag, np.ones(n, dtype=np.int64), rows, mats, *cand, cand_rows,
-        np.zeros((n, slots)), np.zeros((n, 4 * slots)), np.inf, np.zeros((n * slots, table.history_size)),
-        table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, np.zeros((n, K.N_STAT)),
+        n, x, v, omega, radius, np.ones(n), tag, np.ones(n, dtype=np.int32), rows, mats, *cand, cand_rows,
+        _columns(n, slots), _columns(n, 4 * slots), np.inf, np.zeros((n * slots, table.history_size)),
+        table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, _columns(n, K.N_STAT),
         np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
         np.zeros(n, dtype=np.int64), table.params, np.ones((len(table.params), CT.N_ROWINFO)), False,
         np.ones((table.sphere_row.shape[0], 2)), np.inf, np.zeros(K.N_ONSET), *buf[:12])
