@@ -60,6 +60,8 @@ extern int dem_contact_aot_raised;
 struct DemContactAotTable {
   std::vector<double> params, rowinfo, type_size, tc_unit, alpha;
   std::vector<int64_t> sphere_row;
+  std::vector<int64_t> wall_row;    // (types x n_mats: the row of each type against each wall material)
+  int64_t n_mats = 0;
 };
 
 // The wall of a fix dem/contact/wall read without Python (aot_wall fills them and points the wall's attach
@@ -67,7 +69,6 @@ struct DemContactAotTable {
 struct DemContactAotWall {
   DemContactAotTable table;
   std::vector<double> walls;
-  std::vector<int64_t> wall_row;
 };
 
 struct DemContactWallAttach;

@@ -126,6 +126,16 @@ std::string dem_contact_aot_attach(const std::string &path, int ntypes, DemConta
     return "the table file " + path + " is corrupt (an array of the wrong shape, or a value missing)" + again;
   for (int64_t row : t.sphere_row)
     if (row < 0 || row >= (int64_t) n_rows) return "the table file " + path + " is corrupt (a sphere row)" + again;
+  // the rows of the types against the walls' materials (none: a table without walls)
+  const json *walls = doc.contains("wall_row") ? &doc["wall_row"] : nullptr;
+  t.n_mats = walls && walls->is_array() && walls->size() == nt && nt > 0 && (*walls)[0].is_array()
+      ? (int64_t) (*walls)[0].size() : 0;
+  if (!walls || !walls->is_array() || walls->size() != nt ||
+      (t.n_mats > 0 && !numbers(doc, "wall_row", nt, t.n_mats, t.wall_row)))
+    return "the table file " + path + " is corrupt (its 'wall_row')" + again;
+  if (t.n_mats == 0) t.wall_row.clear();
+  for (int64_t row : t.wall_row)
+    if (row < 0 || row >= (int64_t) n_rows) return "the table file " + path + " is corrupt (a wall row)" + again;
   t.type_size.clear();
   for (size_t k_t = 0; k_t < nt; k_t++) {
     t.type_size.push_back(radius[k_t]);

@@ -1,21 +1,16 @@
 // The wall of fix dem/contact/wall read without Python, for the step compiled ahead of time: the words of a plane
 // or a cylinder as dem_contact.lammps.wall_kernel.parse reads them, packed as dem_contact.walls.table.pack packs
 // them (the kinds' packed(): plane.PlaneWall, cylinder.CylinderWall), with their checks and the same messages;
-// the table's laws and arrays as aot_attach reads them, and its walls (wall_row).
+// the table's laws and arrays, its walls included, as aot_attach reads them.
 #include "aot.h"
 #include "fix_dem_contact_wall.h"
 #include "pair_dem_contact.h"
-
-#include "json.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-
-using LAMMPS_NS::json;
 
 namespace {
 const char *SYNTAX =
@@ -177,34 +172,17 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   std::memset(&pair, 0, sizeof(pair));
   std::string wrong = dem_contact_aot_attach(path, ntypes, pair, wall.table);
   if (!wrong.empty()) return wrong;
-  std::ifstream in(path);
-  json doc = json::parse(in, nullptr, false);
-  const json *rows = doc.is_object() && doc.contains("wall_row") ? &doc["wall_row"] : nullptr;
-  if (!rows || !rows->is_array() || (int) rows->size() != ntypes)
-    return "the table file " + path + " is corrupt (its 'wall_row'): write it again with "
-           "dem_contact.lammps.table_file.save";
-  const size_t n_mats = ntypes > 0 && (*rows)[0].is_array() ? (*rows)[0].size() : 0;
-  wall.wall_row.clear();
-  for (const json &r : *rows) {
-    if (!r.is_array() || r.size() != n_mats)
-      return "the table file " + path + " is corrupt (its 'wall_row'): write it again with "
-             "dem_contact.lammps.table_file.save";
-    for (const json &v : r) {
-      if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() >= pair.n_rows)
-        return "the table file " + path + " is corrupt (a wall row): write it again with "
-               "dem_contact.lammps.table_file.save";
-      wall.wall_row.push_back(v.get<int64_t>());
-    }
-  }
+  const int64_t n_mats = wall.table.n_mats;
+  const std::vector<int64_t> &wall_row = wall.table.wall_row;
   if (n_mats == 0)
     return "the table file " + path + " has no walls: write it with the walls' materials (`dem-contact "
            "lammps-table ... --wall E NU`, or pair_table(spheres, walls))";
-  if (mat < 0 || mat >= (int64_t) n_mats)
+  if (mat < 0 || mat >= n_mats)
     return "wall " + std::to_string(mat) + " is not a wall of the table file " + path + " (it has walls 0 ... " +
         std::to_string(n_mats - 1) + ")";
   const double want = kind == "plane" || !curved ? 0.0 : (inside ? -0.5 : 0.5) / rc;
   const int *L = dem_contact_aot_wall_layout;
-  const double have = wall.table.rowinfo[wall.wall_row[mat] * dem_contact_aot_n_rowinfo + L[W_RI_CURV]];
+  const double have = wall.table.rowinfo[wall_row[mat] * dem_contact_aot_n_rowinfo + L[W_RI_CURV]];
   if (have != want)
     return "the wall has curvature " + number_text(want) + " 1/m at its contacts, but its material (wall " +
         std::to_string(mat) + " of " + path + ") has curvature " + number_text(have) +
@@ -246,9 +224,9 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   k.mat = mat;
   k.params = wall.table.params.data();
   k.n_rows = pair.n_rows;
-  k.wall_row = wall.wall_row.data();
+  k.wall_row = wall_row.data();
   k.n_types = ntypes;
-  k.n_mats = (int64_t) n_mats;
+  k.n_mats = n_mats;
   k.rowinfo = wall.table.rowinfo.data();
   k.type_size = wall.table.type_size.data();
   k.size_free = pair.size_free;

@@ -12,7 +12,6 @@
 #include "modify.h"
 #include "update.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -85,14 +84,7 @@ void FixDemContactWall::attach()
   kernel.abi = ABI;
 #ifdef DEM_CONTACT_AOT
   // (the step compiled ahead of time: no Python)
-  std::vector<std::string> list;
-  size_t start = 0;
-  while (!words.empty() && start <= words.size()) {
-    const size_t end = std::min(words.find('\n', start), words.size());
-    list.push_back(words.substr(start, end - start));
-    start = end + 1;
-  }
-  std::string wrong = dem_contact_aot_wall_attach(list, table_path, atom->ntypes, kernel, aot_wall);
+  std::string wrong = dem_contact_aot_wall_attach(utils::split_lines(words), table_path, atom->ntypes, kernel, aot_wall);
   if (!wrong.empty()) error->all(FLERR, "fix {} dem/contact/wall: {}", id, wrong);
   if (comm->me == 0) utils::logmesg(lmp, "fix {} dem/contact/wall: {} (its step compiled ahead of time)\n", id,
                                     kernel.describe);
