@@ -46,6 +46,11 @@ def _run(cmd, cwd=ROOT, **env):
     return r.stdout
 
 
+def _thermo(log):
+    """The thermo table of a LAMMPS log (its header to the loop time)."""
+    return log[log.index("Step"):log.index("Loop time")]
+
+
 def _scenes(scene, engines, out, ranks=1, *options):
     cmd = [sys.executable, "tests/lammps/plugin_scenes.py", scene, engines, str(out), *options]
     return json.loads(_run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd]))
@@ -274,7 +279,7 @@ def test_drum_script_runs_in_lmp(plugin, tmp_path):
         cmd = [LMP, "-in", "in.drum", "-log", "none"]
         log = _run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], cwd=tmp_path)
         assert "fix drum dem/contact/wall: CylinderWall" in log
-        lines = log[log.index("Step"):log.index("Loop time")].splitlines()[1:]
+        lines = _thermo(log).splitlines()[1:]
         rows.append(np.array([[float(w) for w in line.split()] for line in lines]))
     # (the bed is chaotic: the rounding of an atom's sums in another order grows to about 1e-5 of each column's
     # largest value in 40,000 steps; a contact history lost or misplaced between the ranks gives order 1)
@@ -319,7 +324,7 @@ def test_input_script_runs_in_lmp(plugin, tmp_path):
         cmd = [LMP, "-in", "in.pour", "-log", "none"]
         log = _run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], cwd=tmp_path)
         assert "pair dem/contact: hertz + mindlin_total" in log
-        thermo.append(log[log.index("Step"):log.index("Loop time")])
+        thermo.append(_thermo(log))
     assert thermo[0] == thermo[1]
 
 
@@ -350,7 +355,7 @@ def test_the_step_compiled_ahead_of_time_runs_in_lmp_without_python(plugin, tmp_
                                   ("aot", [real_lmp, "-in", "in.aot"], 2, no_python)):
         cmd = cmd + ["-log", "none"]
         log = _run(cmd if ranks == 1 else [MPIRUN, "-np", str(ranks), *cmd], cwd=tmp_path, **env)
-        thermo[name, ranks] = log[log.index("Step"):log.index("Loop time")]
+        thermo[name, ranks] = _thermo(log)
         assert name == "python" or "compiled ahead of time" in log
     assert thermo["aot", 1] == thermo["python", 1] and thermo["aot", 2] == thermo["python", 1]
     assert thermo["aot", 1].splitlines()[-1].split()[:2] == ["2000", "130"]     # (the pour ran to its end)
@@ -364,9 +369,6 @@ def test_the_step_compiled_ahead_of_time_runs_in_lmp_without_python(plugin, tmp_
     assert r.returncode != 0
     assert "compiled ahead of time for mindlin_total: build it for mindlin_rescale" in r.stdout + r.stderr
 
-
-def _thermo(log):
-    return log[log.index("Step"):log.index("Loop time")]
 
 
 def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path):
