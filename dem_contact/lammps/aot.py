@@ -1,5 +1,5 @@
 """The LAMMPS plugin with its steps compiled ahead of time: ``pair_style dem/contact`` and ``fix
-dem/contact/wall`` (its planes and cylinders) in an ``lmp`` that runs no Python (``dem-contact lammps-plugin
+dem/contact/wall`` in an ``lmp`` that runs no Python (``dem-contact lammps-plugin
 --ahead-of-time LAW[,LAW...]``).
 
 The pair and wall steps of each tangential law family named (``pair_kernel.step_function``,
@@ -9,10 +9,10 @@ taken from numba's cache as the native objects numba made of them, their entries
 linked into the plugin with numba's runtime (its memory functions, from numba's ``nrt.cpp``) and ``plugin/aot_runtime.cpp``
 (numba's ldexp, and the error paths of the compiled code, which report instead of raising). The plugin reads
 the table file itself (``plugin/aot_attach.cpp``: the checks of ``table_file.load``) for a table of the same
-package version whose tangential law is one of those compiled in, and the words of a plane or cylinder wall
-(``plugin/aot_wall.cpp``: ``wall_kernel.parse`` and ``walls.table.pack`` for those kinds, with their checks); a
-mesh wall (its STL file read and packed by the walls room) needs the plugin that reaches the package through
-Python.
+package version whose tangential law is one of those compiled in, and the words of a wall
+(``plugin/aot_wall.cpp``: ``wall_kernel.parse`` and ``walls.table.pack``, with their checks); a mesh from its
+packed mesh file (``mesh_file``, written from the STL file by ``dem-contact lammps-mesh``: the walls room reads
+STL files and works out a mesh's topology in Python).
 
 What this depends on: numba's cache layout (the object code it keeps of a cfunc), checked at the build for the
 numba version this package pins (``NUMBA``), the GNU toolchain (``objcopy``, ``nm``), and the CPU: the object is
@@ -25,6 +25,7 @@ not).
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import shutil
 import subprocess
@@ -145,10 +146,10 @@ def _tables(laws, entries, wall_entries) -> str:
 
     from ..laws.dispatch import tangential_base
     from ..laws.slots import P_NSPRING
-    from ..walls import checks, cylinder, plane
+    from ..walls import checks, cylinder, mesh, plane
     from ..walls import contract as WC
     from ..walls import table as WT
-    from . import wall_kernel
+    from . import mesh_file, wall_kernel
     from .contact_terms import RI_CURV
 
     host = llvm.get_host_cpu_features()
@@ -179,8 +180,10 @@ def _tables(laws, entries, wall_entries) -> str:
     # the packed row of a plane or a cylinder wall (walls.contract, walls.table.pack) and the checks of its words
     kinds = {mod.CLASS: kid for kid, mod in WT.KINDS}
     layout = (WT.ROW_SIZE, WC.KIND, WC.KEY_BASE, WC.NELEM, WC.MOVES, WC.VEL, WC.OMEGA, WC.CENTRE, WC.CENTRE0,
-              WC.FIRST, WC.DATA, kinds["PlaneWall"], kinds["CylinderWall"], RI_CURV)
+              WC.FIRST, WC.DATA, kinds["PlaneWall"], kinds["CylinderWall"], RI_CURV, kinds["MeshWall"],
+              int(WC.PAYLOAD), mesh.PAYLOAD_WIDTH, mesh._ID - 1, mesh._KEY - 1)
     lines += ["const int dem_contact_aot_wall_layout[] = {" + ", ".join(map(str, layout)) + "};",
+              f"const char *const dem_contact_aot_mesh_magic = {json.dumps(mesh_file.MAGIC.decode())};",
               f"const double dem_contact_aot_unit_tol = {checks.UNIT_TOL!r};",
               f"const double dem_contact_aot_surface_tol[2] = {{{plane.SURFACE_TOL!r}, {cylinder.SURFACE_TOL!r}}};",
               f"const int dem_contact_aot_wall_abi = {wall_kernel.ABI};", "}"]

@@ -11,7 +11,9 @@ motion) and its words in the input script are read here (``parse``):
     cylinder PX PY PZ AX AY AZ RC SIDE  a point on the axis, the axis, the radius, SIDE in (spheres inside) or
                                         out (outside); curved contacts (R* with -+ 1/(2 RC)); flat: SIDE
                                         followed by the word flat
-    mesh FILE [scale S]                 an STL file (ASCII or binary), its coordinates times S [m]
+    mesh FILE [scale S]                 an STL file (ASCII or binary), its coordinates times S [m], or a packed
+                                        mesh file (``mesh_file``: the only mesh the plugin compiled ahead of
+                                        time reads)
 
 ``wall W``: the wall's material, the W-th wall of the table file (0, 1, ...: ``dem-contact lammps-table --wall``);
 the rigid motion (``walls.contract``): the velocity of the centre [m/s] and the angular velocity about it
@@ -369,6 +371,7 @@ def parse(words: list):
     (InputError naming the word and the syntax)."""
     from ..errors import InputError
     from ..walls import CylinderWall, MeshWall, PlaneWall
+    from . import mesh_file
 
     def numbers(at, count, what):
         got = words[at:at + count]
@@ -405,7 +408,7 @@ def parse(words: list):
     else:
         if k >= len(words):
             raise InputError(f"mesh needs an STL file (syntax: {_SYNTAX})")
-        shape = dict(path=words[k], scale=1.0)
+        shape = dict(path=words[k])
         k += 1
         if k < len(words) and words[k] == "scale":
             shape["scale"] = numbers(k + 1, 1, "scale")[0]
@@ -438,9 +441,14 @@ def parse(words: list):
         wall = PlaneWall(wall=mat, **shape, **motion)
     elif kind == "cylinder":
         wall = CylinderWall(wall=mat, **shape, **motion)
+    elif mesh_file.is_packed(shape["path"]):
+        if "scale" in shape:
+            raise InputError(f"scale applies to an STL file: {shape['path']} is a packed mesh, whose coordinates "
+                             f"were scaled when it was written (dem-contact lammps-mesh --scale)")
+        wall = mesh_file.read(shape["path"], wall=mat, **motion)
     else:
         try:
-            wall = MeshWall.from_stl(shape["path"], scale=shape["scale"], wall=mat, **motion)
+            wall = MeshWall.from_stl(shape["path"], scale=shape.get("scale", 1.0), wall=mat, **motion)
         except OSError as e:
             raise InputError(f"the STL file {shape['path']} cannot be read ({e})") from None
     return wall, slots

@@ -176,6 +176,7 @@ OUTPUT_CASES = {
     ("benchmark", "--report"): (["chung-ooi"], "missing/r.md", ("dem_contact.studies.chung_ooi", "run_suite")),
     ("lammps-table", "--out"): (["--sphere", "0.001", "5e7", "0.25", "2500"], "missing/t.json",
                                 ("dem_contact.dem.pairs", "pair_table")),
+    ("lammps-mesh", "--out"): (["part.stl"], "missing/m.mesh", ("dem_contact.lammps.mesh_file", "from_stl")),
 }
 
 

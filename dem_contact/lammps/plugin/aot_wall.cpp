@@ -1,12 +1,14 @@
-// The wall of fix dem/contact/wall read without Python, for the step compiled ahead of time: the words of a plane
-// or a cylinder as dem_contact.lammps.wall_kernel.parse reads them, packed as dem_contact.walls.table.pack packs
-// them (the kinds' packed(): plane.PlaneWall, cylinder.CylinderWall), with their checks and the same messages;
-// the table's laws and arrays, its walls included, as aot_attach reads them.
+// The wall of fix dem/contact/wall read without Python, for the step compiled ahead of time: the words of a plane,
+// a cylinder or a mesh as dem_contact.lammps.wall_kernel.parse reads them, packed as dem_contact.walls.table.pack
+// packs them (the kinds' packed(): plane.PlaneWall, cylinder.CylinderWall; a mesh's triangles from a packed mesh
+// file, dem_contact.lammps.mesh_file, as mesh.MeshWall.packed made them), with their checks and the same
+// messages; the table's laws and arrays, its walls included, as aot_attach reads them.
 #include "aot.h"
 #include "fix_dem_contact_wall.h"
 #include "pair_dem_contact.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -66,6 +68,65 @@ void cross(const V3 a, const V3 b, V3 c)
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 bool finite(const V3 a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+
+#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "a packed mesh file holds little-endian numbers: this reader needs a little-endian machine"
+#endif
+
+// The packed mesh file at path (mesh_file.py: its first line, the line of its version, interface, payload
+// columns, triangles and keys, then the default centre and the payload rows as float64) into centre and payload
+// (nt rows of the payload columns); what is wrong with it, or ""
+std::string read_mesh(const std::string &path, V3 centre, std::vector<double> &payload, int64_t &nt)
+{
+  const std::string again = ": write it again from its STL file with `dem-contact lammps-mesh`";
+  FILE *f = std::fopen(path.c_str(), "rb");
+  if (!f) return "the packed mesh file " + path + " cannot be read (" + std::strerror(errno) + ")";
+  std::string data;
+  char chunk[65536];
+  for (size_t got; (got = std::fread(chunk, 1, sizeof(chunk), f)) > 0;) data.append(chunk, got);
+  std::fclose(f);
+  const std::string magic = dem_contact_aot_mesh_magic;
+  if (data.compare(0, magic.size(), magic) != 0)
+    return path + " is not a packed mesh file: the plugin compiled ahead of time reads a mesh from a packed mesh "
+                  "file only; write one from the STL file (dem-contact lammps-mesh " + path + " --out FILE.mesh) and "
+                  "name it";
+  const size_t end = data.find('\n', magic.size());
+  char version[64] = "";
+  int abi = -1, width = -1;
+  long long triangles = -1, keys = -1;
+  if (end == std::string::npos ||
+      std::sscanf(data.substr(magic.size(), end - magic.size()).c_str(),
+                  "version %63s abi %d width %d triangles %lld keys %lld", version, &abi, &width, &triangles,
+                  &keys) != 5)
+    return "the packed mesh file " + path + " is corrupt (its second line)" + again;
+  const int *L = dem_contact_aot_wall_layout;
+  if (std::strcmp(version, dem_contact_aot_version) != 0 || abi != dem_contact_aot_wall_abi ||
+      width != L[W_PAYLOAD_WIDTH])
+    return "the packed mesh file " + path + " was written by dem_contact " + version + " (wall interface " +
+        std::to_string(abi) + "), this plugin's steps are of " + dem_contact_aot_version + " (wall interface " +
+        std::to_string(dem_contact_aot_wall_abi) + ")" + again;
+  if (triangles < 1 || data.size() - end - 1 != sizeof(double) * (3 + (size_t) triangles * width))
+    return "the packed mesh file " + path + " is corrupt (its size)" + again;
+  nt = triangles;
+  payload.resize((size_t) nt * width);
+  std::memcpy(centre, data.data() + end + 1, sizeof(double) * 3);
+  std::memcpy(payload.data(), data.data() + end + 1 + sizeof(double) * 3, sizeof(double) * payload.size());
+  bool ok = finite(centre);
+  for (int64_t t = 0; ok && t < nt; t++) {
+    const double *row = payload.data() + t * width;
+    for (int c = 0; c < width; c++) ok = ok && std::isfinite(row[c]);
+    for (int q = 0; q < 3; q++) {
+      const double id = row[L[W_MESH_IDS] + q];
+      ok = ok && id >= 0.0 && id == std::floor(id);
+    }
+    for (int q = 0; q < 2; q++) {
+      const double key = row[L[W_MESH_KEYS] + q];
+      ok = ok && key >= 0.0 && key < (double) keys && key == std::floor(key);
+    }
+  }
+  if (!ok) return "the packed mesh file " + path + " is corrupt (its triangles)" + again;
+  return "";
+}
 }    // namespace
 
 std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, const std::string &path, int ntypes,
@@ -80,16 +141,21 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   if (words.empty() || (words[0] != "plane" && words[0] != "cylinder" && words[0] != "mesh"))
     return "unknown wall kind '" + (words.empty() ? std::string("(none)") : words[0]) + "'" + syntax;
   const std::string kind = words[0];
-  if (kind == "mesh")
-    return "a mesh wall (its STL file read and packed by dem_contact's walls room) needs Python: this plugin has its "
-           "steps compiled ahead of time, and runs planes and cylinders only; load the plugin that reaches "
-           "dem_contact through Python (dem-contact lammps-plugin) for a mesh";
   size_t at = 1;
   V3 point = {0, 0, 0}, dir = {0, 0, 0};
   double rc = 0.0;
-  bool inside = true, curved = true;
-  double a[7];
-  if (kind == "plane") {
+  bool inside = true, curved = true, scaled = false;
+  double a[7] = {0, 0, 0, 0, 0, 0, 0};
+  std::string mesh_path;
+  if (kind == "mesh") {
+    if (at >= words.size()) return "mesh needs an STL file" + syntax;
+    mesh_path = words[at++];
+    if (at < words.size() && words[at] == "scale") {
+      if (!numbers(words, at + 1, 1, a)) return "scale needs 1 numbers, got " + got(words, at + 1, 1) + syntax;
+      scaled = true;
+      at += 2;
+    }
+  } else if (kind == "plane") {
     if (!numbers(words, at, 6, a)) return "plane needs 6 numbers, got " + got(words, at, 6) + syntax;
     at += 6;
   } else {
@@ -107,10 +173,11 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
     }
     rc = a[6];
   }
-  for (int d = 0; d < 3; d++) {
-    point[d] = a[d];
-    dir[d] = a[3 + d];
-  }
+  if (kind != "mesh")
+    for (int d = 0; d < 3; d++) {
+      point[d] = a[d];
+      dir[d] = a[3 + d];
+    }
   V3 vel = {0, 0, 0}, omega = {0, 0, 0}, centre = {0, 0, 0};
   bool has_centre = false;
   int64_t slots = 0, mat = 0;
@@ -138,11 +205,22 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
     } else
       return "unknown keyword '" + key + "'" + syntax;
   }
+  // a mesh: its packed file (not an STL file, which the walls room reads in Python)
+  std::vector<double> payload;
+  int64_t nt = 0;
+  V3 mesh_centre = {0, 0, 0};
+  if (kind == "mesh") {
+    std::string wrong = read_mesh(mesh_path, mesh_centre, payload, nt);
+    if (!wrong.empty()) return wrong;
+    if (scaled)
+      return "scale applies to an STL file: " + mesh_path + " is a packed mesh, whose coordinates were scaled when "
+                                                            "it was written (dem-contact lammps-mesh --scale)";
+  }
   // the wall's checks (the kinds' packed(), walls.checks)
   const char *dir_name = kind == "plane" ? "normal" : "axis";
   if (!finite(point)) return "the wall's point must be 3 finite numbers";
   if (!finite(dir)) return std::string("the wall's ") + dir_name + " must be 3 finite numbers";
-  if (std::fabs(norm(dir) - 1.0) > dem_contact_aot_unit_tol)
+  if (kind != "mesh" && std::fabs(norm(dir) - 1.0) > dem_contact_aot_unit_tol)
     return std::string("the wall's ") + dir_name + " must be a unit vector (| |n| - 1 | <= " +
         number_text(dem_contact_aot_unit_tol) + "), |n| = " + number_text(norm(dir));
   if (kind == "cylinder" && !(std::isfinite(rc) && rc > 0.0))
@@ -151,11 +229,13 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   if (!finite(omega)) return "the wall's angular_velocity must be 3 finite numbers";
   if (has_centre && !finite(centre)) return "the wall's centre must be 3 finite numbers";
   if (!has_centre)
-    for (int d = 0; d < 3; d++) centre[d] = point[d];
+    for (int d = 0; d < 3; d++) centre[d] = kind == "mesh" ? mesh_centre[d] : point[d];
   V3 c1, c2;
   bool keeps;
   const double *tol = dem_contact_aot_surface_tol;
-  if (kind == "plane") {
+  if (kind == "mesh")
+    keeps = norm(vel) == 0.0 && norm(omega) == 0.0;
+  else if (kind == "plane") {
     cross(omega, dir, c2);
     keeps = std::fabs(dot(vel, dir)) <= tol[0] * norm(vel) && norm(c2) <= tol[0] * norm(omega);
   } else {
@@ -180,7 +260,7 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   if (mat < 0 || mat >= n_mats)
     return "wall " + std::to_string(mat) + " is not a wall of the table file " + path + " (it has walls 0 ... " +
         std::to_string(n_mats - 1) + ")";
-  const double want = kind == "plane" || !curved ? 0.0 : (inside ? -0.5 : 0.5) / rc;
+  const double want = kind != "cylinder" || !curved ? 0.0 : (inside ? -0.5 : 0.5) / rc;
   const int *L = dem_contact_aot_wall_layout;
   const double have = wall.table.rowinfo[wall_row[mat] * dem_contact_aot_n_rowinfo + L[W_RI_CURV]];
   if (have != want)
@@ -189,25 +269,39 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
         ": write the table with that curvature for it (--wall E NU " + number_text(want) +
         "), or give the cylinder the word flat (R* = R1)";
 
-  // the packed row (walls.table.pack: one wall, no payload; the kind's data as its packed() returns it)
-  wall.walls.assign(L[W_ROW_SIZE], 0.0);
+  // the packed rows (walls.table.pack: one wall, then a mesh's payload rows; the kind's data as its packed()
+  // returns it)
+  wall.walls.assign((size_t) L[W_ROW_SIZE] * (1 + nt), 0.0);
   double *w = wall.walls.data();
-  w[L[W_KIND]] = kind == "plane" ? L[W_PLANE] : L[W_CYLINDER];
+  w[L[W_KIND]] = kind == "plane" ? L[W_PLANE] : kind == "cylinder" ? L[W_CYLINDER] : L[W_MESH];
   w[L[W_KEY_BASE]] = 0.0;
-  w[L[W_NELEM]] = 1.0;
+  w[L[W_NELEM]] = kind == "mesh" ? (double) nt : 1.0;
   w[L[W_MOVES]] = keeps ? 0.0 : 1.0;
   for (int d = 0; d < 3; d++) {
     w[L[W_VEL] + d] = vel[d];
     w[L[W_OMEGA] + d] = omega[d];
     w[L[W_CENTRE] + d] = centre[d];
     w[L[W_CENTRE0] + d] = centre[d];
-    // point, direction now and at time 0
-    w[L[W_DATA] + d] = point[d];
-    w[L[W_DATA] + 3 + d] = dir[d];
-    w[L[W_DATA] + 6 + d] = point[d];
-    w[L[W_DATA] + 9 + d] = dir[d];
+    // a plane's and a cylinder's point, direction now and at time 0
+    if (kind != "mesh") {
+      w[L[W_DATA] + d] = point[d];
+      w[L[W_DATA] + 3 + d] = dir[d];
+      w[L[W_DATA] + 6 + d] = point[d];
+      w[L[W_DATA] + 9 + d] = dir[d];
+    }
   }
   w[L[W_FIRST]] = -1.0;
+  if (kind == "mesh") {
+    // (row data: the number of triangles; each payload row: PAYLOAD, then the triangle's columns)
+    w[L[W_DATA]] = (double) nt;
+    w[L[W_FIRST]] = 1.0;
+    const int width = L[W_PAYLOAD_WIDTH];
+    for (int64_t t = 0; t < nt; t++) {
+      double *row = w + (1 + t) * L[W_ROW_SIZE];
+      row[L[W_KIND]] = L[W_PAYLOAD];
+      std::memcpy(row + 1, payload.data() + t * width, sizeof(double) * width);
+    }
+  }
   if (kind == "cylinder") {
     w[L[W_DATA] + 12] = rc;
     w[L[W_DATA] + 13] = inside ? 1.0 : -1.0;
@@ -220,7 +314,7 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
     if (dem_contact_aot_steps[s].step == pair.step) step = dem_contact_aot_steps[s].wall_step;
   k.step = step;
   k.walls = w;
-  k.wall_rows = 1;
+  k.wall_rows = 1 + nt;
   k.mat = mat;
   k.params = wall.table.params.data();
   k.n_rows = pair.n_rows;
@@ -231,10 +325,12 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   k.type_size = wall.table.type_size.data();
   k.size_free = pair.size_free;
   k.history_size = pair.history_size;
-  k.slots = slots ? slots : 1;    // (a plane or a cylinder: one contact per atom)
-  k.unbounded = 1;
+  // (a plane or a cylinder: one contact per atom; a mesh: one per patch it touches)
+  k.slots = slots ? slots : kind == "mesh" ? 6 : 1;
+  k.unbounded = kind == "mesh" ? 0 : 1;
   std::snprintf(k.describe, sizeof(k.describe), "%s (table wall %lld), %s",
-                kind == "plane" ? "PlaneWall" : "CylinderWall", (long long) mat, pair.laws);
+                kind == "plane" ? "PlaneWall" : kind == "cylinder" ? "CylinderWall" : "MeshWall", (long long) mat,
+                pair.laws);
   k.error[0] = 0;
   return "";
 }
