@@ -177,11 +177,12 @@ def _tables(laws, entries, wall_entries) -> str:
               "const int dem_contact_aot_vector_slots[] = {" + ", ".join(str(m.VECTOR_SLOTS) for m in tangential) + "};",
               "const int dem_contact_aot_cells[] = {" + ", ".join(str(int(bool(m.CELLS))) for m in tangential) + "};",
               f"const int dem_contact_aot_p_nspring = {P_NSPRING};"]
-    # the packed row of a plane or a cylinder wall (walls.contract, walls.table.pack) and the checks of its words
+    # the packed rows of a wall (walls.contract, walls.table.pack, a mesh's payload) and the checks of its words
     kinds = {mod.CLASS: kid for kid, mod in WT.KINDS}
     layout = (WT.ROW_SIZE, WC.KIND, WC.KEY_BASE, WC.NELEM, WC.MOVES, WC.VEL, WC.OMEGA, WC.CENTRE, WC.CENTRE0,
               WC.FIRST, WC.DATA, kinds["PlaneWall"], kinds["CylinderWall"], RI_CURV, kinds["MeshWall"],
-              int(WC.PAYLOAD), mesh.PAYLOAD_WIDTH, mesh._ID - 1, mesh._KEY - 1)
+              int(WC.PAYLOAD), mesh.PAYLOAD_WIDTH, *(c - 1 for c in (mesh._V, mesh._V0, mesh._ID, mesh._NB,
+                                                                     mesh._ORIENT, mesh._KEY)))
     lines += ["const int dem_contact_aot_wall_layout[] = {" + ", ".join(map(str, layout)) + "};",
               f"const char *const dem_contact_aot_mesh_magic = {json.dumps(mesh_file.MAGIC.decode())};",
               f"const double dem_contact_aot_unit_tol = {checks.UNIT_TOL!r};",

@@ -57,11 +57,13 @@ def write(wall, path) -> str:
 
     if not isinstance(wall, MeshWall):
         raise InputError(f"the wall of a packed mesh file must be a MeshWall, got {type(wall).__name__}")
-    bare = MeshWall(wall.vertices, wall.triangles)
     try:
-        payload, n_keys, centre = _packed(bare)
+        # (the conforming mesh without vertices no triangle uses, numbered in their order: what read rebuilds)
+        v, t = MeshWall(wall.vertices, wall.triangles).topology(0)[:2]
+        used = np.unique(t)
+        payload, n_keys, centre = _packed(MeshWall(v[used], np.searchsorted(used, t)))
     except InputError as e:
-        raise InputError(str(e).replace("walls[0].", "the mesh's ")) from None
+        raise InputError(str(e).replace("walls[0].", "the mesh's ").replace("walls[0]", "the mesh")) from None
     head = f"version {__version__} abi {ABI} width {PAYLOAD_WIDTH} triangles {len(payload)} keys {n_keys}\n"
     with open(path, "wb") as f:
         f.write(MAGIC + head.encode())
@@ -91,25 +93,24 @@ def read(path, **kw):
     except OSError as e:
         raise InputError(f"the packed mesh file {path} cannot be read ({e})") from None
     if not data.startswith(MAGIC):
-        raise InputError(f"{path} is not a packed mesh file (nor an STL file)")
+        raise InputError(f"{path} is not a packed mesh file (`dem-contact lammps-mesh` writes them from STL files)")
     end = data.find(b"\n", len(MAGIC))
-    words = data[len(MAGIC):end].decode(errors="replace").split()
-    try:
-        head = dict(zip(words[::2], words[1::2]))
-        version, abi, width, nt, n_keys = (head["version"], int(head["abi"]), int(head["width"]),
-                                           int(head["triangles"]), int(head["keys"]))
-    except (KeyError, ValueError):
-        raise InputError(f"the packed mesh file {path} is corrupt (its second line): {_WRITE_AGAIN}") from None
+    words = data[len(MAGIC):end].decode(errors="replace").split(" ") if end >= 0 else []
+    if (words[::2] != ["version", "abi", "width", "triangles", "keys"] or len(words) != 10
+            or not all(w.isascii() and w.isdigit() and len(w) <= 18 for w in words[3::2])):
+        raise InputError(f"the packed mesh file {path} is corrupt (its second line): {_WRITE_AGAIN}")
+    version, (abi, width, nt, n_keys) = words[1], (int(w) for w in words[3::2])
     if version != __version__ or abi != ABI or width != PAYLOAD_WIDTH:
         raise InputError(f"the packed mesh file {path} was written by dem_contact {version} (wall interface {abi}), "
                          f"this is {__version__} (wall interface {ABI}): {_WRITE_AGAIN}")
     body = data[end + 1:]
-    if end < 0 or nt < 1 or len(body) != 8 * (3 + nt * width):
+    if nt < 1 or len(body) != 8 * (3 + nt * width):
         raise InputError(f"the packed mesh file {path} is corrupt (its size): {_WRITE_AGAIN}")
     numbers = np.frombuffer(body, dtype="<f8").astype(np.float64)
     centre, payload = numbers[:3], numbers[3:].reshape(nt, width)
     ids = payload[:, _ID - 1:_ID + 2]
-    if not (np.isfinite(payload).all() and (ids >= 0).all() and (ids == np.round(ids)).all()):
+    # (every vertex of a packed mesh is a corner of a triangle: at most 3 nt of them)
+    if not (np.isfinite(payload).all() and ((ids >= 0) & (ids < 3 * nt) & (ids == np.round(ids))).all()):
         raise InputError(f"the packed mesh file {path} is corrupt (its triangles): {_WRITE_AGAIN}")
     triangles = ids.astype(np.int64)
     vertices = np.zeros((int(triangles.max()) + 1, 3))
@@ -118,7 +119,7 @@ def read(path, **kw):
     wall = MeshWall(vertices, triangles, **kw)
     try:
         again, keys_again, centre_again = _packed(MeshWall(vertices, triangles))
-    except InputError:
+    except InputError:      # (a mesh the walls room refuses)
         again = None
     if again is None or keys_again != n_keys or not (np.array_equal(again, payload)
                                                      and np.array_equal(centre_again, centre)):

@@ -17,8 +17,9 @@ motion) and its words in the input script are read here (``parse``):
 
 ``wall W``: the wall's material, the W-th wall of the table file (0, 1, ...: ``dem-contact lammps-table --wall``);
 the rigid motion (``walls.contract``): the velocity of the centre [m/s] and the angular velocity about it
-[rad/s] (the centre by default the plane's point, the cylinder's axis point, the mesh's mean vertex); ``slots``:
-history rows per atom (default: 1 for a plane or a cylinder, 6 for a mesh: the patches an atom touches at once).
+[rad/s] (the centre by default the plane's point, the cylinder's axis point, the mean of the mesh's triangles'
+corners); ``slots``: history rows per atom (default: 1 for a plane or a cylinder, 6 for a mesh: the patches an
+atom touches at once).
 
 The step is what the LAMMPS bridge does for a wall contact (``kernels.gather_contacts``, ``wall_slip``,
 ``scatter_contacts``, ``add_wall_load``): the wall placed at the time now, the elements near each atom of the

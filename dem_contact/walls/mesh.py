@@ -136,7 +136,7 @@ def conforming(v, t):
 class MeshWall:
     """A triangle mesh: ``vertices`` float[nv, 3] [m] (its pose at time 0) and ``triangles`` int[nt, 3]
     (vertex indices); ``wall``: index of its material in the PairTable's walls. Rigid motion as
-    ``PlaneWall``: ``velocity``, ``angular_velocity`` about ``centre`` (default: the vertices' mean).
+    ``PlaneWall``: ``velocity``, ``angular_velocity`` about ``centre`` (default: the mean of its triangles' corners).
     Contact rule and history: see the module's docstring."""
 
     vertices: np.ndarray

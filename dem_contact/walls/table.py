@@ -101,7 +101,7 @@ def pack(walls, n_materials=None):
 
 def _default_centre(mod, data, payload):
     """The centre of rotation a kind takes when none is given: the plane's point, the cylinder's axis point,
-    the mean of a mesh's vertices."""
+    the mean of a mesh's triangles' corners."""
     if payload is not None:
         return tuple(payload[:, mesh._V0 - 1:mesh._V0 + 8].reshape(-1, 3).mean(axis=0).tolist())
     return tuple(data[:3])

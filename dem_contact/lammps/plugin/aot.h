@@ -42,11 +42,13 @@ extern const int dem_contact_aot_p_nspring;
 // the packed rows of a wall (walls.contract): ROW_SIZE, the columns KIND, KEY_BASE, NELEM, MOVES, VEL, OMEGA,
 // CENTRE, CENTRE0, FIRST, DATA, the kind ids of a plane and a cylinder, the column of a table row's wall
 // curvature (contact_terms.RI_CURV), the kind id of a mesh, the kind id of a payload row (PAYLOAD), a mesh's
-// payload columns (walls.mesh.PAYLOAD_WIDTH) and where its vertex ids and history keys are among them; the
+// payload columns (walls.mesh.PAYLOAD_WIDTH) and where among them are its vertices now and at time 0, vertex
+// ids, neighbours, orientation and history keys; the
 // first line of a packed mesh file (mesh_file.MAGIC); the tolerance of a unit vector (walls.checks.UNIT_TOL), of
 // a motion that keeps a plane's and a cylinder's surface (their SURFACE_TOL), and wall_kernel.ABI
 enum { W_ROW_SIZE, W_KIND, W_KEY_BASE, W_NELEM, W_MOVES, W_VEL, W_OMEGA, W_CENTRE, W_CENTRE0, W_FIRST, W_DATA,
-       W_PLANE, W_CYLINDER, W_RI_CURV, W_MESH, W_PAYLOAD, W_PAYLOAD_WIDTH, W_MESH_IDS, W_MESH_KEYS };
+       W_PLANE, W_CYLINDER, W_RI_CURV, W_MESH, W_PAYLOAD, W_PAYLOAD_WIDTH, W_MESH_V, W_MESH_V0, W_MESH_IDS, W_MESH_NB, W_MESH_ORIENT,
+       W_MESH_KEYS };
 extern const int dem_contact_aot_wall_layout[];
 extern const char *const dem_contact_aot_mesh_magic;
 extern const double dem_contact_aot_unit_tol;

@@ -73,14 +73,24 @@ bool finite(const V3 a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && s
 #error "a packed mesh file holds little-endian numbers: this reader needs a little-endian machine"
 #endif
 
+// a whole number of at most 18 digits (as mesh_file's header), into out; false where text is not one
+bool whole(const std::string &text, long long &out)
+{
+  if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos) return false;
+  out = std::strtoll(text.c_str(), nullptr, 10);
+  return true;
+}
+
 // The packed mesh file at path (mesh_file.py: its first line, the line of its version, interface, payload
 // columns, triangles and keys, then the default centre and the payload rows as float64) into centre and payload
-// (nt rows of the payload columns); what is wrong with it, or ""
-std::string read_mesh(const std::string &path, V3 centre, std::vector<double> &payload, int64_t &nt)
+// (nt rows of the payload columns), checked as far as the wall kernels index with it: vertex ids, neighbours
+// (-1 or a triangle), orientations (+-1), history keys (below the keys), the vertices now those at time 0.
+// What is wrong with it (scaled: the fix gave a scale, which a packed mesh refuses), or ""
+std::string read_mesh(const std::string &path, bool scaled, V3 centre, std::vector<double> &payload, int64_t &nt)
 {
   const std::string again = ": write it again from its STL file with `dem-contact lammps-mesh`";
   FILE *f = std::fopen(path.c_str(), "rb");
-  if (!f) return "the packed mesh file " + path + " cannot be read (" + std::strerror(errno) + ")";
+  if (!f) return "the mesh file " + path + " cannot be read: " + std::strerror(errno);
   std::string data;
   char chunk[65536];
   for (size_t got; (got = std::fread(chunk, 1, sizeof(chunk), f)) > 0;) data.append(chunk, got);
@@ -90,39 +100,51 @@ std::string read_mesh(const std::string &path, V3 centre, std::vector<double> &p
     return path + " is not a packed mesh file: the plugin compiled ahead of time reads a mesh from a packed mesh "
                   "file only; write one from the STL file (dem-contact lammps-mesh " + path + " --out FILE.mesh) and "
                   "name it";
+  if (scaled)
+    return "scale applies to an STL file: " + path + " is a packed mesh, whose coordinates were scaled when it was "
+                                                     "written (dem-contact lammps-mesh --scale)";
+  // the second line: version V abi A width W triangles NT keys K
   const size_t end = data.find('\n', magic.size());
-  char version[64] = "";
-  int abi = -1, width = -1;
-  long long triangles = -1, keys = -1;
-  if (end == std::string::npos ||
-      std::sscanf(data.substr(magic.size(), end - magic.size()).c_str(),
-                  "version %63s abi %d width %d triangles %lld keys %lld", version, &abi, &width, &triangles,
-                  &keys) != 5)
+  std::vector<std::string> head;
+  if (end != std::string::npos) {
+    const std::string line = data.substr(magic.size(), end - magic.size());
+    for (size_t at = 0; at < line.size();) {
+      const size_t stop = std::min(line.find(' ', at), line.size());
+      if (stop > at) head.push_back(line.substr(at, stop - at));
+      at = stop + 1;
+    }
+  }
+  long long abi = 0, width = 0, triangles = 0, keys = 0;
+  if (head.size() != 10 || head[0] != "version" || head[2] != "abi" || head[4] != "width" ||
+      head[6] != "triangles" || head[8] != "keys" || !whole(head[3], abi) || !whole(head[5], width) ||
+      !whole(head[7], triangles) || !whole(head[9], keys))
     return "the packed mesh file " + path + " is corrupt (its second line)" + again;
   const int *L = dem_contact_aot_wall_layout;
-  if (std::strcmp(version, dem_contact_aot_version) != 0 || abi != dem_contact_aot_wall_abi ||
-      width != L[W_PAYLOAD_WIDTH])
-    return "the packed mesh file " + path + " was written by dem_contact " + version + " (wall interface " +
-        std::to_string(abi) + "), this plugin's steps are of " + dem_contact_aot_version + " (wall interface " +
+  if (head[1] != dem_contact_aot_version || abi != dem_contact_aot_wall_abi || width != L[W_PAYLOAD_WIDTH])
+    return "the packed mesh file " + path + " was written by dem_contact " + head[1] + " (wall interface " +
+        std::to_string(abi) + "), this is " + dem_contact_aot_version + " (wall interface " +
         std::to_string(dem_contact_aot_wall_abi) + ")" + again;
-  if (triangles < 1 || data.size() - end - 1 != sizeof(double) * (3 + (size_t) triangles * width))
+  // (the size the header gives, compared without forming it: the triangle count is the file's to tell)
+  const size_t body = data.size() - end - 1, row_bytes = sizeof(double) * (size_t) width;
+  if (body < 3 * sizeof(double) || (body - 3 * sizeof(double)) % row_bytes != 0 ||
+      (body - 3 * sizeof(double)) / row_bytes != (unsigned long long) triangles || triangles < 1)
     return "the packed mesh file " + path + " is corrupt (its size)" + again;
   nt = triangles;
   payload.resize((size_t) nt * width);
   std::memcpy(centre, data.data() + end + 1, sizeof(double) * 3);
   std::memcpy(payload.data(), data.data() + end + 1 + sizeof(double) * 3, sizeof(double) * payload.size());
+  auto whole_in = [](double v, double lo, double hi) { return v >= lo && v < hi && v == std::floor(v); };
   bool ok = finite(centre);
   for (int64_t t = 0; ok && t < nt; t++) {
     const double *row = payload.data() + t * width;
     for (int c = 0; c < width; c++) ok = ok && std::isfinite(row[c]);
+    for (int c = 0; c < 9; c++) ok = ok && row[L[W_MESH_V] + c] == row[L[W_MESH_V0] + c];
     for (int q = 0; q < 3; q++) {
-      const double id = row[L[W_MESH_IDS] + q];
-      ok = ok && id >= 0.0 && id == std::floor(id);
+      ok = ok && whole_in(row[L[W_MESH_IDS] + q], 0.0, 3.0 * (double) nt);
+      ok = ok && (row[L[W_MESH_NB] + q] == -1.0 || whole_in(row[L[W_MESH_NB] + q], 0.0, (double) nt));
     }
-    for (int q = 0; q < 2; q++) {
-      const double key = row[L[W_MESH_KEYS] + q];
-      ok = ok && key >= 0.0 && key < (double) keys && key == std::floor(key);
-    }
+    ok = ok && (row[L[W_MESH_ORIENT]] == 1.0 || row[L[W_MESH_ORIENT]] == -1.0);
+    for (int q = 0; q < 2; q++) ok = ok && whole_in(row[L[W_MESH_KEYS] + q], 0.0, (double) keys);
   }
   if (!ok) return "the packed mesh file " + path + " is corrupt (its triangles)" + again;
   return "";
@@ -210,11 +232,8 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   int64_t nt = 0;
   V3 mesh_centre = {0, 0, 0};
   if (kind == "mesh") {
-    std::string wrong = read_mesh(mesh_path, mesh_centre, payload, nt);
+    std::string wrong = read_mesh(mesh_path, scaled, mesh_centre, payload, nt);
     if (!wrong.empty()) return wrong;
-    if (scaled)
-      return "scale applies to an STL file: " + mesh_path + " is a packed mesh, whose coordinates were scaled when "
-                                                            "it was written (dem-contact lammps-mesh --scale)";
   }
   // the wall's checks (the kinds' packed(), walls.checks)
   const char *dir_name = kind == "plane" ? "normal" : "axis";

@@ -676,9 +676,11 @@ void PairDemContact::compute(int eflag, int vflag)
       // normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
       // w_b) x n, the relative spin w_a - w_b, and the mean spin of the two bodies about the normal
       // (kernels.frame_spin_rate; frame_spin no: 0)
-      // (x_b - x_a: the separation from i to j, or its opposite; the same r2, bit for bit)
-      const double r = std::sqrt(r2), rinv = a == i ? 1.0 / r : -1.0 / r;
-      const double nx = dx * rinv, ny = dy * rinv, nz = dz * rinv;
+      // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
+      // for 0; the same r2)
+      const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;
+      const double r = std::sqrt(r2), rinv = 1.0 / r;
+      const double nx = ex * rinv, ny = ey * rinv, nz = ez * rinv;
       const double ra = radius[a], rb = radius[b];
       const double wx = ra * omega[a][0] + rb * omega[b][0], wy = ra * omega[a][1] + rb * omega[b][1],
                    wz = ra * omega[a][2] + rb * omega[b][2];
