@@ -66,6 +66,8 @@ DATA_NT = DATA  # row data: the number of triangles
 
 #: triangles whose unit normals differ by less than this angle [rad] across an edge are one patch
 COPLANAR = 1e-5
+#: the largest coordinate of a vertex [m] (squares of coordinates stay far from overflow)
+MAX_COORDINATE = 1e100
 #: longest walk around a vertex (triangles)
 MAX_FAN = 256
 
@@ -111,6 +113,8 @@ def conforming(v, t):
             a, b = t[j][q], t[j][(q + 1) % 3]
             e = v[b] - v[a]
             ee = float(e @ e)
+            if ee == 0.0:       # (an edge of no length: its triangle is refused as degenerate)
+                continue
             s = (pts - v[a]) @ e / ee
             off = np.linalg.norm(pts - v[a] - s[:, None] * e, axis=1)
             on = (s * math.sqrt(ee) > tol) & ((1.0 - s) * math.sqrt(ee) > tol) & (off <= tol)
@@ -166,6 +170,10 @@ class MeshWall:
             raise InputError(f"walls[{k}].vertices and .triangles must be arrays of numbers") from None
         if v.ndim != 2 or v.shape[1] != 3 or not np.isfinite(v).all():
             raise InputError(f"walls[{k}].vertices must be finite numbers of shape (nv, 3), got shape {v.shape}")
+        if len(v) and np.abs(v).max() > MAX_COORDINATE:
+            # (the areas and normals of the triangles are products of coordinates)
+            raise InputError(f"walls[{k}].vertices must lie within {MAX_COORDINATE:g} m of the origin, got a "
+                             f"coordinate {float(np.abs(v).max()):g} m")
         if t.ndim != 2 or t.shape[1] != 3 or len(t) == 0 or not np.issubdtype(t.dtype, np.integer):
             raise InputError(f"walls[{k}].triangles must be integers of shape (nt >= 1, 3), got shape {t.shape}")
         t = t.astype(np.int64)

@@ -329,6 +329,7 @@ def test_curved_walls_need_their_curvature_in_the_table_and_meshes_are_checked(t
     cases = [
         (MeshWall(v, np.array([[0, 1, 1]])), r"walls\[0\]\.triangles\[0\] is degenerate"),
         (MeshWall(v, np.array([[0, 1, 9]])), r"walls\[0\]\.triangles must index the vertices \(0 \.\.\. 3\)"),
+        (MeshWall(v * 1e300, t), r"walls\[0\]\.vertices must lie within 1e\+100 m of the origin"),
         (MeshWall(np.vstack([v, [0, 0, 1.0]]), np.vstack([t, [[1, 2, 4]]])), "shared by 3 triangles"),
         (CylinderWall((0, 0, 0), (0, 0, 1), -1.0), r"walls\[0\]\.radius must be finite and > 0"),
         (CylinderWall((0, 0, 0), (0, 1, 1), 1.0), r"walls\[0\]\.axis must be a unit vector"),
