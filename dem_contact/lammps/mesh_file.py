@@ -36,16 +36,13 @@ def is_packed(path) -> bool:
 
 
 def _packed(wall):
-    """(payload float64[nt, W], n_keys, default centre (3)) of a MeshWall with no centre given."""
-    from ..walls import pack
-    from ..walls.contract import CENTRE, FIRST, NELEM
-    from ..walls.mesh import _KEY, PAYLOAD_WIDTH
+    """(payload float64[nt, W], n_keys, default centre (3)) of a MeshWall: its ``packed``, with the centre
+    ``walls.table.pack`` takes when none is given."""
+    from ..walls import mesh
+    from ..walls.table import _default_centre
 
-    rows, _ = pack([wall])
-    first, nt = int(rows[0, FIRST]), int(rows[0, NELEM])
-    payload = rows[first:first + nt, 1:1 + PAYLOAD_WIDTH]
-    n_keys = int(payload[:, _KEY - 1:_KEY + 1].max()) + 1      # (as MeshWall.packed counts them)
-    return np.ascontiguousarray(payload), n_keys, rows[0, CENTRE:CENTRE + 3].copy()
+    data, payload, _, n_keys, _ = wall.packed(0)
+    return np.ascontiguousarray(payload), n_keys, np.array(_default_centre(mesh, data, payload))
 
 
 def write(wall, path) -> str:

@@ -110,7 +110,7 @@ std::string read_mesh(const std::string &path, bool scaled, V3 centre, std::vect
     const std::string line = data.substr(magic.size(), end - magic.size());
     for (size_t at = 0; at < line.size();) {
       const size_t stop = std::min(line.find(' ', at), line.size());
-      if (stop > at) head.push_back(line.substr(at, stop - at));
+      head.push_back(line.substr(at, stop - at));    // (two spaces: an empty word, refused as mesh_file.read)
       at = stop + 1;
     }
   }
@@ -293,7 +293,6 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
   wall.walls.assign((size_t) L[W_ROW_SIZE] * (1 + nt), 0.0);
   double *w = wall.walls.data();
   w[L[W_KIND]] = kind == "plane" ? L[W_PLANE] : kind == "cylinder" ? L[W_CYLINDER] : L[W_MESH];
-  w[L[W_KEY_BASE]] = 0.0;
   w[L[W_NELEM]] = kind == "mesh" ? (double) nt : 1.0;
   w[L[W_MOVES]] = keeps ? 0.0 : 1.0;
   for (int d = 0; d < 3; d++) {
@@ -309,11 +308,10 @@ std::string dem_contact_aot_wall_attach(const std::vector<std::string> &words, c
       w[L[W_DATA] + 9 + d] = dir[d];
     }
   }
-  w[L[W_FIRST]] = -1.0;
+  w[L[W_FIRST]] = kind == "mesh" ? 1.0 : -1.0;    // (the first payload row; KEY_BASE 0: the fix's one wall)
   if (kind == "mesh") {
     // (row data: the number of triangles; each payload row: PAYLOAD, then the triangle's columns)
     w[L[W_DATA]] = (double) nt;
-    w[L[W_FIRST]] = 1.0;
     const int width = L[W_PAYLOAD_WIDTH];
     for (int64_t t = 0; t < nt; t++) {
       double *row = w + (1 + t) * L[W_ROW_SIZE];
