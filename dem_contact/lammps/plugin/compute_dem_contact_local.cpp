@@ -17,7 +17,7 @@
 using namespace LAMMPS_NS;
 
 namespace {
-const int N_COLUMNS = 14, N_WORK_COLUMNS = 2;
+const int N_COLUMNS = 17, N_WORK_COLUMNS = 2;
 // a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (as the bridge's contacts())
 const double SLIDING_TOL = 1e-9;
 PairDemContact *our_pair(LAMMPS *lmp)
@@ -86,18 +86,21 @@ void ComputeDemContactLocal::compute_local()
   for (int64_t k = 0; k < n; k++) {
     const int a = (int) ab[2 * k], b = (int) ab[2 * k + 1];
     if (a >= nlocal) continue;
-    fill(rows[m++], tag[a], tag[b], 0, pair->contact_values() + PairDemContact::N_OUT * k);
+    fill(rows[m++], tag[a], tag[b], 0, atom->radius[a], pair->contact_values() + PairDemContact::N_OUT * k);
   }
   for (size_t w = 0; w < walls.size(); w++) {
     const int64_t *atoms = walls[w]->contact_atoms();
     for (int64_t k = 0; k < walls[w]->contact_count(); k++)
-      fill(rows[m++], tag[atoms[k]], 0, (int) w + 1, walls[w]->contact_values() + PairDemContact::N_OUT * k);
+      fill(rows[m++], tag[atoms[k]], 0, (int) w + 1, atom->radius[atoms[k]],
+           walls[w]->contact_values() + PairDemContact::N_OUT * k);
   }
 }
 
-// a row: ids, the force on atom id1 and its tangential part, the normal, the overlap, sliding, the wall, the work
-// of the normal and tangential forces
-void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, const double *o)
+// a row: ids, the force on atom id1 and its tangential part, the normal, the overlap, sliding, the wall, the torque
+// of the twist and rolling laws on atom id1 (its whole torque less the moment of the tangential force, applied at
+// r1 - overlap/2 along the normal for a pair and r1 for a wall, as the step applies it), the work of the normal
+// and tangential forces
+void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, double r1, const double *o)
 {
   r[0] = id1;
   r[1] = id2;
@@ -114,9 +117,14 @@ void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, c
   }
   r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
   r[13] = wall;
+  const double arm = wall ? r1 : r1 - 0.5 * r[11];
+  const double *n = r + 8, *t = r + 5, *ta = o + PairDemContact::OUT_TA;
+  r[14] = ta[0] - arm * (n[1] * t[2] - n[2] * t[1]);
+  r[15] = ta[1] - arm * (n[2] * t[0] - n[0] * t[2]);
+  r[16] = ta[2] - arm * (n[0] * t[1] - n[1] * t[0]);
   if (work) {
-    r[14] = o[PairDemContact::OUT_WORK_N];
-    r[15] = o[PairDemContact::OUT_WORK_T];
+    r[17] = o[PairDemContact::OUT_WORK_N];
+    r[18] = o[PairDemContact::OUT_WORK_T];
   }
 }
 

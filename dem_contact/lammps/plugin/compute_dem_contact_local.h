@@ -4,13 +4,14 @@
 
      compute ID all dem/contact/local [work]
 
-     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap sliding wall [work_n work_t]
+     id1 id2 fx fy fz ftx fty ftz nx ny nz overlap sliding wall tx ty tz [work_n work_t]
 
    A pair: id1 < id2 (atom ids), wall 0. A wall contact: id1 the atom, id2 0, wall k for the k-th fix
    dem/contact/wall (from 1, in the order the fixes were defined). (fx, fy, fz) the contact force on atom id1 [N]
    (body 2 takes the opposite), (ftx, fty, ftz) its tangential part [N], (nx, ny, nz) the unit normal from id1 to
    body 2, overlap [m]; sliding: 1 where |ft| >= (1 - 1e-9) mu N with N > 0 (the laws cap |ft| at mu N, to
-   rounding), else 0. The normal force N, positive when pushing apart, is -(f - ft) . n. With work (and pair_style
+   rounding), else 0. The normal force N, positive when pushing apart, is -(f - ft) . n. (tx, ty, tz): the torque
+   of the twist and rolling laws on atom id1 [N m] (zero without them; the moment of ft is not in it). With work (and pair_style
    dem/contact ... energy yes), work_n, work_t: the work
    the normal and the tangential force have done on the contact since it began [J] (trapezoid sums of N d(delta)
    and Ft . d(slip)): what it absorbed, stored elastically while it lasts; when it ends, their sum is the energy
@@ -36,7 +37,7 @@ class ComputeDemContactLocal : public Compute {
   int nmax;
   double **rows;
   bool work;
-  void fill(double *row, tagint id1, tagint id2, int wall, const double *values);
+  void fill(double *row, tagint id1, tagint id2, int wall, double r1, const double *values);
 };
 
 }    // namespace LAMMPS_NS
