@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 import tempfile
 import weakref
 
@@ -25,7 +26,7 @@ from ..laws.slots import P_MU
 from ..walls import MeshWall, pack
 from ..walls import table as WT
 from . import mesh_file, network, plugin_build, table_file
-from .session import gather_rows, sum_ranks
+from .session import gather_rows, lammps_warnings, pass_on_warnings, sum_ranks
 from .wall_kernel import fix_words
 
 #: A contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the laws cap |Ft| at mu N, to rounding), as compute
@@ -34,8 +35,9 @@ SLIDING_TOL = 1e-9
 #: columns of compute dem/contact/local (from 0): ids, force, tangential force, normal, overlap, sliding, wall,
 #: the twist and rolling laws' torque
 C_ID1, C_ID2, C_F, C_FT, C_N, C_DELTA, C_SLIDING, C_WALL, C_TORQUE = 0, 1, 2, 5, 8, 11, 12, 13, 14
-#: pair styles this class replaces with its own (any other is refused: its forces would act as well)
-REPLACEABLE = ("none", "zero")
+#: pair styles this class replaces with its own (any other is refused: its forces would act as well);
+#: dem/contact: the pair style of a restart file (read_restart), defined again with the table
+REPLACEABLE = ("none", "zero", "dem/contact")
 
 _ATTACHED = weakref.WeakKeyDictionary()
 
@@ -55,7 +57,7 @@ def _check_wall_curvatures(table, walls, mats):
 def _lammps_error(e: Exception) -> Exception:
     """The exception a LAMMPS error of the plugin's styles stands for: NumericalError where a law or a step
     failed, InputError else (the message as LAMMPS gave it, without its prefix and location)."""
-    text = str(e).strip()
+    text = str(e).strip().strip("'\"")
     for head in ("ERROR on proc", "ERROR:"):
         if text.startswith(head):
             text = text.split(":", 2)[-1].strip() if head == "ERROR on proc" else text[len(head):].strip()
@@ -131,8 +133,8 @@ class LammpsContacts:
         self.n_walls = len(self.wall_mat)
         rank = lmp.extract_setting("world_rank")
         if folder is None:
-            self._folder = tempfile.TemporaryDirectory(prefix="dem_contact_lammps_")
-            folder = self._folder.name
+            folder = tempfile.mkdtemp(prefix="dem_contact_lammps_")
+            weakref.finalize(self, shutil.rmtree, folder, ignore_errors=True)
         # (a file per rank: the ranks write at once)
         path = table_file.save(table, os.path.join(folder, f"{prefix}_table_{rank}.json"))
         words = []
@@ -158,18 +160,26 @@ class LammpsContacts:
         self.attached = True
 
     def _command(self, command):
+        """The LAMMPS command; its error raised as InputError (NumericalError), its warnings as RuntimeWarning
+        (``session.lammps_warnings``: an instance of ``new_lammps``)."""
         try:
             self.lmp.command(command)
         except Exception as e:
-            if type(e).__name__ == "MPIAbortException" or "ERROR" not in str(e):
+            # (an error LAMMPS raised on one rank only, MPIAbortException, leaves the instance unusable: the
+            # message says what to change before running again)
+            if "ERROR" not in str(e):
                 raise
             raise _lammps_error(e) from None
+        finally:
+            pass_on_warnings(lammps_warnings(self.lmp))
 
     def run(self, nsteps: int):
         """``run nsteps`` (an int >= 0); an error of the plugin is raised as InputError (NumericalError where a law
         or a step failed)."""
         if not (isinstance(nsteps, (int, np.integer)) and nsteps >= 0):
             raise InputError(f"nsteps must be an integer >= 0, got {nsteps!r}")
+        if not self.attached:
+            raise InputError("this LammpsContacts is detached: attach a new one to run with the laws")
         self._command(f"run {int(nsteps)}")
 
     def detach(self):

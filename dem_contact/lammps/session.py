@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import os
+import re
 import sys
 import tempfile
 import warnings
@@ -206,8 +207,10 @@ def lammps_warnings(lmp) -> list:
 
 
 def pass_on_warnings(lines):
+    """Each of LAMMPS's WARNING lines as a RuntimeWarning "LAMMPS: ..." (without the source file it names)."""
     for line in lines:
-        warnings.warn(f"LAMMPS: {line.removeprefix('WARNING:').strip()}", RuntimeWarning, stacklevel=3)
+        text = re.sub(r" \([^()]*\.(cpp|h):\d+\)$", "", line.removeprefix("WARNING:").strip())
+        warnings.warn(f"LAMMPS: {text}", RuntimeWarning, stacklevel=3)
 
 
 def log_path(lmp) -> str | None:

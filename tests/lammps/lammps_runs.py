@@ -1,5 +1,5 @@
 """Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps/lammps_runs.py DIR``: what a LAMMPS user does
-around the bridge's fix during and between runs, each scene with the bridge on this number of ranks and,
+around the contact forces during and between runs, each scene with LammpsContacts on this number of ranks and,
 where LAMMPS has the equivalent, with LAMMPS's own models (``native_commands``) on the same ranks. Prints
 one JSON object on rank 0; DIR takes the dump file of the rerun scene.
 
@@ -159,7 +159,7 @@ def rerun():
     out = {"raised": None}
     try:
         lmp.command(f"rerun {path} dump x y z")
-    except InputError as e:
+    except Exception as e:
         out["raised"] = str(e)
     lmp.close()
     return out

@@ -127,7 +127,7 @@ def test_the_work_of_the_contacts_is_the_energy_the_atoms_lose(plugin, tmp_path)
             assert loss > 0.3 * got["before"]
     row = np.array(run("collide", "hertz", 0.0, steps=200)["rows"])
     E_star, R_star, delta = GLASS_E / (2.0 * (1.0 - GLASS_NU**2)), 0.5e-3, row[0, 11]
-    assert row[0, 14] == pytest.approx(8.0 / 15.0 * E_star * R_star**0.5 * delta**2.5, rel=1e-3)
+    assert row[0, 17] == pytest.approx(8.0 / 15.0 * E_star * R_star**0.5 * delta**2.5, rel=1e-3)
     assert row[0, 15] == 0.0
 
 

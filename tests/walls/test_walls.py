@@ -1,6 +1,6 @@
 """Walls (``dem_contact.walls``): the plane's kernels against the closed form, the table's packing and
 history keys, the dispatch generated for several kinds, the 3D batch face (``dem.walls.wall_contacts``)
-against the LAMMPS bridge's kernels (no LAMMPS needed) and through ``contact3d.contact_forces``, and a wall
+against closed forms and through ``contact3d.contact_forces``, and a wall
 sliding in its plane against LAMMPS's ``fix wall/gran ... shear`` (needs the lammps extra)."""
 import math
 import re
@@ -139,37 +139,7 @@ def _scene(seed=3, n=60):
     return x, radius, walls, v, omega
 
 
-def _columns(n, m):
-    """Zeroed float64[n, m], columns of a wider array as the bridge's per-atom keys, separations and statistics
-    are (of LAMMPS's per-atom arrays): the layout the bridge's kernels are compiled for."""
-    return np.zeros((n, m + 1))[:, :m]
-
-
-def _bridge_wall_contacts(x, radius, walls, v, omega, table):
-    """The wall contacts of the LAMMPS bridge's kernels (``gather_contacts``, one rank, no LAMMPS) with their
-    law inputs: (sphere, wall, normals, overlaps, velocities, wn, pair_rows)."""
-    from dem_contact.lammps import contact_terms as CT
-    from dem_contact.lammps import kernels as K
-
-    n, slots = len(x), 64          # (enough rows: no contact is left out)
-    rows, mats = pack(walls, table.wall_row.shape[1])
-    tag = np.arange(1, n + 1, dtype=np.int32)      # (LAMMPS's ids and types: int32)
-    cand = K.candidates(n, n, x, radius, tag, rows, radius.max(), 1e-4)
-    cand_rows = np.full((len(cand[0]) + len(cand[1]), 2), -1, dtype=np.int64)
-    buf = K.contact_buffers(2 * len(cand_rows) + 16, table.params)
-    m, _, _ = K.gather_contacts(
-        n, x, v, omega, radius, np.ones(n), tag, np.ones(n, dtype=np.int32), rows, mats, *cand, cand_rows,
-        _columns(n, slots), _columns(n, 4 * slots), np.inf, np.zeros((n * slots, table.history_size)),
-        table.normal_id, table.sphere_row, table.wall_row, 1e-6, True, True, True, _columns(n, K.N_STAT),
-        np.zeros((n, slots), dtype=np.bool_), np.zeros(n, dtype=np.bool_), True, np.zeros(n, dtype=np.int64), 0,
-        np.zeros(n, dtype=np.int64), table.params, np.ones((len(table.params), CT.N_ROWINFO)), False,
-        np.ones((table.sphere_row.shape[0], 2)), np.inf, np.zeros(K.N_ONSET), *buf[:12])
-    _, body, _, _, _, prow, normals, overlaps, vel, wn = buf[:10]
-    k = np.flatnonzero(body[:m, 1] < 0)
-    return body[k, 0], -(body[k, 1] + 1), normals[k], overlaps[k], vel[k], wn[k], prow[k]
-
-
-def test_wall_contacts_are_the_lammps_paths_to_the_bit_and_give_its_forces():
+def test_wall_contacts_are_the_closed_forms_and_give_forces():
     x, radius, walls, v, omega = _scene()
     table = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS), Wall(Material(2e8, 0.3, 7800.0))], mu=0.4,
                        tangential="mindlin_total")
@@ -188,20 +158,17 @@ def test_wall_contacts_are_the_lammps_paths_to_the_bit_and_give_its_forces():
     rows = c.pair_rows(table, types_)
     vel = c.relative_velocities(v, omega)
     wn = c.frame_spin(omega)
-    # the LAMMPS bridge's kernels: the same contacts, in the same order, bit for bit
-    sphere, wall, normals, overlaps, bvel, bwn, brows = _bridge_wall_contacts(x, radius, walls, v, omega, table)
-    assert np.array_equal(sphere, c.sphere) and np.array_equal(wall, c.wall)
-    for ours, theirs in ((c.normals, normals), (c.overlaps, overlaps), (vel, bvel), (wn, bwn), (rows, brows)):
-        assert np.array_equal(ours, theirs)
-    # through the checked batch step: the same forces
-    out = []
-    for nv, vv, ww in ((c.normals, vel, wn), (normals, bvel, bwn)):
-        H = np.zeros((len(c), table.history_size))
-        f, ft = np.zeros((len(c), 3)), np.zeros((len(c), 3))
-        contact_forces(table.normal_id, table.tangential_id, table.params, rows, H, np.ascontiguousarray(nv),
-                       c.overlaps.copy(), np.ascontiguousarray(vv), np.ascontiguousarray(ww), 1e-6, f, ft)
-        out.append(f)
-    assert np.array_equal(out[0], out[1]) and np.abs(out[0]).max() > 0
+    # the slip velocity with the full radius, as LAMMPS's fix wall/gran: v - v_wall + (r w) x n
+    for k in range(len(c)):
+        i, w = c.sphere[k], c.wall[k]
+        want = v[i] - np.array(walls[w].velocity) + np.cross(radius[i] * omega[i], c.normals[k])
+        assert np.allclose(vel[k], want, rtol=1e-14, atol=1e-18)
+    # through the checked batch step: forces, pressing the sphere away from its wall
+    H = np.zeros((len(c), table.history_size))
+    f, ft = np.zeros((len(c), 3)), np.zeros((len(c), 3))
+    contact_forces(table.normal_id, table.tangential_id, table.params, rows, H, c.normals, c.overlaps.copy(), vel,
+                   wn, 1e-6, f, ft)
+    assert (np.einsum("ij,ij->i", f, c.normals) < 0.0).all()
 
 
 def test_one_wall_contact_through_contact_forces_is_hertz():
