@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import shutil
 import tempfile
 import weakref
@@ -57,11 +58,8 @@ def _check_wall_curvatures(table, walls, mats):
 def _lammps_error(e: Exception) -> Exception:
     """The exception a LAMMPS error of the plugin's styles stands for: NumericalError where a law or a step
     failed, InputError else (the message as LAMMPS gave it, without its prefix and location)."""
-    text = str(e).strip().strip("'\"")
-    for head in ("ERROR on proc", "ERROR:"):
-        if text.startswith(head):
-            text = text.split(":", 2)[-1].strip() if head == "ERROR on proc" else text[len(head):].strip()
-    text = text.split(" (src/")[0].split(" (/")[0]
+    text = re.sub(r"^ERROR( on proc \d+)?:\s*", "", str(e).strip().strip("'\""))
+    text = re.sub(r" \([^()]*\.(cpp|h):\d+\)$", "", text)
     failed = ("not finite" in text or "failed" in text) and "cannot be reached" not in text
     return (NumericalError if failed else InputError)(text)
 

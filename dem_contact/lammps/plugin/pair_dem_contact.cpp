@@ -197,13 +197,15 @@ void PairDemContact::init_style()
     error->all(FLERR, "pair dem/contact needs the velocities of ghost atoms: add comm_modify vel yes");
   if (!attached) error->all(FLERR, "pair dem/contact: no table file; give pair_coeff * * TABLE_FILE");
 
-  neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_NEWTON_OFF);
+  // sizes that may change at any step, not only where LAMMPS rebuilds its lists: then a list of the types'
+  // cutoffs (their largest radii, rmax, + skin), as a size list (the atoms' radii at the build + skin) would
+  // leave out a pair that grew into contact between builds
+  radii_change = !modify->get_fix_by_style("^adapt").empty();
+  neighbor->add_request(this, (radii_change ? 0 : NeighConst::REQ_SIZE) | NeighConst::REQ_NEWTON_OFF);
   history_fix();
 
   // the per-contact output at every step where a compute reads it
   keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
-  // sizes that may change at any step, not only where LAMMPS rebuilds its lists
-  radii_change = !modify->get_fix_by_style("^adapt").empty();
   check_atoms();
   check_time_step();
 }
