@@ -58,7 +58,7 @@ def _check_wall_curvatures(table, walls, mats):
 def _lammps_error(e: Exception) -> Exception:
     """The exception a LAMMPS error of the plugin's styles stands for: NumericalError where a law or a step
     failed, InputError else (the message as LAMMPS gave it, without its prefix and location)."""
-    text = re.sub(r"^ERROR( on proc \d+)?:\s*", "", str(e).strip().strip("'\""))
+    text = re.sub(r"^ERROR( on proc \d+)?:\s*", "", str(e).strip().strip("'\"")).split("\nLast input line")[0]
     text = re.sub(r" \([^()]*\.(cpp|h):\d+\)$", "", text)
     failed = ("not finite" in text or "failed" in text) and "cannot be reached" not in text
     return (NumericalError if failed else InputError)(text)

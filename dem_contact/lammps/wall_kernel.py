@@ -47,7 +47,7 @@ from . import contact_terms as T
 from . import pair_kernel as PK
 
 #: the layout version of ``WallAttach`` (the plugin refuses another)
-ABI = 2
+ABI = 3
 
 #: what the fix asks of a step (its flags argument, bits): advance the histories (not a run's set-up), save
 #: the atoms' wall forces with their state (a run's last step), reapply the saved forces of the atoms whose
@@ -60,7 +60,7 @@ FRAME_SPIN = 8
 ENERGY = 16
 
 #: columns of the per-atom saved forces (the history fix's ``saved``: FixDemContactHistory::SF_...)
-SF_F, SF_T, SF_X, SF_V, SF_W, SF_R, SF_M, SF_STEP, N_SAVED = 0, 3, 6, 9, 12, 15, 16, 17, 18
+SF_F, SF_T, SF_X, SF_V, SF_W, SF_R, SF_M, SF_STEP, SF_ID, N_SAVED = 0, 3, 6, 9, 12, 15, 16, 17, 18, 19
 
 #: the values a step reports (float64[N_REPORT]): the wall's load on this rank (force 3 [N], torque about its
 #: centre 3 [N m], power given to the spheres [W]), the number of contacts, of contacts whose force is not

@@ -209,7 +209,6 @@ def images(mode):
         try:
             for _ in range(4):
                 bridge.run(250)
-            raised = None
         except InputError as e:
             return {"raised": str(e)}        # (an error on one rank: the instance is not closed, but left)
         lmp.close()

@@ -1,7 +1,7 @@
 """Run by test_lammps.py as ``[mpirun -np 2] python tests/lammps/lammps_runs.py DIR``: what a LAMMPS user does
 around the contact forces during and between runs, each scene with LammpsContacts on this number of ranks and,
 where LAMMPS has the equivalent, with LAMMPS's own models (``native_commands``) on the same ranks. Prints
-one JSON object on rank 0 (DIR: unused).
+one JSON object on rank 0; DIR takes the dump file of the rerun scene.
 
 Scenes (hertz + mindlin_total without the frame spin, LAMMPS's ``hertz/material`` + ``tangential mindlin``;
 x split at 0 between two ranks):
@@ -12,6 +12,7 @@ x split at 0 between two ranks):
   `reset_timestep 0` between them or without;
 - adapt: two still spheres 0.1 mm apart (more than the skin), straddling x = 0, grown by `fix adapt`
   to an overlap of 0.1 mm; and grown past r_max;
+- rerun: `rerun` of a dump written during a run;
 - pour: spheres inserted by `fix pour` onto a floor, and a pour of two types whose wall materials differ
   (LAMMPS's wall fixes then act on type groups);
 - exclude: two spheres meeting head on, with `neigh_modify exclude type 1 2` or `group a b` or neither;
@@ -142,6 +143,28 @@ def adapt(r_max):
     return out
 
 
+# ------------------------------------------------------------------------------------------------ rerun
+
+def rerun():
+    lmp = new_lammps()
+    box(lmp, (-0.004, -0.004, -0.001), (0.004, 0.004, 0.006))
+    atoms(lmp, [(-1e-3, 0.0, R - 1e-5)])
+    lmp.command("fix nve all nve/sphere")
+    lmp.command("velocity all set 0.1 0 0")
+    bridge = LammpsContacts(lmp, table(), [PlaneWall.axis("z", 0.0, "lo")], slots=2, v_max=1.0, frame_spin=False)
+    path = os.path.join(OUT, f"rerun{lmp.extract_setting('world_size')}.dump")
+    lmp.command(f"dump d all custom 5 {path} id type x y z")
+    bridge.run(20)
+    lmp.command("undump d")
+    out = {"raised": None}
+    try:
+        lmp.command(f"rerun {path} dump x y z")
+    except Exception as e:
+        out["raised"] = str(e)
+    lmp.close()
+    return out
+
+
 # ------------------------------------------------------------------------------------------------- pour
 
 def pour(native, types=1, group="all"):
@@ -227,6 +250,7 @@ def main():
     res = {"ranks": ranks,
            "belt": {"ours": belt(False), "native": belt(True)},
            "rising": {"reset": rising(True), "plain": rising(False)},
+           "rerun": rerun(),
            "adapt": {"within": adapt(1.15 * R), "past": adapt(1.05 * R)},
            "pour": {"ours": pour(False), "native": pour(True),
                     "native_types_all": pour(True, 2), "native_types_grouped": pour(True, 2, "native_t{k}"),

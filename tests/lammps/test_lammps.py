@@ -643,6 +643,29 @@ def test_a_velocity_set_between_runs_is_in_the_set_up_forces(cases, ranks):
     assert _max_rel(cont["v"], cases[1]["velocity"]["restarted"]["v"]) < 1e-9
 
 
+def test_atoms_renumbered_between_runs_are_refused():
+    """The histories are kept by the partner's atom id: after reset_atoms id has renumbered a pair in
+    contact (an atom with a lower id deleted), the next run is refused instead of losing them or giving
+    them to other contacts."""
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+              "create_atoms 1 single 0.008 0.008 0.008", "create_atoms 1 single 0 0 0",
+              "create_atoms 1 single 0 0 0.0019", "set type 1 diameter 2e-3", f"set type 1 density {GLASS.rho!r}",
+              "timestep 1e-7", "fix nve all nve/sphere"):
+        lmp.command(c)
+    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    bridge.run(10)
+    assert bridge.stats()["pair_contacts"] == 1
+    lmp.command("group far id 1")
+    lmp.command("delete_atoms group far")
+    lmp.command("reset_atoms id")
+    with pytest.raises(InputError, match=r"atom 1 has contacts and had another id at the end of the last run: .*"
+                                         r"\(reset_atoms id\?\)"):
+        bridge.run(10)
+    lmp.close()
+
+
 def test_accelerated_variants_of_allowed_fixes_may_come_before_the_bridge():
     """An OpenMP integrator or gravity (nve/sphere/omp, gravity/omp) does what its base style does: allowed
     ahead of the bridge (a hold after it is in order)."""
@@ -882,6 +905,13 @@ def test_radii_grown_during_a_run_are_followed_or_stop_it(runs, ranks):
     F = 4.0 / 3.0 * w["e_star"] * math.sqrt(r / 2) * delta**1.5
     assert abs(-w["f"][0][0] / F - 1.0) < 1e-9 and abs(w["f"][1][0] / F - 1.0) < 1e-9
     assert "has grown to a radius" in a["past"]["raised"] and "rmax R" in a["past"]["raised"]
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_rerun_is_refused(runs, ranks):
+    """rerun gives positions without the time between them: the contact histories cannot follow, so the
+    pair style refuses it, with what to do."""
+    assert "rerun is refused" in runs[ranks]["rerun"]["raised"] and "during the run" in runs[ranks]["rerun"]["raised"]
 
 
 @pytest.mark.parametrize("ranks", RANKS)

@@ -13,7 +13,7 @@ using namespace LAMMPS_NS;
 // fix ID all DEM/CONTACT/HISTORY slots row_size energy (made by pair_style dem/contact and fix dem/contact/wall)
 FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), keys(nullptr), hist(nullptr), saved(nullptr), dissipated(nullptr), keeper(nullptr),
-    stale(false)
+    stale(false), setup_only(false)
 {
   if (narg != 6)
     error->all(FLERR, "fix DEM/CONTACT/HISTORY is made by pair_style dem/contact and fix dem/contact/wall only");
@@ -48,7 +48,21 @@ FixDemContactHistory::~FixDemContactHistory()
   memory->destroy(dissipated);
 }
 
-int FixDemContactHistory::setmask() { return FixConst::PRE_EXCHANGE | FixConst::MIN_PRE_EXCHANGE; }
+int FixDemContactHistory::setmask()
+{
+  return FixConst::PRE_EXCHANGE | FixConst::MIN_PRE_EXCHANGE | FixConst::END_OF_STEP;
+}
+
+// the end of a step whose forces were a set-up's: rerun (a run's steps compute their own), whose snapshots of a
+// dump come without the motion between them that the contact histories follow
+void FixDemContactHistory::end_of_step()
+{
+  if (setup_only)
+    error->all(FLERR,
+               "pair dem/contact: rerun is refused: the snapshots of a dump carry no contact histories and the "
+               "histories cannot follow the motion between them; compute what you need during the run (dump, "
+               "compute dem/contact/local, fix ave/time)");
+}
 
 // a step where LAMMPS builds its lists anew (atoms may move), in a run, a minimization or a run's set-up: the
 // rows made current
@@ -63,12 +77,14 @@ void FixDemContactHistory::post_run()
   refresh();
   const double step = (double) update->ntimestep;
   double **v = atom->v, **omega = atom->omega;
-  for (int i = 0; i < atom->nlocal; i++)
+  for (int i = 0; i < atom->nlocal; i++) {
     if (saved[i][SF_STEP] == step)
       for (int d = 0; d < 3; d++) {
         saved[i][SF_V + d] = v[i][d];
         saved[i][SF_W + d] = omega[i][d];
       }
+    saved[i][SF_ID] = (double) atom->tag[i];
+  }
 }
 
 // the energy the ended contacts of all atoms dissipated [J]

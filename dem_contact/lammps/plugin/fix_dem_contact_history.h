@@ -36,8 +36,10 @@ class RowKeeper {
 class FixDemContactHistory : public Fix {
  public:
   // columns of saved: force (3), torque (3), then the state: x (3), v (3), omega (3), radius, rmass, and the
-  // step they were saved at (-1: none)
-  enum { SF_F = 0, SF_T = 3, SF_X = 6, SF_V = 9, SF_W = 12, SF_R = 15, SF_M = 16, SF_STEP = 17, N_SAVED = 18 };
+  // step they were saved at (-1: none); the atom's id at the end of the last run (0: none yet), which its
+  // partners' keys name
+  enum { SF_F = 0, SF_T = 3, SF_X = 6, SF_V = 9, SF_W = 12, SF_R = 15, SF_M = 16, SF_STEP = 17, SF_ID = 18,
+         N_SAVED = 19 };
 
   FixDemContactHistory(class LAMMPS *, int, char **);
   ~FixDemContactHistory() override;
@@ -46,6 +48,7 @@ class FixDemContactHistory : public Fix {
   void pre_exchange() override;
   void min_pre_exchange() override;
   void post_run() override;
+  void end_of_step() override;
   double compute_scalar() override;
 
   double memory_usage() override;
@@ -67,6 +70,7 @@ class FixDemContactHistory : public Fix {
   bool accounted;        // pair_style dem/contact ... energy yes
   RowKeeper *keeper;     // (null: the rows are the newest)
   bool stale;            // the keeper holds newer values than the rows
+  bool setup_only;       // the pair style's last forces were a run's set-up's (none of a step since)
   // the rows made current (by the keeper, where they are stale)
   void refresh()
   {

@@ -31,7 +31,7 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               double *f, double *torque,
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
-const int ABI = 2;
+const int ABI = 3;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13 };

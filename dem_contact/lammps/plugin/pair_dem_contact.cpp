@@ -577,6 +577,32 @@ bool PairDemContact::reapply_saved()
   return all != 0;
 }
 
+// the atoms with contact rows have the ids they had at the end of the last run: the rows are keyed by the
+// partners' ids, which reset_atoms id (or a restart file of atoms renumbered otherwise) would give to others
+void PairDemContact::check_ids(int nlocal)
+{
+  tagint *tag = atom->tag;
+  typedef FixDemContactHistory F;
+  tagint moved = 0;
+  for (int i = 0; i < nlocal && !moved; i++) {
+    const double id = fix->saved[i][F::SF_ID];
+    if (id == 0.0 || id == (double) tag[i]) continue;
+    for (int s = 0; s < slots; s++)
+      if (fix->keys[i][s] != 0.0) {
+        moved = tag[i];
+        break;
+      }
+  }
+  tagint any = 0;
+  MPI_Allreduce(&moved, &any, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if (any)
+    error->all(FLERR,
+               "pair dem/contact: atom {} has contacts and had another id at the end of the last run: the contact "
+               "histories are keyed by the partners' atom ids, which changed (reset_atoms id?): renumber atoms "
+               "before their first run only",
+               any);
+}
+
 void PairDemContact::save_forces(int nlocal)
 {
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
@@ -607,6 +633,8 @@ void PairDemContact::compute(int eflag, int vflag)
   double *special_lj = force->special_lj;
   const bool reapply = setup && reapply_saved();
 
+  if (setup) check_ids(nlocal);
+  fix->setup_only = setup;
   // the contacts' histories by list entry, taken from the atoms' rows where LAMMPS built its lists (or a run
   // begins); the atoms' rows are stale from this step on (the fix asks store_rows for them)
   if (setup || neighbor->ago == 0) load_rows();

@@ -155,6 +155,7 @@ class PairDemContact : public Pair, public RowKeeper {
   void check_onset(double vn, int a, int b);
   bool reapply_saved();
   void save_forces(int nlocal);
+  void check_ids(int nlocal);
   bool any_resized(int nall);
   void history_fix();
   void check_deep(int64_t n);
