@@ -9,11 +9,12 @@ Public modules (their names must be rendered on an API page under docs/api/):
   ``dem_contact.laws.normal|tangential|twist|rolling`` where they are packages;
 - every module of ``dem_contact.impacts``, ``dem_contact.rebound``, ``dem_contact.dem``, ``dem_contact.walls``,
   ``dem_contact.reference`` and ``dem_contact.studies``;
-- ``dem_contact.lammps`` and ``dem_contact.lammps.bridge``.
+- ``dem_contact.lammps`` and ``dem_contact.lammps.contacts``.
 
 Not public: the command line (``cli``, ``commands``), the figures (``plots``), the laws' internals (dispatch,
-slots, vector forms, closed forms, calibration), the LAMMPS bridge's per-step kernels (``lammps.kernels``):
-the pages describe them, the API reference does not list them.
+slots, vector forms, closed forms, calibration), the LAMMPS plugin's steps and files (``lammps.pair_kernel``,
+``wall_kernel``, ``table_file``, ``mesh_file``, ...) and ``Census``'s search (``lammps.census``): the pages describe
+them, the API reference does not list them.
 
 A module's public names: its ``__all__``, or, without one, the functions, classes and numba-compiled functions
 it defines (not imports) whose names do not start with an underscore. A name is rendered when a ``::: module``
@@ -81,7 +82,7 @@ def _walk(package):
 
 def public_modules():
     mods = ["dem_contact", "dem_contact.errors", "dem_contact.materials", "dem_contact.kernel_cache",
-            "dem_contact.laws.model", "dem_contact.lammps", "dem_contact.lammps.bridge"]
+            "dem_contact.laws.model", "dem_contact.lammps", "dem_contact.lammps.contacts"]
     mods += _walk("dem_contact.laws.table")
     for family in FAMILIES:
         name = f"dem_contact.laws.{family}"
