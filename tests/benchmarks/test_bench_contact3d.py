@@ -65,7 +65,7 @@ def test_bench_batch_normal(benchmark, normal):
 
 
 def _pressed_like(tangential, n=12_500, slots=12, rounds=40):
-    """Contacts of a dense packing as the LAMMPS bridge steps them (``lammps_throughput.py --scene pressed``):
+    """Contacts of a dense packing as a DEM engine steps them (as in ``lammps_throughput.py --scene pressed``):
     history rows scattered over ``slots`` rows per contact, the overlap oscillating by 2% and a small
     reversing slip (|dd| / a about 1e-3 per step), the contact frame turning slowly. Returns a function
     stepping every contact once (the next round of the path at each call)."""
