@@ -81,7 +81,9 @@ class LammpsContacts:
     LAMMPS ids this object creates; folder: where the table and mesh files are written (default: a temporary
     folder, removed with this object).
 
-    Issues ``neighbor SKIN bin``, ``neigh_modify delay 0 every 1 check yes`` and ``comm_modify vel yes``. ``run(n)``
+    Issues ``neighbor SKIN bin``, ``neigh_modify delay 0 every 1 check yes`` and ``comm_modify vel yes``. A ``fix
+    dem/contact/wall`` of one's own is defined after attaching (compute dem/contact/local numbers the wall fixes in
+    the order they were defined: ``contacts()`` takes this object's walls to be the first). ``run(n)``
     is ``lmp.command("run n")`` with the plugin's errors raised as InputError (NumericalError where a law failed).
     """
 
