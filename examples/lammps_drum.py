@@ -13,10 +13,12 @@ follows from --n. The time step is the contact time of the stiffest pair (the sm
 
 Output: with --json one object (rank 0): natoms, steps, contacts (at the end), kinetic_energy (translational +
 rotational, J), wall_torque (the torque of the spheres on the drum, cylinder and end plates, about its
-axis [N m]; the bridge: ``wall_loads``; --native: from the per-atom contact arrays of fix
+axis [N m]; ``LammpsContacts.wall_loads``; --native: from the per-atom contact arrays of fix
 wall/gran/region), mean_z (m), wall_s (the runs' wall time after an untimed set-up ``run 0``), and dt,
-ranks, drum length, engine, laws; with --every, the series (time, kinetic energy, wall torque, dynamic
-angle of repose) every --every steps, written as CSV with --csv and drawn with --figure (PNG).
+ranks, drum radius and length, omega, engine, laws; with --every, the series (time, kinetic energy, wall
+torque, dynamic angle of repose) every --every steps, written as CSV with --csv and drawn with --figure
+(PNG), and with --vtk DIR the contact network every --every steps (``write_contacts``: DIR/drum_<step>.vtk,
+ParaView).
 
 The dynamic angle of repose: the slope of the free surface of the bed in the drum's cross-section (x, z),
 measured from the positions: the principal axis of the bed (its chord), then in that frame a straight line
@@ -238,16 +240,14 @@ def run(a):
         lmp.command("comm_modify vel yes")
         for cmd in native_commands(table, walls):
             lmp.command(cmd)
-        bridge = None
+        contacts = None
     else:
-        lmp.command("pair_style none")
-        bridge = LammpsContacts(lmp, table, walls, slots=a.slots, v_max=a.v_max, skin=skin,
-                                frame_spin=a.frame_spin == "on", r_max=rmax)
+        contacts = LammpsContacts(lmp, table, walls, slots=a.slots, v_max=a.v_max, skin=skin,
+                                  frame_spin=a.frame_spin == "on", r_max=rmax)
         if a.vtk:
             if not a.every:
                 raise InputError("--vtk needs --every (the steps between two contact networks)")
             os.makedirs(a.vtk, exist_ok=True)
-            bridge.write_contacts_every(a.every, os.path.join(a.vtk, "drum_{step:08d}.vtk"))
     census = Census(lmp, rmax, walls)
     lmp.command("compute ke all ke")
     lmp.command("compute rke all erotate/sphere")
@@ -256,20 +256,20 @@ def run(a):
     scalar = lambda name: float(lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR))
 
     def torque():
-        if bridge is not None:
-            return float((bridge.wall_loads()["torque"] @ np.array(AXIS)).sum())
+        if contacts is not None:
+            return float((contacts.wall_loads()["torque"] @ np.array(AXIS)).sum())
         total = sum_ranks(lmp, np.array([native_torque(lmp, len(walls), len(mats), a.n)]))
         if total is None:
             raise InputError("the native torque on several ranks needs LAMMPS on MPICH")
         return float(total[0])
 
     def go(n):
-        if bridge is None:
+        if contacts is None:
             lmp.command(f"run {n}")
         else:
-            bridge.run(n)
+            contacts.run(n)
 
-    go(0)                       # set-up (first lists, compiled kernels loaded): not timed
+    go(0)                       # set-up (forces at the start, first neighbour lists): not timed
     series = []
 
     sink = None
@@ -296,6 +296,9 @@ def run(a):
         done += n
         if a.every:
             record(done)
+        if contacts is not None and a.vtk:
+            step = lmp.extract_global("ntimestep")
+            contacts.write_contacts(os.path.join(a.vtk, f"drum_{step:08d}.vtk"))
     st = census()
     out = {"natoms": int(lmp.get_natoms()), "steps": a.steps, "contacts": st["contacts"],
            "kinetic_energy": scalar("ke") + scalar("rke"), "wall_torque": torque(), "mean_z": scalar("mz"),

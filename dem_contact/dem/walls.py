@@ -1,6 +1,6 @@
 """Contacts of spheres with walls for the 3D batch kernels (``contact3d``): the same wall kernels as the
-LAMMPS bridge (``dem_contact.walls``), so a DEM code gets the normals, overlaps and wall velocities that the
-bridge computes, for any kind of wall of the table.
+LAMMPS plugin's ``fix dem/contact/wall`` (``dem_contact.walls``), so a DEM code gets the normals, overlaps and
+wall velocities that the plugin computes, for any kind of wall of the table.
 
     contacts = wall_contacts(centres, radii, walls)
     rows = contacts.pair_rows(table, types)                  # table.wall_row[type, wall material]
@@ -131,8 +131,8 @@ class WallContacts:
 
     def relative_velocities(self, velocities, spins) -> np.ndarray:
         """float64[m, 3]: the sphere's velocity at the contact relative to the wall's, v + R w x n - v_wall
-        (the full radius, as LAMMPS's ``fix wall/gran`` and the bridge). velocities, spins: float64[n, 3] of
-        every sphere [m/s], [rad/s]."""
+        (the full radius, as LAMMPS's ``fix wall/gran`` and ``fix dem/contact/wall``). velocities, spins:
+        float64[n, 3] of every sphere [m/s], [rad/s]."""
         v = _points("velocities", velocities, self.n_spheres)[self.sphere]
         w = _points("spins", spins, self.n_spheres)[self.sphere] * self.radii[:, None]
         n = self.normals

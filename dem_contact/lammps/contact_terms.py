@@ -1,8 +1,9 @@
-"""The terms of one contact, shared by the LAMMPS bridge (``kernels``) and the plugin's steps (``pair_kernel``,
-``wall_kernel``): the law's inputs of a sphere pair and of a sphere on a wall (kinematics as LAMMPS's granular
-models: the slip velocity with the full radii, v = v1 - v2 + (R1 w1 + R2 w2) x n), the moment of a tangential
-force, the spin of the contact frame; the parameter row of a contact of atoms not of their type's size (its
-R* and m*: the per-row information of a table, ``RI_...``); and the load a contact puts on a wall."""
+"""The terms of one contact, shared by the LAMMPS plugin's steps (``pair_kernel``, ``wall_kernel``) and its
+table file (``table_file``): the law's inputs of a sphere pair and of a sphere on a wall (kinematics as
+LAMMPS's granular models: the slip velocity with the full radii, v = v1 - v2 + (R1 w1 + R2 w2) x n), the
+moment of a tangential force, the spin of the contact frame; the parameter row of a contact of atoms not of
+their type's size (its R* and m*: the per-row information of a table, ``RI_...``); and the load a contact puts
+on a wall."""
 import math
 
 from numba import njit
@@ -21,7 +22,7 @@ RI_CURV = 5      # a wall row: the curvature of the wall's material, 1/R2 in R* 
 RI_DEEP_ALPHA = 6   # exponent of the speed in that overlap near v_max: delta(v) ~ delta(v_max) (v / v_max)^this
 N_ROWINFO = 7
 #: slots of the parameter row that scale with R*^power (the rest but R* and m* do not depend on the sizes;
-#: the bridge checks this for each law at attach)
+#: the table file checks this for each law: ``table_file.size_free``)
 SIZE_SLOTS = ((P_DELTA_Y, 1.0), (P_F_Y, 2.0))
 
 

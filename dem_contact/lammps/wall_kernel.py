@@ -21,12 +21,12 @@ the rigid motion (``walls.contract``): the velocity of the centre [m/s] and the 
 corners); ``slots``: history rows per atom (default: 1 for a plane or a cylinder, 6 for a mesh: the patches an
 atom touches at once).
 
-The step is what the LAMMPS bridge does for a wall contact (``kernels.gather_contacts``, ``wall_slip``,
-``scatter_contacts``, ``add_wall_load``): the wall placed at the time now, the elements near each atom of the
-group (``walls.search.near_elements``), each touching element's history row found by the contact's key
-(``walls.table.history_key``) among the atom's rows (kept by the fix, which moves them with the atom), the
-tangential family's batch loop (every law of the table inlined), and the force and torque (arm R, as the
-bridge) added to the atom, with the wall's load summed.
+The step: the wall placed at the time now, the elements near each atom of the group
+(``walls.search.near_elements``), the law's inputs of each touching element (``contact_terms.wall_slip``),
+its history row found by the contact's key (``walls.table.history_key``) among the atom's rows (kept by the
+fix, which moves them with the atom), the tangential family's batch loop (every law of the table inlined),
+and the force and torque (arm R, as LAMMPS's ``fix wall/gran``) added to the atom, with the wall's load
+summed (``contact_terms.add_wall_load``).
 """
 from __future__ import annotations
 
@@ -241,7 +241,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
             PK.account_work(Hl, hrow[k], w_cols[wall_row[typ[i] - 1, mat]], overlaps[k], velocities[k, 0],
                             velocities[k, 1], velocities[k, 2], normals[k, 0], normals[k, 1], normals[k, 2], dt)
         cx, cy, cz = T.normal_cross(normals, tforces, k)
-        # torque on the sphere: R n x Ft (the bridge's arm against a wall) and the twist and rolling torques
+        # torque on the sphere: R n x Ft (the arm against a wall: the full radius) and the twist and rolling torques
         r = radius[i]
         tx = r * cx + torques[k, 0]
         ty = r * cy + torques[k, 1]

@@ -31,8 +31,8 @@ Each kind of wall is one module of this package that provides:
       wall). The overlap is delta = r - s (contact when delta > 0), the contact point c = x + s n;
   ``distance(walls, w, e, x, y, z) -> d``
       the distance from (x, y, z) to element e's surface [m] whichever element reports the contact (a
-      lower bound of the s of ``contact`` where it is finite): Verlet lists keep the elements within
-      r + skin by it, so that an element that takes over a contact (a mesh's neighbour) is in the list;
+      lower bound of the s of ``contact`` where it is finite): the wall search (``search``) keeps the
+      elements within r + skin by it, so that an element that takes over a contact (a mesh's neighbour) is in the list;
   ``curvature(walls, w, e, cx, cy, cz) -> k``
       1 / R2 [1/m] of the surface at c that enters R* = 1 / (1 / R1 + k): 0 for a plane, > 0 convex, < 0
       concave. The parameter rows of the contacts (``pairs.pair_table``) carry it through the wall's
@@ -42,16 +42,17 @@ Each kind of wall is one module of this package that provides:
       element e: contacts that move from one element to another of the same patch keep their history (a
       mesh: the triangles connected across flat or convex edges on the sphere's side);
   ``bounds(walls, w, e) -> (xlo, ylo, zlo, xhi, yhi, zhi)``
-      the axis-aligned box of element e's surface now [m] (the Verlet lists bin the bounded elements
-      into their cells); +-inf where it is unbounded. A wall's elements (at least one) are all bounded
-      or all unbounded. An unbounded element (a plane, a cylinder) is one-sided (the LAMMPS bridge refuses
-      a sphere's centre behind it); a bounded one (a triangle) is two-sided;
+      the axis-aligned box of element e's surface now [m] (the wall search, ``search``, bins the bounded
+      elements into its cells); +-inf where it is unbounded. A wall's elements (at least one) are all bounded
+      or all unbounded. An unbounded element (a plane, a cylinder) is one-sided (the LAMMPS plugin's wall fix
+      refuses a sphere's centre behind it); a bounded one (a triangle) is two-sided;
   ``place(walls, w, t)``
       write the pose of wall w at time t [s] into its row and payload rows (from its pose at time 0, kept
       there too); called only for walls whose motion moves their surface.
 
-Users of the contract: the LAMMPS bridge (``lammps.kernels``: its Verlet lists hold (sphere, wall,
-element)) and the 3D batch face (``dem.walls.wall_contacts``).
+Users of the contract: the LAMMPS plugin's wall step (``lammps.wall_kernel``: the contacts of the atoms with
+the wall of one ``fix dem/contact/wall``), ``Census`` (``lammps.census``: the wall contacts it counts) and the 3D
+batch face (``dem.walls.wall_contacts``).
 
 The history of a wall contact is keyed per wall and patch: ``table.history_key(walls, w, e, x, y, z)`` =
 -(first key of wall w + patch(e, x, y, z) + 1), a negative number (sphere partners are keyed by their positive atom

@@ -1,5 +1,6 @@
-"""Which wall elements are near which spheres: the Verlet wall lists of the LAMMPS bridge and the contact
-search of the batch face, over the packed walls of ``table.pack``.
+"""Which wall elements are near which spheres: the wall search of the LAMMPS plugin's wall step
+(``lammps.wall_kernel``), of ``Census`` (``lammps.census``) and of the batch face, over the packed walls of
+``table.pack``.
 
 An unbounded element (``contract.bounds``: a plane, a cylinder; one per wall) is tested against every
 sphere. A bounded one (a mesh's triangle) is listed in the cells of a grid over the spheres' centres that

@@ -1,5 +1,5 @@
 """Contact updates per second per MPI rank of a LAMMPS pour (examples/lammps_pour.py): dem_contact's
-hertz + default tangential law and hertz + mindlin_total through the bridge, against LAMMPS's own
+hertz + default tangential law and hertz + mindlin_total (pair_style dem/contact), against LAMMPS's own
 pair granular hertz/material + mindlin with fix wall/gran, on the same scene, on 1 and 2 ranks, in one run
 of this script (a script, not a pytest benchmark: each case is its own MPI job).
 
@@ -15,9 +15,8 @@ Two scenes (--scene):
 Contacts are counted every --every steps; contact updates = contacts counted x steps between counts.
 Two figures per case, in ns per contact update per rank: the whole step (wall_s, the time inside
 LAMMPS's ``run``: contact search, laws, forces, integration, communication) and the contact work
-(contact_s of lammps_pour.py: for ours the bridge's callback on rank 0, walls included, per contact update;
-for LAMMPS's pair granular its Pair + Neigh timers, its fix wall/gran not included, per update of the
-contacts it handles, the sphere pairs).
+(contact_s of lammps_pour.py, per sphere-pair contact update: LAMMPS's Pair + Neigh timers, i.e. the pair
+style, dem/contact or granular, and its neighbour lists; the walls are fixes, timed apart, in either case).
 
 Each case runs --repeat times, interleaved with the others; the fastest run of each case is reported
 (on a machine shared with other work the slower runs measure the other work).
@@ -67,7 +66,7 @@ def main():
         scene += ["--spacing", str(a.spacing or 0.995), "--speed", "0", "--same-size", "--lid"]
     elif a.spacing is not None:
         scene += ["--spacing", str(a.spacing)]
-    for args in CASES.values():                      # compile and cache the kernels first
+    for args in CASES.values():                      # compile and cache the laws' steps first
         pour(["--n", "200", "--steps", "20", "--every", "10", *args], 1)
     best = {}
     for _ in range(a.repeat):

@@ -1,5 +1,6 @@
-"""Time of the Verlet wall list of the LAMMPS bridge (``lammps.kernels.candidates``, whose wall part is
-``walls.search.near_elements``) for N spheres over a triangulated floor of 2 K^2 triangles:
+"""Time of ``lammps.census.candidates`` (the contact search of ``Census``: Verlet lists of sphere pairs and of
+wall elements, whose wall part is ``walls.search.near_elements``), with a skin of 0.3 mm, for N spheres of radius
+1 mm over a triangulated floor of 2 K^2 triangles:
 
     python tests/benchmarks/wall_search.py [N] [K]        # defaults 20000 50: 5,000 triangles
 
@@ -9,7 +10,7 @@ import time
 
 import numpy as np
 
-from dem_contact.lammps import kernels as K
+from dem_contact.lammps.census import candidates
 from dem_contact.walls import MeshWall, pack
 
 
@@ -30,11 +31,11 @@ def main(n=20000, k=50):
     r = np.full(n, 1e-3)
     x = np.column_stack([rng.uniform(0.0, 0.1, (n, 2)), rng.uniform(0.0005, 0.02, n)])
     tag = np.arange(n, dtype=np.int64) + 1
-    K.candidates(10, 10, x, r, tag, walls, 1e-3, 3e-4)
+    candidates(10, 10, x, r, tag, walls, 1e-3, 3e-4)
     best = np.inf
     for _ in range(3):
         t0 = time.perf_counter()
-        _, hits = K.candidates(n, n, x, r, tag, walls, 1e-3, 3e-4)
+        _, hits = candidates(n, n, x, r, tag, walls, 1e-3, 3e-4)
         best = min(best, time.perf_counter() - t0)
     print(f"{n} spheres, {2 * k * k} triangles, {len(hits)} wall candidates: {best * 1e3:.1f} ms per list build")
 

@@ -27,7 +27,7 @@ extern const char *const dem_contact_aot_version;
 // per law family (normal, tangential, twist, rolling): the law names in id order, separated by spaces
 extern const char *const dem_contact_aot_laws[4];
 // the parameter slots of the law ids of those families (laws.slots.P_NORMAL_LAW, ...), and the sizes of a
-// parameter row and of a row's information (laws.slots.N_PARAMS, kernels.N_ROWINFO)
+// parameter row and of a row's information (laws.slots.N_PARAMS, contact_terms.N_ROWINFO)
 extern const int dem_contact_aot_law_slots[4];
 extern const int dem_contact_aot_n_params;
 extern const int dem_contact_aot_n_rowinfo;

@@ -18,7 +18,7 @@ using namespace LAMMPS_NS;
 
 namespace {
 const int N_COLUMNS = 17, N_WORK_COLUMNS = 2;
-// a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (as the bridge's contacts())
+// a contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the column sliding of LammpsContacts.contacts())
 const double SLIDING_TOL = 1e-9;
 PairDemContact *our_pair(LAMMPS *lmp)
 {

@@ -35,7 +35,7 @@ const int ABI = 3;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13 };
-// kernels.RI_...: columns of the table's per-row information
+// contact_terms.RI_...: columns of the table's per-row information
 const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_CURV = 5, N_ROWINFO = 7;
 // as pair dem/contact: the fewest time steps per contact time
 const double MIN_STEPS_PER_CONTACT = 10.0;

@@ -38,7 +38,7 @@ const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4, ENERGY = 8;
 // the law's outputs per contact (force, tangential force, twist and rolling torque: 3 each)
 const int N_WORK = 9;
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
-// kernels.RI_...: columns of the table's per-row information (at 1 m/s)
+// contact_terms.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
 const int ABI = 6;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
@@ -702,10 +702,10 @@ void PairDemContact::compute(int eflag, int vflag)
       pair_at[2 * n + 1] = b;
       row_at[n] = at[jj];
       prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
-      // The law's inputs, body 1 a (kernels.sphere_pair's arithmetic, as the bridge gathers them): the unit
+      // The law's inputs, body 1 a (contact_terms.sphere_pair's arithmetic): the unit
       // normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
       // w_b) x n, the relative spin w_a - w_b, and the mean spin of the two bodies about the normal
-      // (kernels.frame_spin_rate; frame_spin no: 0)
+      // (contact_terms.frame_spin_rate; frame_spin no: 0)
       // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
       // for 0; the same r2)
       const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;

@@ -6,7 +6,7 @@
 
    vmax: the largest normal impact speed [m/s] (the time step is checked against the contact time at it, and
    contacts that begin faster against theirs); slots: history rows per atom (default 12); frame_spin (default
-   yes, as the bridge): pass the spin of the contact frame about the normal to the tangential law; no: keep the
+   yes): pass the spin of the contact frame about the normal to the tangential law; no: keep the
    tangential history fixed in space, as LAMMPS's granular models; rmax: the largest radius atoms reach in the
    run [m] (default: each type's largest at the run's start, or the radius a fix inserts), where fix adapt grows
    them (the neighbour cutoff); energy (default no): account the work of each contact's forces (compute
