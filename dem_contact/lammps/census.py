@@ -184,65 +184,26 @@ def _separation(x, radius, i, j):
 
 
 @njit(cache=True)
-def overlapping(x, radius, walls, cand, cand_walls):
-    """The candidates in contact now: (pairs, deltas, wall_hits (i, w, element), wall_deltas), deltas > 0 the
-    overlaps."""
-    m = 0
-    keep = np.empty(cand.shape[0], dtype=np.int64)
-    deltas = np.empty(cand.shape[0])
-    for c in range(cand.shape[0]):
-        i = cand[c, 0]
-        j = cand[c, 1]
-        _, _, _, r2, rs = _separation(x, radius, i, j)
-        if r2 < rs * rs:
-            keep[m] = c
-            deltas[m] = rs - math.sqrt(r2)
-            m += 1
-    pairs = np.empty((m, 2), dtype=np.int64)
-    for k in range(m):
-        pairs[k, 0] = cand[keep[k], 0]
-        pairs[k, 1] = cand[keep[k], 1]
-    kw = 0
-    wkeep = np.empty(cand_walls.shape[0], dtype=np.int64)
-    wdel = np.empty(cand_walls.shape[0])
-    for c in range(cand_walls.shape[0]):
-        i = cand_walls[c, 0]
-        w = cand_walls[c, 1]
-        gap, _, _, _ = W.contact_of(walls, w, cand_walls[c, 2], x[i, 0], x[i, 1], x[i, 2], radius[i])
-        d = radius[i] - gap
-        if d > 0.0:
-            wkeep[kw] = c
-            wdel[kw] = d
-            kw += 1
-    hits = np.empty((kw, 3), dtype=np.int64)
-    for k in range(kw):
-        for q in range(3):
-            hits[k, q] = cand_walls[wkeep[k], q]
-    return pairs, deltas[:m], hits, wdel[:kw]
-
-
-@njit(cache=True)
-def find_contacts(nlocal, nall, x, radius, tag, walls, rmax):
-    """The contacts of the local atoms now (candidates with no skin, then their overlaps)."""
-    cand, cand_walls = candidates(nlocal, nall, x, radius, tag, walls, rmax, 0.0)
-    return overlapping(x, radius, walls, cand, cand_walls)
-
-
-@njit(cache=True)
 def census(nlocal, nall, x, radius, tag, walls, rmax, stat):
-    """Contacts of the local atoms without evaluating them (for any pair style): writes ST_PAIRS,
-    ST_WALLS, ST_OVERLAP of stat[:nlocal]."""
-    pairs, deltas, hits, wdel = find_contacts(nlocal, nall, x, radius, tag, walls, rmax)
+    """Contacts of the local atoms without evaluating them (for any pair style): the candidates with no skin
+    (``candidates``) that overlap, counted into ST_PAIRS and ST_WALLS of stat[:nlocal] (a mesh: each triangle
+    touched), their largest overlap into ST_OVERLAP."""
+    cand, cand_walls = candidates(nlocal, nall, x, radius, tag, walls, rmax, 0.0)
     stat[:nlocal, :] = 0.0
-    for c in range(pairs.shape[0]):
-        for k in (pairs[c, 0], pairs[c, 1]):
-            if k < nlocal:
-                stat[k, ST_PAIRS] += 1.0
-                stat[k, ST_OVERLAP] = max(stat[k, ST_OVERLAP], deltas[c])
-    for c in range(hits.shape[0]):
-        k = hits[c, 0]
-        stat[k, ST_WALLS] += 1.0
-        stat[k, ST_OVERLAP] = max(stat[k, ST_OVERLAP], wdel[c])
+    for c in range(cand.shape[0]):
+        _, _, _, r2, rs = _separation(x, radius, cand[c, 0], cand[c, 1])
+        if r2 < rs * rs:
+            d = rs - math.sqrt(r2)
+            for k in (cand[c, 0], cand[c, 1]):
+                if k < nlocal:
+                    stat[k, ST_PAIRS] += 1.0
+                    stat[k, ST_OVERLAP] = max(stat[k, ST_OVERLAP], d)
+    for c in range(cand_walls.shape[0]):
+        k = cand_walls[c, 0]
+        gap = W.contact_of(walls, cand_walls[c, 1], cand_walls[c, 2], x[k, 0], x[k, 1], x[k, 2], radius[k])[0]
+        if gap < radius[k]:
+            stat[k, ST_WALLS] += 1.0
+            stat[k, ST_OVERLAP] = max(stat[k, ST_OVERLAP], radius[k] - gap)
 
 
 class Census:
