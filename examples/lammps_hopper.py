@@ -191,13 +191,14 @@ def run(a):
     if a.csv and me == 0:                  # (written as the run goes: a long run can be followed)
         sink = open(a.csv, "w", newline="")
         csv.writer(sink).writerow(["time_s", "discharged_kg", "hopper_force_z_N"])
-    done, wall_s = 0, 0.0
+    done, wall_s, st = 0, 0.0, None
     while done < a.steps:
         n = min(a.every, a.steps - done)
         t0 = time.perf_counter()
         contacts.run(n)
         wall_s += time.perf_counter() - t0
         done += n
+        st = contacts.stats()                     # (the contacts of the step, before atoms are deleted)
         # (between runs; ids kept: a contact's history names its partner by atom id)
         lmp.command("delete_atoms region out compress no")
         fz = float(contacts.wall_loads()["force"][0, 2])
@@ -207,7 +208,6 @@ def run(a):
             sink.flush()
         if lmp.get_natoms() == 0:
             break
-    st = contacts.stats()
     s = np.array(series) if series else np.zeros((0, 3))
     rate = math.nan
     if len(s) and s[-1, 1] > 0:
@@ -215,7 +215,7 @@ def run(a):
         k = np.flatnonzero((s[:, 1] >= 0.2 * s[-1, 1]) & (s[:, 1] <= 0.8 * s[-1, 1]))
         if len(k) >= 2:
             rate = float((s[k[-1], 1] - s[k[0], 1]) / (s[k[-1], 0] - s[k[0], 0]))
-    out = {"natoms": int(lmp.get_natoms()), "steps": done, "contacts": st["contacts"],
+    out = {"natoms": int(lmp.get_natoms()), "steps": done, "contacts": st["contacts"] if st else None,
            "kinetic_energy": scalar("ke") + scalar("rke") if lmp.get_natoms() else 0.0,
            "wall_force_z": float(s[-1, 2]) if len(s) else 0.0,
            "mean_z": scalar("mz") if lmp.get_natoms() else None, "discharged": a.n - int(lmp.get_natoms()),

@@ -73,6 +73,16 @@ def lammps_timers(log_path):
     return total
 
 
+def told(lmp, log):
+    """LAMMPS's warnings in its log file ``log`` passed on as RuntimeWarnings (the log is this example's, for
+    the timers: ``new_lammps`` reads only its own)."""
+    from dem_contact.lammps.session import pass_on_warnings, warnings_in
+    if lmp is not None and hasattr(lmp, "flush_buffers"):
+        lmp.flush_buffers()
+    with open(log, errors="replace") as f:
+        pass_on_warnings(warnings_in(f.read()))
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description="Pour spheres of two materials into a box in LAMMPS with "
                                 "dem_contact's laws (or --native: LAMMPS's pair granular); MPI-parallel.")
@@ -203,6 +213,8 @@ def run(a):
         lmp.command("run 0")
     else:
         contacts.run(0)
+    if me == 0:
+        told(lmp, log)                             # (LAMMPS's warnings of the set-up, before the new log)
     lmp.command(f"log {log}")                      # (a new log: the set-up run is not counted)
     done = 0
     wall_s = 0.0
@@ -240,6 +252,8 @@ def run(a):
                     {"normal": table.scenes[0].normal, "tangential": table.scenes[0].tangential})}
     out["laws"].update(twist=a.twist, rolling=a.rolling)
     lmp.close()
+    if me == 0:
+        told(None, log)
     os.remove(log)                                 # (each rank's own temporary file; rank 0's the log)
     if me == 0:
         if a.json:

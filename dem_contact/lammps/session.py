@@ -44,7 +44,6 @@ def lammps_module():
 
 # MPICH's handles (its ABI, stable across versions): the datatype MPI_INT and the operation MPI_MAX
 _MPICH_INT = 0x4C000405
-_MPICH_MAX = 0x58000001
 
 
 @functools.cache
@@ -70,30 +69,6 @@ def _mpich_comm(lmp):
     if lib is None:
         return None
     return lib, lib.MPI_Comm_f2c(lmp.lib.lammps_get_mpi_comm(lmp.lmp))
-
-
-def max_rank(lmp, value: int) -> int | None:
-    """The largest of the ints ``value`` of the MPI ranks of the LAMMPS instance (collective: every rank
-    must call it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    if lmp.extract_setting("world_size") <= 1:
-        return int(value)
-    mpi = _mpich_comm(lmp)
-    if mpi is None:
-        return None
-    import ctypes
-
-    lib, comm = mpi
-    one, out = ctypes.c_int(int(value)), ctypes.c_int(0)
-    if lib.MPI_Allreduce(ctypes.byref(one), ctypes.byref(out), 1, _MPICH_INT, _MPICH_MAX, comm) != 0:
-        return None
-    return out.value
-
-
-def any_rank(lmp, flag: bool) -> bool | None:
-    """Whether ``flag`` is true on any MPI rank of the LAMMPS instance (collective: every rank must call
-    it). None where it cannot be told: LAMMPS on more than one rank over an MPI other than MPICH."""
-    out = max_rank(lmp, int(bool(flag)))
-    return None if out is None else out != 0
 
 
 # MPICH's handles of the datatype MPI_DOUBLE and the operation MPI_SUM

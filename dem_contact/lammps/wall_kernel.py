@@ -475,7 +475,7 @@ def fix_words(wall, mesh=None) -> str:
     if isinstance(wall, MeshWall):
         if mesh is None:
             raise InputError("a MeshWall's fix names its packed mesh file (mesh_file.write): give its path")
-        words = f"mesh {mesh}"
+        words = f'mesh "{mesh}"'
     elif isinstance(wall, PlaneWall):
         words = f"plane {num(wall.point)} {num(wall.normal)}"
     elif isinstance(wall, CylinderWall):

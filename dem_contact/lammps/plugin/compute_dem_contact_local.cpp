@@ -58,6 +58,14 @@ void ComputeDemContactLocal::compute_local()
                "compute dem/contact/local: the pair style has no contacts of step {} (it has those of step {}): "
                "dump or use it at the steps of a run, not before the first",
                update->ntimestep, pair->evaluated_step);
+  // (the contacts name their atoms by index: the atoms of that step, in the same places)
+  int moved = pair->atoms_key != pair->atoms_now(), any = 0;
+  MPI_Allreduce(&moved, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any)
+    error->all(FLERR,
+               "compute dem/contact/local: atoms were added, removed or moved in memory or between ranks since step "
+               "{}, whose contacts the pair style has: use it at the steps of a run (run 1 first)",
+               update->ntimestep);
   // the pair style's contacts (a pair: reported by the rank that owns atom a), then each wall's
   std::vector<FixDemContactWall *> walls;
   for (auto f : modify->get_fix_by_style("^dem/contact/wall$")) {

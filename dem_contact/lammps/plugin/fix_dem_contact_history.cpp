@@ -160,6 +160,7 @@ int FixDemContactHistory::unpack_exchange(int i, double *buf)
 int FixDemContactHistory::pack_restart(int i, double *buf)
 {
   refresh();
+  saved[i][SF_ID] = (double) atom->tag[i];
   buf[1] = slots;
   buf[2] = history_size;
   int m = 3 + pack_exchange(i, buf + 3);
@@ -172,6 +173,12 @@ void FixDemContactHistory::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  if ((int) extra[nlocal][m] != 3 + per_atom() && (int) extra[nlocal][m + 1] == slots &&
+      (int) extra[nlocal][m + 2] == history_size)
+    error->one(FLERR,
+               "dem/contact: the restart file's contact rows ({}) are of another version of dem_contact's plugin "
+               "({} values per atom, this one's {}): continue the run with the version that wrote it",
+               id, (int) extra[nlocal][m], 3 + per_atom());
   if ((int) extra[nlocal][m + 1] != slots || (int) extra[nlocal][m + 2] != history_size)
     error->one(FLERR,
                "dem/contact: the restart file's contact rows ({}) have {} slots of {} values, this run's {} of {}: "

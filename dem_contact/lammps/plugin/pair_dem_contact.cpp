@@ -595,12 +595,24 @@ void PairDemContact::check_ids(int nlocal)
   }
   tagint any = 0;
   MPI_Allreduce(&moved, &any, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if (!any)
+    for (int i = 0; i < nlocal; i++) fix->saved[i][F::SF_ID] = (double) tag[i];
   if (any)
     error->all(FLERR,
                "pair dem/contact: atom {} has contacts and had another id at the end of the last run: the contact "
-               "histories are keyed by the partners' atom ids, which changed (reset_atoms id?): renumber atoms "
-               "before their first run only",
+               "histories are keyed by the partners' atom ids, which changed (reset_atoms id, delete_atoms ... "
+               "compress yes, replicate?): renumber atoms before their first run only",
                any);
+}
+
+// the local and ghost atoms' ids in the order of their indices, hashed: what the contacts' atom indices of a step
+// point into (atoms added, removed, or moved in memory or between ranks change it)
+uint64_t PairDemContact::atoms_now() const
+{
+  const int nall = atom->nlocal + atom->nghost;
+  uint64_t h = (uint64_t) atom->nlocal * 1000003u + (uint64_t) nall;
+  for (int i = 0; i < nall; i++) h = h * 6364136223846793005ULL + (uint64_t) atom->tag[i];
+  return h;
 }
 
 void PairDemContact::save_forces(int nlocal)
@@ -702,10 +714,9 @@ void PairDemContact::compute(int eflag, int vflag)
       pair_at[2 * n + 1] = b;
       row_at[n] = at[jj];
       prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
-      // The law's inputs, body 1 a (contact_terms.sphere_pair's arithmetic): the unit
-      // normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
+      // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
       // w_b) x n, the relative spin w_a - w_b, and the mean spin of the two bodies about the normal
-      // (contact_terms.frame_spin_rate; frame_spin no: 0)
+      // (frame_spin no: 0)
       // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
       // for 0; the same r2)
       const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;
@@ -797,7 +808,10 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
-  if (!setup) evaluated_step = update->ntimestep;
+  if (!setup) {
+    evaluated_step = update->ntimestep;
+    if (keep_out) atoms_key = atoms_now();
+  }
   if (setup && !deep_checked) {
     check_deep(n);
     deep_checked = true;

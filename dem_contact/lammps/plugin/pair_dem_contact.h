@@ -104,6 +104,9 @@ class PairDemContact : public Pair, public RowKeeper {
   bigint evaluated_step;
   int64_t contact_count() const { return n_contacts; }
   const int64_t *contact_atoms() const { return pairs.data(); }
+  // the atoms' ids by index (hashed) now, and at evaluated_step (where a compute reads the contacts)
+  uint64_t atoms_now() const;
+  uint64_t atoms_key = 0;
   const double *contact_values() const { return out.data(); }
   // what fix dem/contact/wall takes from the pair style: its table file, vmax and frame_spin
   const std::string &table_file() const { return table_path; }
