@@ -67,7 +67,7 @@ def test_two_spheres_as_python_face_and_pair_granular(plugin, tmp_path):
     """A pressed, sliding, spinning pair (the tangential spring loaded in all directions, twist and rolling sds
     on): the plugin's forces are LammpsContacts' to 1e-12 and LAMMPS's own to 1e-10, on one rank and on two
     (the atoms on different ranks), newton on and off."""
-    ref = _scenes("pair", "bridge,native", tmp_path, 1, "--steps", "30", "--sds")
+    ref = _scenes("pair", "python,native", tmp_path, 1, "--steps", "30", "--sds")
     assert np.abs(np.array(ref["native"]["f"])).max() > 0.0      # still in contact
     bridge_row = np.array(ref["python"]["contacts"])
     for ranks, newton in ((1, "on"), (2, "off")):
@@ -138,7 +138,7 @@ def test_pour_as_python_face_and_pair_granular(plugin, tmp_path):
     """Spheres of two sizes and materials poured onto a bed, periodic in x and y, atoms crossing between the
     ranks: LammpsContacts' to 1e-12 and pair granular's to 1e-10 (one rank each), on one rank with newton off, on
     two with newton on, and continued on two from a restart file written on one (after a run, and during one)."""
-    ref = _scenes("pour", "bridge,native", tmp_path, 1, "--steps", "1500")
+    ref = _scenes("pour", "python,native", tmp_path, 1, "--steps", "1500")
     for ranks, newton in ((1, "off"), (2, "on")):
         got = _scenes("pour", "plugin", tmp_path, ranks, "--steps", "1500", "--newton", newton)["plugin"]
         assert got["touching"] > 0
@@ -188,7 +188,7 @@ def test_walls_as_python_face_and_wall_gran(plugin, tmp_path):
     LammpsContacts', on one rank with newton on and on two with newton off (atoms crossing between the ranks), and
     the rows of compute dem/contact/local LammpsContacts' contacts."""
     for scene, steps in (("floor", "300"), ("drum", "120")):
-        ref = _scenes(scene, "bridge,native", tmp_path, 1, "--steps", steps, "--sds")
+        ref = _scenes(scene, "python,native", tmp_path, 1, "--steps", steps, "--sds")
         for ranks, newton in ((1, "on"), (2, "off")):
             got = _scenes(scene, "plugin", tmp_path, ranks, "--steps", steps, "--sds", "--newton", newton)["plugin"]
             assert _rel(got, ref["python"]) < 1e-12, (scene, ranks)
