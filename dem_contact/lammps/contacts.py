@@ -100,7 +100,10 @@ class LammpsContacts:
         if style not in REPLACEABLE:
             raise InputError(f"pair_style {style} is defined: its forces would act as well as the laws'; use "
                              f"`pair_style none` (or no pair style) with LammpsContacts")
-        if not (isinstance(slots, (int, np.integer)) and 1 <= slots <= 1000):
+        if not (isinstance(prefix, str) and re.fullmatch(r"[A-Za-z0-9_]+", prefix)):
+            raise InputError(f"prefix (of the LAMMPS ids this object defines) must be letters, digits and _, "
+                             f"got {prefix!r}")
+        if isinstance(slots, bool) or not (isinstance(slots, (int, np.integer)) and 1 <= slots <= 1000):
             raise InputError(f"slots (history rows per atom) must be an integer in [1, 1000], got {slots!r}")
         if not (isinstance(v_max, (int, float)) and math.isfinite(v_max) and v_max > 0):
             raise InputError(f"v_max (largest normal impact speed, m/s) must be finite and > 0, got {v_max!r}")
@@ -217,9 +220,9 @@ class LammpsContacts:
 
     def contacts(self) -> dict:
         """The contacts of this MPI rank at the last step of the last run (every rank calls it: the compute's checks
-        are collective), each once over the
-        ranks: a sphere pair is reported by the rank that owns its atom of lower id (body 1), a wall contact by
-        the rank of its atom (compute dem/contact/local). A dict of numpy arrays, one entry per contact (k):
+        are collective), each once over the ranks: a sphere pair is reported by the rank that owns its atom of
+        lower id (body 1), a wall contact by the rank of its atom (compute dem/contact/local). A dict of numpy
+        arrays, one entry per contact (k):
 
         ``id1`` int64[k] atom id of body 1 (the lower id of a pair; the sphere of a wall contact); ``id2`` int64[k]
         the partner's atom id (0 for a wall); ``wall`` int64[k] the wall's index in ``walls`` (-1 for a pair);
@@ -232,8 +235,7 @@ class LammpsContacts:
         contact force on body 1 [N] (body 2 takes the opposite); ``torque`` float64[k, 3] the twist and rolling
         laws' torque on body 1 [N m] (zero without them); ``mu`` float64[k] the pair's friction coefficient;
         ``sliding`` bool[k]: |Ft| >= (1 - SLIDING_TOL) mu N with N > 0; and ``step`` (LAMMPS's time step
-        number), ``rank``. InputError before the first step of a run
-        (compute dem/contact/local's error)."""
+        number), ``rank``. InputError before the first step of a run (compute dem/contact/local's error)."""
         lmp = self.lmp
         rows = self._rows()
         nall = lmp.extract_setting("nall")

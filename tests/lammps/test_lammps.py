@@ -293,6 +293,20 @@ def test_refuses_atom_styles_without_radius_and_spin():
         LammpsContacts(lmp, _table(), v_max=1.0)
 
 
+@pytest.mark.parametrize("kw, message", [
+    (dict(slots=0), r"slots \(history rows per atom\) must be an integer in \[1, 1000\], got 0"),
+    (dict(slots=True), r"slots .* got True"),
+    (dict(v_max=math.nan), r"v_max \(largest normal impact speed, m/s\) must be finite and > 0, got nan"),
+    (dict(v_max=-1.0), r"v_max .* got -1.0"),
+    (dict(r_max=1e-4), r"r_max \(largest atom radius, m\) must be finite and >= the largest radius"),
+    (dict(skin=math.inf), r"skin \(neighbour skin, m\) must be finite and > 0, got inf"),
+    (dict(prefix="a b"), r"prefix \(of the LAMMPS ids this object defines\) must be letters, digits and _"),
+])
+def test_bad_arguments_are_refused_naming_them(kw, message):
+    with pytest.raises(InputError, match=message):
+        LammpsContacts(_box(), _table(), **{"v_max": 1.0, **kw})
+
+
 def test_refuses_units_other_than_si():
     lmp = _box(units="lj")
     with pytest.raises(InputError, match="si"):
