@@ -31,7 +31,7 @@ import numpy as np
 
 from dem_contact.dem.pairs import pair_table
 from dem_contact.lammps import LammpsContacts, native_commands, new_lammps
-from dem_contact.lammps import plugin_build, table_file
+from dem_contact.lammps import plugin_build, table_file, wall_kernel
 from dem_contact.laws.model import reference_speed
 from dem_contact.materials import Material, Sphere, Wall
 from dem_contact.walls import CylinderWall, MeshWall, PlaneWall, write_stl
@@ -51,18 +51,9 @@ def table(sds, types=2, mu=0.5, walls=()):
 
 
 def fix_words(wall):
-    """The words of fix dem/contact/wall for a PlaneWall, a CylinderWall or a MeshWall (read from the STL file
-    STL_FILES[id(wall)])."""
-    num = lambda v: " ".join(repr(float(c)) for c in v)  # noqa: E731
-    if isinstance(wall, MeshWall):
-        words = f"mesh {STL_FILES[id(wall)]}"
-    elif isinstance(wall, PlaneWall):
-        words = f"plane {num(wall.point)} {num(wall.normal)}"
-    else:
-        words = (f"cylinder {num(wall.point)} {num(wall.axis)} {float(wall.radius)!r} "
-                 f"{'in' if wall.inside else 'out'}{'' if wall.curved else ' flat'}")
-    words += f" wall {wall.wall} velocity {num(wall.velocity)} angular_velocity {num(wall.angular_velocity)}"
-    return words + (f" centre {num(wall.centre)}" if wall.centre is not None else "")
+    """The words of fix dem/contact/wall for a wall (``wall_kernel.fix_words``), a MeshWall read from its STL file
+    STL_FILES[id(wall)]."""
+    return wall_kernel.fix_words(wall, STL_FILES.get(id(wall)))
 
 
 def gather(lmp, name):
