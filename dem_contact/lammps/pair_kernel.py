@@ -131,15 +131,18 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
     [0, 3]): scratch for the law's outputs; pc float64[n_rows + n, N_PARAMS] (only where
     ``sized``: atoms not of their type's size get their own rows there, prow pointing at them); ``energy``: the
     rows carry N_EXTRA values after the law's history, the work of the contact's forces (``account_work``).
-    Returns the number of contacts whose force or torques are not finite. (Nothing here allocates: the step
-    also runs compiled ahead of time, without numba's runtime, ``aot``.)"""
+    Returns the number of contacts whose force or torques are not finite. (Nothing here allocates: it is
+    compiled without numba's runtime, so that no reference counting runs in its loops, and it also runs
+    compiled ahead of time, ``aot``.)"""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
     turning = spins.shape[0] > 0
     nr = params.shape[0]
     rows = params
     if sized:
-        pc[:nr] = params
+        for r in range(nr):
+            for q in range(params.shape[1]):
+                pc[r, q] = params[r, q]
         rows = pc
         for k in range(n):
             a = pairs[k, 0]
@@ -285,7 +288,7 @@ def step_function(tid: int):
     process, cached on disk as the package's kernels)."""
     if tid not in _CFUNCS:
         name = f"lammps_step_{tid}"
-        step = njit(cache=True)(renamed(_step, name, loop=_LOOPS[tid][0]))
+        step = njit(cache=True, _nrt=False)(renamed(_step, name, loop=_LOOPS[tid][0]))
         _CFUNCS[tid] = cfunc(SIGNATURE, cache=True)(renamed(_entry, f"{name}_entry", step=step))
     return _CFUNCS[tid]
 
