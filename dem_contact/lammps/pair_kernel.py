@@ -31,7 +31,7 @@ from ..laws.vector import V_N, W_WORK, renamed
 from . import contact_terms as T
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 6
+ABI = 7
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
 #: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient, the work the
@@ -117,7 +117,7 @@ def ended_work(H, r, delta_end):
 
 
 def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius, rmass, typ, params, rowinfo,
-          type_size, sized, dt, out, forces, tforces, torques, prow, pc, nlocal, f, torque, write_out, scatter,
+          type_size, sized, dt, out, forces, tforces, torques, prow, pc, to, f, torque, write_out, scatter,
           with_virial, virial, energy):
     """The n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows ``hrow``
     (advanced in place; the caller passes copies where nothing may advance), and the law's inputs the pair style
@@ -126,8 +126,9 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
     relative spins, where the table has twist or rolling laws; else [0, 3]) and prow int64[n] (each pair's
     parameter row). The tangential family's loop (``loop``, bound per family), then what the pair style asks:
     ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and torques added to f, torque
-    float64[nall, 3] for the first ``nlocal`` atoms, with the virial's six components added to ``virial``
-    (``with_virial``). forces, tforces float64[n, 3], torques float64[n, 3] (where spins has n rows, else
+    float64[nall, 3] of the local atoms to[k] (int64[n, 2], per body: the local atom that takes its force, the
+    atom itself or, for a periodic image of a local atom evaluated once, that atom; -1: none), with the
+    virial's six components added to ``virial`` (``with_virial``). forces, tforces float64[n, 3], torques float64[n, 3] (where spins has n rows, else
     [0, 3]): scratch for the law's outputs; pc float64[n_rows + n, N_PARAMS] (only where
     ``sized``: atoms not of their type's size get their own rows there, prow pointing at them); ``energy``: the
     rows carry N_EXTRA values after the law's history, the work of the contact's forces (``account_work``).
@@ -211,23 +212,25 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
                 out[k, OUT_WORK_T] = H[hrow[k], x0 + X_WORK] - H[hrow[k], x0 + X_WORK_N]
         if scatter:
             # LAMMPS's forces and torques of the local atoms (each summed over its contacts in their order)
-            if a < nlocal:
-                f[a, 0] += fx
-                f[a, 1] += fy
-                f[a, 2] += fz
-                torque[a, 0] += tax
-                torque[a, 1] += tay
-                torque[a, 2] += taz
-            if b < nlocal:
-                f[b, 0] -= fx
-                f[b, 1] -= fy
-                f[b, 2] -= fz
-                torque[b, 0] += tbx
-                torque[b, 1] += tby
-                torque[b, 2] += tbz
+            ta = to[k, 0]
+            tb = to[k, 1]
+            if ta >= 0:
+                f[ta, 0] += fx
+                f[ta, 1] += fy
+                f[ta, 2] += fz
+                torque[ta, 0] += tax
+                torque[ta, 1] += tay
+                torque[ta, 2] += taz
+            if tb >= 0:
+                f[tb, 0] -= fx
+                f[tb, 1] -= fy
+                f[tb, 2] -= fz
+                torque[tb, 0] += tbx
+                torque[tb, 1] += tby
+                torque[tb, 2] += tbz
             if with_virial:
                 # (as LAMMPS's ev_tally_xyz with newton off: half for each local atom of the pair)
-                h = 0.5 * ((1.0 if a < nlocal else 0.0) + (1.0 if b < nlocal else 0.0))
+                h = 0.5 * ((1.0 if ta >= 0 else 0.0) + (1.0 if tb >= 0 else 0.0))
                 dx = x[a, 0] - x[b, 0]
                 dy = x[a, 1] - x[b, 1]
                 dz = x[a, 2] - x[b, 2]
@@ -255,7 +258,7 @@ def _not_finite(n, forces, tforces, torques):
 
 
 def _entry(n, pairs, hrow, H, h_rows, hs, normals, overlaps, velocities, spins, wn, turning, x, radius, rmass, typ,
-           nall, params, n_rows, rowinfo, type_size, n_types, sized, dt, out, forces, tforces, torques, prow, pc, nlocal,
+           nall, params, n_rows, rowinfo, type_size, n_types, sized, dt, out, forces, tforces, torques, prow, pc, to,
            f, torque, flags, virial):
     """The C entry of ``_step``: raw pointers of the pair style's buffers and LAMMPS's per-atom arrays."""
     m = n if turning else 0
@@ -268,7 +271,7 @@ def _entry(n, pairs, hrow, H, h_rows, hs, normals, overlaps, velocities, spins, 
                 carray(type_size, (n_types, 2)), sized != 0, dt, carray(out, (n, N_OUT)),
                 carray(forces, (n, 3)), carray(tforces, (n, 3)), carray(torques, (m, 3)),
                 carray(prow, (n,)), carray(pc, (n_pc, N_PARAMS)),
-                nlocal, carray(f, (nall, 3)), carray(torque, (nall, 3)), (flags & WRITE_OUT) != 0,
+                carray(to, (n, 2)), carray(f, (nall, 3)), carray(torque, (nall, 3)), (flags & WRITE_OUT) != 0,
                 (flags & SCATTER) != 0, (flags & VIRIAL) != 0, carray(virial, (6,)), (flags & ENERGY) != 0)
 
 
@@ -278,7 +281,7 @@ _F64P = types.CPointer(types.float64)
 SIGNATURE = types.int64(types.int64, _I64P, _I64P, _F64P, types.int64, types.int64, _F64P, _F64P, _F64P, _F64P,
                         _F64P, types.int64, _F64P, _F64P, _F64P, types.CPointer(types.int32), types.int64, _F64P,
                         types.int64, _F64P, _F64P, types.int64, types.int64, types.float64, _F64P, _F64P, _F64P,
-                        _F64P, _I64P, _F64P, types.int64, _F64P, _F64P, types.int64, _F64P)
+                        _F64P, _I64P, _F64P, _I64P, _F64P, _F64P, types.int64, _F64P)
 
 _CFUNCS = {}
 

@@ -341,23 +341,26 @@ def kinetic(lmp):
 
 
 def collide(a):
-    """Two spheres meeting obliquely, spinning (collide), or one sphere striking the floor wall (strike),
-    normal law --normal (hertz_damped: restitution 0.5), mu --mu: the kinetic energy before and after, the energy
-    the ended contacts dissipated (the history fixes' scalars), and compute dem/contact/local's rows half-way
+    """Two spheres meeting obliquely, spinning (collide; --across: through the periodic boundary in x of the box,
+    on one rank, where the pair is listed twice), or one sphere striking the floor wall (strike), normal law
+    --normal (hertz_damped: restitution 0.5), mu --mu: the kinetic energy before and after, the energy the ended
+    contacts dissipated (the history fixes' scalars), and compute dem/contact/local's rows half-way
     (--steps / 2)."""
     strike = a.scene == "strike"
     extra = dict(e_n=0.5) if a.normal == "hertz_damped" else {}
     t = pair_table([Sphere(R1, GLASS)], [Wall(GLASS)] if strike else [], mu=a.mu, normal=a.normal,
                    tangential="mindlin_total", v_ref=reference_speed(1.0), **extra)
     lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
-    for c in ("units si", "atom_style sphere", "atom_modify map array", f"newton {a.newton}", "boundary f f f",
-              "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01", "create_box 1 box"):
+    for c in ("units si", "atom_style sphere", "atom_modify map array", f"newton {a.newton}",
+              f"boundary {'p' if a.across else 'f'} f f", "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
+              "create_box 1 box"):
         lmp.command(c)
+    shift = 0.01 if a.across else 0.0     # (the pair moved half a period: it meets across x = +-0.01)
     if strike:
         lmp.command(f"create_atoms 1 single 0 0 {R1 + 1e-5!r}")
     else:
-        lmp.command(f"create_atoms 1 single {-R1 - 1e-5!r} 0 0")
-        lmp.command(f"create_atoms 1 single {R1 + 1e-5!r} 0.0003 0")
+        lmp.command(f"create_atoms 1 single {shift - R1 - 1e-5!r} 0 0")
+        lmp.command(f"create_atoms 1 single {R1 + 1e-5 - shift!r} 0.0003 0")
     lmp.command(f"set type 1 diameter {2 * R1!r}")
     lmp.command(f"set type 1 density {GLASS.rho!r}")
     if strike:
@@ -409,6 +412,7 @@ def main():
     p.add_argument("scene", choices=("pair", "pour", "pack", "floor", "drum", "collide", "strike", "piston"))
     p.add_argument("--dt", type=float, default=1e-6, help="collide, strike: the time step [s]")
     p.add_argument("--normal", default="hertz", help="collide, strike: the normal law (hertz, hertz_damped)")
+    p.add_argument("--across", action="store_true", help="collide: through the periodic boundary in x")
     p.add_argument("engines", help="comma-separated: plugin, python, native (each run in turn)")
     p.add_argument("dir")
     p.add_argument("--newton", choices=("on", "off"), default="on")

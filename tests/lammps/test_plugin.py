@@ -104,27 +104,34 @@ def test_the_work_of_the_contacts_is_the_energy_the_atoms_lose(plugin, tmp_path)
     """With pair_style dem/contact ... energy yes, the energy the ended contacts dissipated (the history fixes'
     scalar: the work their forces did on them,
     N d(delta) and Ft . d(slip)) is the kinetic energy (translation and spin) the atoms lost: two spheres meeting
-    obliquely and spinning, one striking a wall, elastic or with a dashpot (restitution 0.5), with friction. To
+    obliquely and spinning (also through a periodic boundary, where one rank lists the pair twice and evaluates
+    it once), one striking a wall, elastic or with a dashpot (restitution 0.5), with friction. To
     rounding for an elastic frictionless impact (nothing is dissipated but what the time integration itself
     loses or gains); within 1e-5 of the kinetic energy otherwise (friction's work on the spins takes the arm R,
     its torque R - delta/2, as LAMMPS's models). Half-way, the normal work of the elastic contact is Hertz's
     elastic energy, 8/15 E* R*^(1/2) delta^(5/2) (Johnson 1985, Contact Mechanics, eq. 4.23), to the time step's
     accuracy."""
-    def run(scene, normal, mu, steps=400):
+    def run(scene, normal, mu, steps=400, across=False):
         return _scenes(scene, "plugin", tmp_path, 1, "--normal", normal, "--mu", str(mu),
-                       "--steps", str(steps))["plugin"]
+                       "--steps", str(steps), *(["--across"] if across else []))["plugin"]
 
     elastic = run("collide", "hertz", 0.0)
     assert abs(elastic["dissipated"] - (elastic["before"] - elastic["after"])) < 1e-12 * elastic["before"]
     assert abs(elastic["dissipated"]) < 1e-4 * elastic["before"]
-    for scene, normal, mu in (("collide", "hertz", 0.3), ("collide", "hertz_damped", 0.3), ("strike", "hertz", 0.3),
-                              ("strike", "hertz_damped", 0.3)):
-        got = run(scene, normal, mu)
+    seen = {}
+    for scene, normal, mu, across in (("collide", "hertz", 0.3, False), ("collide", "hertz_damped", 0.3, False),
+                                      ("strike", "hertz", 0.3, False), ("strike", "hertz_damped", 0.3, False),
+                                      ("collide", "hertz_damped", 0.3, True)):
+        got = seen[scene, normal, across] = run(scene, normal, mu, across=across)
         assert got["touching"] == 0
         loss = got["before"] - got["after"]
         assert abs(got["dissipated"] - loss) < 1e-5 * got["before"], (scene, normal, got)
         if normal == "hertz_damped":
             assert loss > 0.3 * got["before"]
+    # (the same collision half a period away: only the rounding of the positions differs)
+    apart, across = seen["collide", "hertz_damped", False], seen["collide", "hertz_damped", True]
+    assert across["dissipated"] == pytest.approx(apart["dissipated"], rel=1e-9)
+    assert across["after"] == pytest.approx(apart["after"], rel=1e-9)
     row = np.array(run("collide", "hertz", 0.0, steps=200)["rows"])
     E_star, R_star, delta = GLASS_E / (2.0 * (1.0 - GLASS_NU**2)), 0.5e-3, row[0, 11]
     assert row[0, 17] == pytest.approx(8.0 / 15.0 * E_star * R_star**0.5 * delta**2.5, rel=1e-3)

@@ -31,7 +31,7 @@ typedef int64_t (*StepFn)(int64_t n, int64_t *pairs, int64_t *hrow, double *H, i
                           int64_t turning, double *x, double *radius, double *rmass, int *type, int64_t nall,
                           const double *params, int64_t n_rows, const double *rowinfo, const double *type_size,
                           int64_t n_types, int64_t sized, double dt, double *out, double *forces, double *tforces,
-                          double *torques, int64_t *prow, double *pc, int64_t nlocal, double *f, double *torque,
+                          double *torques, int64_t *prow, double *pc, int64_t *to, double *f, double *torque,
                           int64_t flags, double *virial);
 // the flags of a step (pair_kernel.WRITE_OUT, SCATTER, VIRIAL)
 const int64_t WRITE_OUT = 1, SCATTER = 2, VIRIAL = 4, ENERGY = 8;
@@ -40,8 +40,10 @@ const int N_WORK = 9;
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 // contact_terms.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
-const int ABI = 6;       // pair_kernel.ABI
+const int ABI = 7;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
+// entry_row of a periodic twin's entry that is not evaluated (pair_dem_contact.h)
+const int64_t TWIN = -2;
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;
 // tolerance on an atom's radius and mass against its type's (relative)
@@ -411,9 +413,10 @@ int PairDemContact::row_of(int i, double key) const
   return -1;
 }
 
-// a row of the pool for a contact of atoms i (local) and j that begins or is read from the atoms' rows:
-// a free one, else a new one (the pool may move: rows are addressed by their index)
-int64_t PairDemContact::take_row(int i, int j, int nlocal)
+// a row of the pool for a contact of atoms i (local) and j (j_local: j, or the local atom a ghost j is the
+// image of, or -1) that begins or is read from the atoms' rows: a free one, else a new one (the pool may move:
+// rows are addressed by their index)
+int64_t PairDemContact::take_row(int i, int j, int j_local)
 {
   int64_t r;
   if (!free_rows.empty()) {
@@ -425,7 +428,7 @@ int64_t PairDemContact::take_row(int i, int j, int nlocal)
     if (live.size() < pairing.size() * row_size) live.resize(2 * pairing.size() * row_size + 64 * row_size);
   }
   std::memset(live.data() + r * row_size, 0, sizeof(double) * row_size);
-  pairing[r] = {i, j < nlocal ? j : -1, atom->tag[i], atom->tag[j]};
+  pairing[r] = {i, j_local, atom->tag[i], atom->tag[j]};
   return r;
 }
 
@@ -462,6 +465,7 @@ void PairDemContact::load_rows()
   entry_start[0] = 0;
   for (int ii = 0; ii < inum; ii++) entry_start[ii + 1] = entry_start[ii] + numneigh[ilist[ii]];
   entry_row.assign(entry_start[inum], -1);
+  find_twins(nlocal, nlocal + atom->nghost);
   pairing.clear();
   free_rows.clear();
   claimed.assign((size_t) nlocal * slots, 0);
@@ -469,17 +473,21 @@ void PairDemContact::load_rows()
     const int i = ilist[ii];
     const int *jlist = firstneigh[i];
     for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int64_t e = entry_start[ii] + jj;
+      if (entry_row[e] == TWIN) continue;
       if (special_lj[sbmask(jlist[jj])] == 0.0) continue;    // (excluded pairs: no contacts)
       const int j = jlist[jj] & NEIGHMASK;
+      const int jl = j < nlocal ? j : entry_local[e];
       // only pairs that touch now continue a contact (a row of a pair apart: ended, below)
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
       const double rs = radius[i] + radius[j];
       if (dx * dx + dy * dy + dz * dz >= rs * rs) continue;
-      // the contact's row: atom i's, else (i came from another rank, or had none) atom j's
+      // the contact's row: atom i's, else (i came from another rank, or had none) atom j's (or that of the
+      // local atom it is the image of)
       int owner = i, s = row_of(i, (double) tag[j]);
-      if (s < 0 && j < nlocal) {
-        owner = j;
-        s = row_of(j, (double) tag[i]);
+      if (s < 0 && jl >= 0) {
+        owner = jl;
+        s = row_of(jl, (double) tag[i]);
       }
       if (s < 0) continue;
       if (claimed[(size_t) owner * slots + s])
@@ -489,15 +497,15 @@ void PairDemContact::load_rows()
                    tag[i], tag[j]);
       claimed[(size_t) owner * slots + s] = 1;
       // (both atoms here: the partner's copy is the same contact)
-      const int other = owner == i ? j : i;
-      if (other < nlocal) {
+      const int other = owner == i ? jl : i;
+      if (other >= 0) {
         const int t = row_of(other, (double) tag[owner]);
         if (t >= 0) claimed[(size_t) other * slots + t] = 1;
       }
-      const int64_t r = take_row(i, j, nlocal);
+      const int64_t r = take_row(i, j, jl);
       std::memcpy(live.data() + r * row_size, fix->hist + ((size_t) owner * slots + s) * row_size,
                   sizeof(double) * row_size);
-      entry_row[entry_start[ii] + jj] = r;
+      entry_row[e] = r;
     }
   }
   // rows no entry took: ended. Every row is free now (the pool holds the contacts until store_rows)
@@ -518,6 +526,52 @@ void PairDemContact::load_rows()
         fix->dissipated[i] += 0.5 * ended_work(fix->hist + ((size_t) i * slots + s) * row_size, row_size, delta_end);
       }
       k[s] = 0.0;
+    }
+  }
+}
+
+// Periodic twins (pair_dem_contact.h): each entry (i, ghost j) whose ghost is the image of a local atom j0 whose
+// own entries have the image of i. Of the two, the entry whose atom i has the higher id is not evaluated
+// (entry_row TWIN); the other's entry_local is j0. (Without an atom map: none.)
+void PairDemContact::find_twins(int nlocal, int nall)
+{
+  const int inum = list->inum;
+  entry_local.assign(entry_start[inum], -1);
+  if (atom->map_style == Atom::MAP_NONE) return;
+  int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
+  tagint *tag = atom->tag;
+  std::vector<int> image_of(nall - nlocal, -1);
+  std::vector<char> listed(nlocal, 0);
+  bool any = false;
+  for (int g = nlocal; g < nall; g++) {
+    const int k = atom->map(tag[g]);
+    if (k >= 0 && k < nlocal) {
+      image_of[g - nlocal] = k;
+      any = true;
+    }
+  }
+  if (!any) return;
+  for (int ii = 0; ii < inum; ii++) listed[ilist[ii]] = 1;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    for (int jj = 0; jj < numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (j < nlocal || image_of[j - nlocal] < 0 || tag[j] == tag[i]) continue;
+      const int j0 = image_of[j - nlocal];
+      if (!listed[j0]) continue;
+      bool twin = false;
+      const int *klist = firstneigh[j0];
+      for (int kk = 0; kk < numneigh[j0] && !twin; kk++) {
+        const int k = klist[kk] & NEIGHMASK;
+        twin = k >= nlocal && image_of[k - nlocal] == i;
+      }
+      if (!twin) continue;
+      const int64_t e = entry_start[ii] + jj;
+      if (tag[i] < tag[j])
+        entry_local[e] = j0;
+      else
+        entry_row[e] = TWIN;
     }
   }
 }
@@ -661,11 +715,13 @@ void PairDemContact::compute(int eflag, int vflag)
   if (cap < entries + 1) {
     cap = entries + entries / 4 + 16;
     pairs.resize(2 * cap);
+    to.resize(2 * cap);
     hrow.resize(cap);
     prow.resize(cap);
     inputs.resize(N_INPUTS * cap);
   }
-  int64_t *pair_at = pairs.data(), *row_at = hrow.data(), *entry_at = entry_row.data(), *prow_at = prow.data();
+  int64_t *pair_at = pairs.data(), *to_at = to.data(), *row_at = hrow.data(), *entry_at = entry_row.data(),
+          *prow_at = prow.data();
   // the law's inputs, blocks of cap contacts: normals, slip velocities and relative spins (3 each), overlaps,
   // spins of the contact frame about the normal
   double *normals = inputs.data(), *velocities = normals + 3 * cap, *spins = velocities + 3 * cap;
@@ -680,7 +736,9 @@ void PairDemContact::compute(int eflag, int vflag)
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int64_t *at = entry_at + entry_start[ii];
+    const int *loc = entry_local.data() + entry_start[ii];
     for (int jj = 0; jj < jnum; jj++) {
+      if (at[jj] == TWIN) continue;    // (its twin entry evaluates the pair)
       int j = jlist[jj];
       if (special_lj[sbmask(j)] == 0.0) continue;    // excluded pairs (special_bonds lj 0), as pair granular
       j &= NEIGHMASK;
@@ -700,7 +758,7 @@ void PairDemContact::compute(int eflag, int vflag)
       }
       const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
       if (at[jj] < 0) {
-        at[jj] = take_row(i, j, nlocal);
+        at[jj] = take_row(i, j, j < nlocal ? j : loc[jj]);
         // the normal speed a contact begins at (approach > 0)
         const double vn =
             ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / std::sqrt(r2);
@@ -712,6 +770,9 @@ void PairDemContact::compute(int eflag, int vflag)
       }
       pair_at[2 * n] = a;
       pair_at[2 * n + 1] = b;
+      // (the local atoms that take the forces: a ghost's none, or for a periodic twin the atom it is the image of)
+      to_at[2 * n] = a < nlocal ? a : loc[jj];
+      to_at[2 * n + 1] = b < nlocal ? b : loc[jj];
       row_at[n] = at[jj];
       prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
       // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
@@ -790,7 +851,7 @@ void PairDemContact::compute(int eflag, int vflag)
   int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, in, in + 9 * cap, in + 3 * cap, in + 6 * cap,
                          in + 10 * cap, kernel.turning, x[0], radius, atom->rmass, atom->type, nall, kernel.params,
                          kernel.n_rows, kernel.rowinfo, kernel.type_size, kernel.n_types, sized, dt, out.data(),
-                         work.data(), work.data() + 3 * n, work.data() + 6 * n, prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), nlocal,
+                         work.data(), work.data() + 3 * n, work.data() + 6 * n, prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), to.data(),
                          f[0], torque[0], flags, vsum)
                   : 0;
 #ifdef DEM_CONTACT_AOT
@@ -820,24 +881,25 @@ void PairDemContact::compute(int eflag, int vflag)
   acc.assign((size_t) 6 * nlocal + 1, 0.0);
   for (int64_t k = 0; k < n; k++) {
     const int a = (int) pairs[2 * k], b = (int) pairs[2 * k + 1];
+    const int ta = (int) to[2 * k], tb = (int) to[2 * k + 1];
     const double *o = out.data() + N_OUT * k;
-    if (a < nlocal) {
-      double *c = acc.data() + 6 * a;
+    if (ta >= 0) {
+      double *c = acc.data() + 6 * ta;
       for (int d = 0; d < 3; d++) {
         c[d] += o[d];
         c[3 + d] += o[3 + d];
       }
     }
-    if (b < nlocal) {
-      double *c = acc.data() + 6 * b;
+    if (tb >= 0) {
+      double *c = acc.data() + 6 * tb;
       for (int d = 0; d < 3; d++) {
         c[d] -= o[d];
         c[3 + d] += o[6 + d];
       }
     }
     if (evflag)
-      ev_tally_xyz(a, b, nlocal, 0, 0.0, 0.0, o[0], o[1], o[2], x[a][0] - x[b][0], x[a][1] - x[b][1],
-                   x[a][2] - x[b][2]);
+      ev_tally_xyz(ta >= 0 ? ta : a, tb >= 0 ? tb : b, nlocal, 0, 0.0, 0.0, o[0], o[1], o[2], x[a][0] - x[b][0],
+                   x[a][1] - x[b][1], x[a][2] - x[b][2]);
   }
   if (reapply) {
     for (int i = 0; i < nlocal; i++)
@@ -866,7 +928,8 @@ bool PairDemContact::any_resized(int nall)
 
 double PairDemContact::memory_usage()
 {
-  return (double) (entry_row.capacity() + pairs.capacity() + hrow.capacity()) * sizeof(int64_t) +
+  return (double) (entry_row.capacity() + pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
+      (double) entry_local.capacity() * sizeof(int) +
       (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity()) * sizeof(double) +
       (double) pairing.capacity() * sizeof(Pairing);
 }

@@ -15,7 +15,8 @@
    The table file (dem_contact.lammps.table_file.save) holds the parameter rows of every pair of atom types and
    their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
    both, in one canonical order, body 1 the lower atom id, from the same inputs, so both copies of its history
-   stay equal and no history is communicated), keeps each contact's history by neighbour-list entry between list
+   stay equal and no history is communicated; a pair across a periodic boundary within one rank, listed twice,
+   is evaluated once), keeps each contact's history by neighbour-list entry between list
    builds and in the per-atom rows of its fix (FixDemContactHistory) when atoms move, and hands the touching pairs to the package's compiled step once per step
    (dem_contact/lammps/pair_kernel.py), reached through Python (python_link.h). It adds the returned forces and
    torques to the local atoms and tallies the virial. */
@@ -128,8 +129,12 @@ class PairDemContact : public Pair, public RowKeeper {
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
   // Between list builds the contacts' histories live in a pool (live: rows of row_size values), one row per
-  // contact, found by the neighbour-list entry of its pair (entry_row[entry_start[ii] + jj]: -1, none); per
-  // pool row its atoms (i local, j local or -1 for a ghost) and their ids (ti = 0: a free row)
+  // contact, found by the neighbour-list entry of its pair (entry_row[entry_start[ii] + jj]: -1, none; TWIN:
+  // an entry not evaluated, its pair's twin is); per pool row its atoms (i local, j local or -1 for a ghost of
+  // another rank's atom) and their ids (ti = 0: a free row).
+  // Periodic twins: a pair of local atom i and the ghost image of local atom j is in the (newton off) list
+  // twice, as (i, image of j) and (j, image of i); it is evaluated once, by the entry whose atom i has the
+  // lower id, and j takes its force there (entry_local[entry]: j; -1 elsewhere)
   struct Pairing {
     int i, j;
     tagint ti, tj;
@@ -137,11 +142,12 @@ class PairDemContact : public Pair, public RowKeeper {
   std::vector<double> live;
   std::vector<Pairing> pairing;
   std::vector<int64_t> entry_start, entry_row, free_rows;
+  std::vector<int> entry_local;
   std::vector<char> claimed;
   std::vector<int> fill;
   // the step's contacts (room for cap): atoms, pool rows, parameter rows, and the law's inputs (N_INPUTS blocks)
   enum { N_INPUTS = 11 };
-  std::vector<int64_t> pairs, hrow, scratch_rows, prow;
+  std::vector<int64_t> pairs, hrow, scratch_rows, prow, to;
   std::vector<double> inputs, out, scratch, acc, work, pc;
   int64_t n_contacts, cap;
   int loaded_nlocal;    // the local atoms when the pool was loaded (store_rows writes theirs)
@@ -151,7 +157,8 @@ class PairDemContact : public Pair, public RowKeeper {
   void check_atoms();
   void check_time_step();
   int row_of(int i, double key) const;
-  int64_t take_row(int i, int j, int nlocal);
+  int64_t take_row(int i, int j, int j_local);
+  void find_twins(int nlocal, int nall);
   void end_row(int64_t r, double delta_end);
   void load_rows();
   double contact_time(int a, int b, double vn);
