@@ -71,8 +71,8 @@ class LammpsContacts:
     table: ``dem.pairs.pair_table(spheres, walls, ...)``;
     walls: a list of walls (``dem_contact.walls``: PlaneWall, CylinderWall, MeshWall, each moving by a prescribed
     rigid motion), each with a wall material of the table (a curved wall's with its curvature: ``materials.Wall``);
-    slots: history rows per atom for its sphere contacts (each wall's fix keeps rows of its own: one for a plane
-    or a cylinder, 6 for a mesh, one per patch touched at once);
+    slots: history rows per atom for its sphere contacts; wall_slots: those of each wall's fix, which keeps rows of
+    its own (default: one for a plane or a cylinder, 6 for a mesh, one per patch touched at once);
     v_max: largest normal impact speed expected [m/s] (the time-step check); skin: neighbour skin [m] (default
     0.3 r_max); frame_spin: pass the spin of the contact frame about the normal to the laws, and a wall's angular
     velocity to the twist and rolling laws (False: as LAMMPS's granular models, for comparisons with them);
@@ -87,8 +87,8 @@ class LammpsContacts:
     is ``lmp.command("run n")`` with the plugin's errors raised as InputError (NumericalError where a law failed).
     """
 
-    def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, v_max: float,
-                 skin: float | None = None, frame_spin: bool = True, r_max: float | None = None,
+    def __init__(self, lmp, table: PairTable, walls=(), *, slots: int = 12, wall_slots: int | None = None,
+                 v_max: float, skin: float | None = None, frame_spin: bool = True, r_max: float | None = None,
                  energy: bool = False, prefix: str = "dc", folder=None):
         if not isinstance(table, PairTable):
             raise InputError("table must be a PairTable (dem_contact.dem.pairs.pair_table)")
@@ -103,8 +103,11 @@ class LammpsContacts:
         if not (isinstance(prefix, str) and re.fullmatch(r"[A-Za-z0-9_]+", prefix)):
             raise InputError(f"prefix (of the LAMMPS ids this object defines) must be letters, digits and _, "
                              f"got {prefix!r}")
-        if isinstance(slots, bool) or not (isinstance(slots, (int, np.integer)) and 1 <= slots <= 1000):
-            raise InputError(f"slots (history rows per atom) must be an integer in [1, 1000], got {slots!r}")
+        for name, value in (("slots", slots), ("wall_slots", wall_slots)):
+            if value is None and name == "wall_slots":
+                continue
+            if isinstance(value, bool) or not (isinstance(value, (int, np.integer)) and 1 <= value <= 1000):
+                raise InputError(f"{name} (history rows per atom) must be an integer in [1, 1000], got {value!r}")
         if not (isinstance(v_max, (int, float)) and math.isfinite(v_max) and v_max > 0):
             raise InputError(f"v_max (largest normal impact speed, m/s) must be finite and > 0, got {v_max!r}")
         units = lmp.extract_global("units")
@@ -145,7 +148,7 @@ class LammpsContacts:
             mesh = None
             if isinstance(wall, MeshWall):
                 mesh = mesh_file.write(wall, os.path.join(folder, f"{prefix}_wall{k}_{rank}.mesh"))
-            words.append(fix_words(wall, mesh))
+            words.append(fix_words(wall, mesh, wall_slots))
         if not lmp.has_style("pair", "dem/contact"):
             lmp.command(f"plugin load {plugin_build.build()}")
         p = prefix

@@ -463,9 +463,10 @@ def parse(words: list):
     return wall, slots
 
 
-def fix_words(wall, mesh=None) -> str:
+def fix_words(wall, mesh=None, slots=None) -> str:
     """The words of ``fix ... dem/contact/wall`` after the style for a PlaneWall, a CylinderWall or a MeshWall
-    (``mesh``: the path of its packed mesh file, ``mesh_file.write``), which ``parse`` reads back as the wall."""
+    (``mesh``: the path of its packed mesh file, ``mesh_file.write``; ``slots``: history rows per atom, None for
+    the fix's default), which ``parse`` reads back as the wall and the slots."""
     from ..errors import InputError
     from ..walls import CylinderWall, MeshWall, PlaneWall
 
@@ -485,7 +486,8 @@ def fix_words(wall, mesh=None) -> str:
         raise InputError(f"a wall of fix dem/contact/wall is a PlaneWall, a CylinderWall or a MeshWall, got "
                          f"{type(wall).__name__}")
     words += f" wall {int(wall.wall)} velocity {num(wall.velocity)} angular_velocity {num(wall.angular_velocity)}"
-    return words + (f" centre {num(wall.centre)}" if wall.centre is not None else "")
+    return (words + (f" centre {num(wall.centre)}" if wall.centre is not None else "")
+            + (f" slots {int(slots)}" if slots is not None else ""))
 
 
 def attach(words: str, path: str, n_types: int, address: int) -> None:

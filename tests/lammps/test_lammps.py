@@ -296,6 +296,7 @@ def test_refuses_atom_styles_without_radius_and_spin():
 @pytest.mark.parametrize("kw, message", [
     (dict(slots=0), r"slots \(history rows per atom\) must be an integer in \[1, 1000\], got 0"),
     (dict(slots=True), r"slots .* got True"),
+    (dict(wall_slots=0), r"wall_slots \(history rows per atom\) must be an integer in \[1, 1000\], got 0"),
     (dict(v_max=math.nan), r"v_max \(largest normal impact speed, m/s\) must be finite and > 0, got nan"),
     (dict(v_max=-1.0), r"v_max .* got -1.0"),
     (dict(r_max=1e-4), r"r_max \(largest atom radius, m\) must be finite and >= the largest radius"),

@@ -4,6 +4,7 @@ and motion (the hopper of the examples; a floor cut with T-junctions, whose conf
 file's); a file of another version, cut short, altered or not a packed mesh is refused with what to do. (In
 LAMMPS, without Python: tests/lammps/test_plugin.py.)"""
 import pathlib
+import shlex
 
 import numpy as np
 import pytest
@@ -74,7 +75,7 @@ def test_what_is_not_a_packed_mesh_of_this_version_is_refused(tmp_path):
 
 def test_the_command_writes_it_and_the_fix_words_read_it(tmp_path, capsys):
     from dem_contact.cli import main
-    from dem_contact.lammps.wall_kernel import parse
+    from dem_contact.lammps.wall_kernel import fix_words, parse
 
     stl = _t_junctions(tmp_path / "floor.stl")
     out = tmp_path / "floor.mesh"
@@ -84,6 +85,10 @@ def test_the_command_writes_it_and_the_fix_words_read_it(tmp_path, capsys):
                          "0", "2"])
     want = pack([MeshWall.from_stl(stl, scale=2.0, **MOTION)])[0]
     assert np.array_equal(pack([wall])[0], want) and slots is None
+    # (and the words written for the wall, with slots, read back as the wall and the slots: split as LAMMPS
+    # splits a command, quotes removed)
+    wall, slots = parse(shlex.split(fix_words(wall, str(out), 3)))
+    assert np.array_equal(pack([wall])[0], want) and slots == 3
     with pytest.raises(InputError, match="scale applies to an STL file"):
         parse(["mesh", str(out), "scale", "2"])
     for args, message in ((["--scale", "0"], "--scale must be finite and > 0"),
