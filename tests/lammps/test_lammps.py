@@ -358,6 +358,34 @@ def test_a_wall_facing_away_from_the_atoms_is_refused():
     LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, -0.005), (0.0, 0.0, 1.0))], v_max=1.0).run(2)
 
 
+def test_wall_fixes_defined_by_hand_are_refused_or_left_out_of_contacts(tmp_path):
+    """A fix dem/contact/wall defined by hand before LammpsContacts is refused at the run (the pair style was
+    defined again after it); one defined after is numbered after this object's walls by compute
+    dem/contact/local, and contacts() refuses its contacts (this object's own: the sphere on its first wall)."""
+    from dem_contact.lammps import plugin_build, table_file
+    from dem_contact.lammps.wall_kernel import fix_words
+
+    lmp = _box(n=1)                                                   # a sphere of radius 1 mm at the origin
+    path = table_file.save(_table(), str(tmp_path / "table.json"))
+    for c in (f"plugin load {plugin_build.build()}", "comm_modify vel yes", "pair_style dem/contact vmax 1.0",
+              f'pair_coeff * * "{path}"',
+              f"fix hand all dem/contact/wall {fix_words(PlaneWall((0.0, 0.0, 0.008), (0.0, 0.0, -1.0)))}"):
+        lmp.command(c)
+    floor = PlaneWall((0.0, 0.0, -0.999e-3), (0.0, 0.0, 1.0))         # 1 um into the sphere
+    lc = LammpsContacts(lmp, _table(), [floor, PlaneWall((0.0, 0.0, -0.006), (0.0, 0.0, 1.0))], v_max=1.0)
+    with pytest.raises(InputError, match="^fix hand dem/contact/wall: pair_style dem/contact was defined again"):
+        lc.run(1)
+    lmp.command("unfix hand")
+    lc.run(1)
+    got = lc.contacts()
+    assert list(got["wall"]) == [0] and list(got["id1"]) == [1]
+    assert got["overlap"][0] == pytest.approx(1e-6, rel=1e-3)
+    lmp.command(f"fix over all dem/contact/wall {fix_words(PlaneWall((0.0, 0.0, 0.999e-3), (0.0, 0.0, -1.0)))}")
+    lc.run(1)
+    with pytest.raises(InputError, match="a fix dem/contact/wall defined besides this LammpsContacts' 2 walls"):
+        lc.contacts()
+
+
 def test_an_atom_started_deep_in_a_wall_or_a_sphere_is_reported():
     """A sphere placed 80% of its radius into the floor, or into another sphere (before: nothing said), overlaps
     it far more than an impact at v_max presses: LAMMPS's warning at the set-up of the first run, which run()
