@@ -31,7 +31,7 @@ FixDemContactHistory::FixDemContactHistory(LAMMPS *lmp, int narg, char **arg) :
   scalar_flag = 1;
   extscalar = 1;
   global_freq = 1;
-  maxexchange = per_atom();
+  maxexchange = 1 + per_atom();    // (pack_exchange: the count of filled rows, and at most every slot)
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
@@ -133,9 +133,45 @@ void FixDemContactHistory::set_arrays(int i)
   dissipated[i] = 0.0;
 }
 
+// an atom leaving for another rank: its filled contact rows only (their count, then each one's key and values),
+// its saved state and the energy it was given
 int FixDemContactHistory::pack_exchange(int i, double *buf)
 {
   refresh();
+  int m = 1, filled = 0;
+  for (int s = 0; s < slots; s++) {
+    if (keys[i][s] == 0.0) continue;
+    buf[m++] = keys[i][s];
+    std::memcpy(buf + m, hist + ((size_t) i * slots + s) * history_size, sizeof(double) * history_size);
+    m += history_size;
+    filled++;
+  }
+  buf[0] = filled;
+  std::memcpy(buf + m, saved[i], sizeof(double) * N_SAVED);
+  m += N_SAVED;
+  buf[m++] = dissipated[i];
+  return m;
+}
+
+int FixDemContactHistory::unpack_exchange(int i, double *buf)
+{
+  const int filled = (int) buf[0];
+  int m = 1;
+  std::memset(keys[i], 0, sizeof(double) * slots);
+  for (int s = 0; s < filled; s++) {
+    keys[i][s] = buf[m++];
+    std::memcpy(hist + ((size_t) i * slots + s) * history_size, buf + m, sizeof(double) * history_size);
+    m += history_size;
+  }
+  std::memcpy(saved[i], buf + m, sizeof(double) * N_SAVED);
+  m += N_SAVED;
+  dissipated[i] = buf[m++];
+  return m;
+}
+
+// every slot of an atom (a restart file's layout): keys, rows, the saved state, the energy it was given
+int FixDemContactHistory::pack_all(int i, double *buf)
+{
   int m = 0;
   for (int s = 0; s < slots; s++) buf[m++] = keys[i][s];
   const double *h = hist + (size_t) i * slots * history_size;
@@ -145,7 +181,7 @@ int FixDemContactHistory::pack_exchange(int i, double *buf)
   return m;
 }
 
-int FixDemContactHistory::unpack_exchange(int i, double *buf)
+void FixDemContactHistory::unpack_all(int i, const double *buf)
 {
   int m = 0;
   for (int s = 0; s < slots; s++) keys[i][s] = buf[m++];
@@ -153,17 +189,16 @@ int FixDemContactHistory::unpack_exchange(int i, double *buf)
   for (int q = 0; q < slots * history_size; q++) h[q] = buf[m++];
   for (int q = 0; q < N_SAVED; q++) saved[i][q] = buf[m++];
   dissipated[i] = buf[m++];
-  return m;
 }
 
-// restart data of an atom: its count, slots, history_size, then as pack_exchange
+// restart data of an atom: its count, slots, history_size, then every slot (pack_all)
 int FixDemContactHistory::pack_restart(int i, double *buf)
 {
   refresh();
   saved[i][SF_ID] = (double) atom->tag[i];
   buf[1] = slots;
   buf[2] = history_size;
-  int m = 3 + pack_exchange(i, buf + 3);
+  int m = 3 + pack_all(i, buf + 3);
   buf[0] = m;
   return m;
 }
@@ -185,7 +220,7 @@ void FixDemContactHistory::unpack_restart(int nlocal, int nth)
                "give pair_style dem/contact (or fix dem/contact/wall) the slots of the run that wrote it and the "
                "same table file",
                id, (int) extra[nlocal][m + 1], (int) extra[nlocal][m + 2], slots, history_size);
-  unpack_exchange(nlocal, &extra[nlocal][m + 3]);
+  unpack_all(nlocal, &extra[nlocal][m + 3]);
 }
 
 int FixDemContactHistory::size_restart(int /*nlocal*/) { return 3 + per_atom(); }

@@ -1,7 +1,8 @@
 /* Per-atom contact rows of pair_style dem/contact, which move with their atom: between ranks (exchange),
    through atom sorting, and into and out of restart files.
 
-   Every atom has `slots` rows. Row s of atom i: its key keys[i][s] (the partner's atom id; 0: free) and the
+   Every atom has `slots` rows (an atom moving to another rank carries its filled rows only; a restart file
+   has them all). Row s of atom i: its key keys[i][s] (the partner's atom id; 0: free) and the
    law's history hist[(i * slots + s) * history_size ...] (dem_contact's 3D history row). A contact of two
    atoms has a row in each where both are on the rank, equal (the pair style writes them; fix dem/contact/wall
    keeps one per wall contact). Per atom also the contact force and torque of the
@@ -82,6 +83,8 @@ class FixDemContactHistory : public Fix {
 
  private:
   int per_atom() const { return slots * (1 + history_size) + N_SAVED + 1; }
+  int pack_all(int, double *);
+  void unpack_all(int, const double *);
 };
 
 }    // namespace LAMMPS_NS
