@@ -15,6 +15,7 @@ entry point of this package (``plugin_folder``).
 from __future__ import annotations
 
 import datetime
+import fcntl
 import hashlib
 import os
 import shutil
@@ -116,27 +117,39 @@ def _stamp(command) -> str:
     return h.hexdigest()
 
 
+def _built(path: str, stamp: str) -> bool:
+    """Whether the plugin at ``path`` was built from these sources with this command (its stamp file)."""
+    try:
+        with open(path + ".stamp") as f:
+            return os.path.exists(path) and f.read() == stamp
+    except OSError:
+        return False
+
+
 def build(rebuild: bool = False, quiet: bool = True) -> str:
-    """Build the plugin where it is missing or out of date (or ``rebuild``); returns its path.
+    """Build the plugin where it is missing or out of date (or ``rebuild``); returns its path. One build at a
+    time (a lock file in its folder): the ranks of an MPI run that all find it missing wait for the first.
     PluginBuildError where it cannot be built here, with what to install."""
     command = _command(lammps_version())
     stamp = _stamp(command)
     path = plugin_path()
-    stamp_path = path + ".stamp"
-    if not rebuild and os.path.exists(path) and os.path.exists(stamp_path):
-        with open(stamp_path) as f:
-            if f.read() == stamp:
-                return path
+    if not rebuild and _built(path, stamp):
+        return path
     os.makedirs(plugin_folder(), exist_ok=True)
-    tmp = f"{path}.{os.getpid()}.tmp"
-    if not quiet:
-        print(f"building the LAMMPS plugin {path} ...", file=sys.stderr)
-    result = subprocess.run(command + [tmp], capture_output=True, text=True)
-    if result.returncode != 0:
-        raise PluginBuildError(f"the plugin did not compile ({' '.join(command[:1])}):\n{result.stderr[-4000:]}")
-    os.replace(tmp, path)
-    with open(stamp_path, "w") as f:
-        f.write(stamp)
+    with open(os.path.join(plugin_folder(), ".build.lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not rebuild and _built(path, stamp):
+            return path         # (built by the process that held the lock)
+        tmp = f"{path}.{os.getpid()}.tmp"
+        if not quiet:
+            print(f"building the LAMMPS plugin {path} ...", file=sys.stderr)
+        result = subprocess.run(command + [tmp], capture_output=True, text=True)
+        if result.returncode != 0:
+            raise PluginBuildError(f"the plugin did not compile ({' '.join(command[:1])}):\n"
+                                   f"{result.stderr[-4000:]}")
+        os.replace(tmp, path)
+        with open(path + ".stamp", "w") as f:
+            f.write(stamp)
     return path
 
 

