@@ -351,7 +351,8 @@ def collide(a):
     t = pair_table([Sphere(R1, GLASS)], [Wall(GLASS)] if strike else [], mu=a.mu, normal=a.normal,
                    tangential="mindlin_total", v_ref=reference_speed(1.0), **extra)
     lmp = new_lammps("-log", "none", "-screen", "none", "-nocite")
-    for c in ("units si", "atom_style sphere", "atom_modify map array", f"newton {a.newton}",
+    # (across: no atom map, which the plugin finds the periodic image's atom without)
+    for c in ("units si", "atom_style sphere", *([] if a.across else ["atom_modify map array"]), f"newton {a.newton}",
               f"boundary {'p' if a.across else 'f'} f f", "region box block -0.01 0.01 -0.01 0.01 -0.01 0.01",
               "create_box 1 box"):
         lmp.command(c)

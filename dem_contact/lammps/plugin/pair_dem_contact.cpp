@@ -18,6 +18,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -532,19 +533,33 @@ void PairDemContact::load_rows()
 
 // Periodic twins (pair_dem_contact.h): each entry (i, ghost j) whose ghost is the image of a local atom j0 whose
 // own entries have the image of i. Of the two, the entry whose atom i has the higher id is not evaluated
-// (entry_row TWIN); the other's entry_local is j0. (Without an atom map: none.)
+// (entry_row TWIN); the other's entry_local is j0.
 void PairDemContact::find_twins(int nlocal, int nall)
 {
   const int inum = list->inum;
   entry_local.assign(entry_start[inum], -1);
-  if (atom->map_style == Atom::MAP_NONE) return;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   tagint *tag = atom->tag;
+  // the local atom of each ghost's id, if any: by LAMMPS's atom map (which points at the local copy of an id), or
+  // without one by the local atoms sorted by id
   std::vector<int> image_of(nall - nlocal, -1);
+  std::vector<std::pair<tagint, int>> by_id;
+  const bool mapped = atom->map_style != Atom::MAP_NONE;
+  if (!mapped) {
+    by_id.reserve(nlocal);
+    for (int i = 0; i < nlocal; i++) by_id.emplace_back(tag[i], i);
+    std::sort(by_id.begin(), by_id.end());
+  }
   std::vector<char> listed(nlocal, 0);
   bool any = false;
   for (int g = nlocal; g < nall; g++) {
-    const int k = atom->map(tag[g]);
+    int k = -1;
+    if (mapped) {
+      k = atom->map(tag[g]);
+    } else {
+      auto at = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(tag[g], -1));
+      if (at != by_id.end() && at->first == tag[g]) k = at->second;
+    }
     if (k >= 0 && k < nlocal) {
       image_of[g - nlocal] = k;
       any = true;
