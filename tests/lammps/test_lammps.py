@@ -386,6 +386,32 @@ def test_wall_fixes_defined_by_hand_are_refused_or_left_out_of_contacts(tmp_path
         lc.contacts()
 
 
+def test_contacts_at_the_set_up_of_a_first_run_and_none_where_it_goes_on():
+    """A run's set-up that computes the contact forces has contacts: after run(0) on a new scene, contacts() gives
+    the two spheres' (overlap 0.1 mm) and a sphere's on the floor (1 um into it), with Hertz's force, (4/3) E*
+    R*^(1/2) delta^(3/2) (Johnson 1985, Contact Mechanics, eq. 4.23), and no tangential force. The set-up of a
+    run that goes on from the last one gives the atoms its last forces again and computes none: refused, saying
+    so (before: that run's rows, or none of the wall's, in silence)."""
+    lmp = _box()                                  # spheres of radius 1 mm at z = 0 and z = 1.9 mm
+    floor = PlaneWall((0.0, 0.0, -0.999e-3), (0.0, 0.0, 1.0))
+    lc = LammpsContacts(lmp, _table(), [floor], v_max=1.0)
+    with pytest.warns(RuntimeWarning, match="deeper than a head-on impact"):      # (the spheres' 0.1 mm)
+        lc.run(0)
+    got = lc.contacts()
+    assert sorted(got["wall"]) == [-1, 0]
+    E_star = GLASS.E / (2.0 * (1.0 - GLASS.nu**2))
+    for k in range(2):
+        r_star, delta = (0.5e-3, 1e-4) if got["wall"][k] < 0 else (1e-3, 1e-6)
+        assert got["overlap"][k] == pytest.approx(delta, rel=1e-6)
+        assert got["normal_force"][k] == pytest.approx(4.0 / 3.0 * E_star * math.sqrt(r_star) * delta**1.5,
+                                                       rel=1e-5)
+        assert np.abs(got["tangential_force"][k]).max() == 0.0
+    lc.run(2)
+    lc.run(0)
+    with pytest.raises(InputError, match="gives the atoms the forces of the last step again and computes none"):
+        lc.contacts()
+
+
 def test_an_atom_started_deep_in_a_wall_or_a_sphere_is_reported():
     """A sphere placed 80% of its radius into the floor, or into another sphere (before: nothing said), overlaps
     it far more than an impact at v_max presses: LAMMPS's warning at the set-up of the first run, which run()

@@ -31,10 +31,10 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               double *f, double *torque,
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
-const int ABI = 3;
+const int ABI = 4;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
-       R_FAST_ATOM = 13 };
+       R_FAST_ATOM = 13, R_REAPPLIED = 14, N_REPORT = 15 };
 // contact_terms.RI_...: columns of the table's per-row information
 const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_CURV = 5, N_ROWINFO = 7;
 // as pair dem/contact: the fewest time steps per contact time
@@ -195,7 +195,6 @@ void FixDemContactWall::evaluate(bool setup)
   if (!setup) {
     clock_last = t;
     has_clock = 1;
-    evaluated_step = update->ntimestep;
   }
   n_out = 0;
   // A run's set-up advances nothing (the law works on copies of the histories, with no time passing) and
@@ -210,9 +209,8 @@ void FixDemContactWall::evaluate(bool setup)
     box[3 + d] = domain->periodicity[d] && !domain->triclinic ? 1.0 : 0.0;
   }
   box[6] = pair->speed_limit();
-  // (at a step, not a set-up, every contact has one of the atoms' rows; at the first set-up, the contacts' overlaps
-  // are checked)
-  const int64_t cap = (keep_out && !setup) || (setup && !deep_checked) ? (int64_t) nlocal * kernel.slots : 0;
+  // (every contact has one of the atoms' rows; at the first set-up, the contacts' overlaps are checked)
+  const int64_t cap = keep_out || (setup && !deep_checked) ? (int64_t) nlocal * kernel.slots : 0;
   if ((int64_t) out_atoms.size() < cap + 1) {
     out.resize((size_t) PairDemContact::N_OUT * (cap + 1));
     out_atoms.resize(cap + 1);
@@ -229,8 +227,12 @@ void FixDemContactWall::evaluate(bool setup)
   if (setup && !deep_checked) {
     check_deep();
     deep_checked = true;
-    n_out = 0;
   }
+  // the contacts of this step: a run's step, or a set-up that applied the forces it computed to every atom (a
+  // set-up that reapplied the last step's forces to any atom, on any rank, has no contacts of its own)
+  int reapplied = setup && report[R_REAPPLIED] > 0.0, any = 0;
+  if (setup) MPI_Allreduce(&reapplied, &any, 1, MPI_INT, MPI_MAX, world);
+  evaluated_step = any ? -1 : update->ntimestep;
   tagint *tag = atom->tag;
   if (report[R_BEHIND] > 0)
     error->one(FLERR,

@@ -69,8 +69,9 @@ class FixDemContactWall : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // the wall's contacts of the last step evaluated (not a run's set-up) where a compute dem/contact/local reads
-  // them: the step (-1: none), their number, atoms (local indices) and rows of PairDemContact::N_OUT values
+  // the wall's contacts of the last step evaluated (a run's step, or a set-up that applied the forces it computed)
+  // where a compute dem/contact/local reads them: the step (-1: none), their number, atoms (local indices) and
+  // rows of PairDemContact::N_OUT values
   bigint evaluated_step;
   int64_t contact_count() const { return n_out; }
   const int64_t *contact_atoms() const { return out_atoms.data(); }
@@ -84,7 +85,7 @@ class FixDemContactWall : public Fix {
   std::string words, table_path, history_id;
   FixDemContactHistory *history;
   PairDemContact *pair;
-  double report[14], load_all[7];
+  double report[15], load_all[7];    // (wall_kernel.N_REPORT)
   bool load_summed, warned_onset, keep_out, deep_checked;
   int64_t n_out;
   int energy;      // pair_style dem/contact ... energy yes when the fix was defined

@@ -884,10 +884,10 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
-  if (!setup) {
-    evaluated_step = update->ntimestep;
-    if (keep_out) atoms_key = atoms_now();
-  }
+  // the contacts of this step: a run's step, or a set-up that applies the forces it computed (a set-up that
+  // reapplies the last step's forces has no contacts of its own)
+  evaluated_step = reapply ? -1 : update->ntimestep;
+  if (!reapply && keep_out) atoms_key = atoms_now();
   if (setup && !deep_checked) {
     check_deep(n);
     deep_checked = true;

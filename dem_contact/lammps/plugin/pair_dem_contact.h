@@ -99,9 +99,9 @@ class PairDemContact : public Pair, public RowKeeper {
   // largest ratio here)
   static void tell_deep(class LAMMPS *lmp, const std::string &who, int count, double worst, double vmax);
 
-  // the contacts of the last step evaluated (not a run's set-up): its number (-1: none), the contacts'
-  // atoms (local indices, body 1 the lower id; valid until atoms move between ranks or are sorted) and
-  // their rows of N_OUT values
+  // the contacts of the last step evaluated (a run's step, or a set-up that applied the forces it computed: not
+  // one that reapplied the last step's): its number (-1: none), the contacts' atoms (local indices, body 1 the
+  // lower id; valid until atoms move between ranks or are sorted) and their rows of N_OUT values
   bigint evaluated_step;
   int64_t contact_count() const { return n_contacts; }
   const int64_t *contact_atoms() const { return pairs.data(); }
