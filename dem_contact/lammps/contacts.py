@@ -222,8 +222,8 @@ class LammpsContacts:
         return np.zeros((0, C_TORQUE + 3)) if rows is None else np.array(np.atleast_2d(rows), dtype=float)
 
     def contacts(self) -> dict:
-        """The contacts of this MPI rank at the last step of the last run, or at the set-up of a first run
-        (``run(0)``) (every rank calls it: the compute's checks are collective), each once over the ranks: a sphere pair is reported by the rank that owns its atom of
+        """The contacts of this MPI rank at the last step or set-up (``run(0)``) of the last run (every rank calls
+        it: the compute's checks are collective), each once over the ranks: a sphere pair is reported by the rank that owns its atom of
         lower id (body 1), a wall contact by the rank of its atom (compute dem/contact/local). A dict of numpy
         arrays, one entry per contact (k):
 
@@ -238,9 +238,9 @@ class LammpsContacts:
         contact force on body 1 [N] (body 2 takes the opposite); ``torque`` float64[k, 3] the twist and rolling
         laws' torque on body 1 [N m] (zero without them); ``mu`` float64[k] the pair's friction coefficient;
         ``sliding`` bool[k]: |Ft| >= (1 - SLIDING_TOL) mu N with N > 0; and ``step`` (LAMMPS's time step
-        number), ``rank``. InputError where there are none: before the first run, or after the set-up of a run
-        that goes on from another, which gives the atoms the last step's forces again (compute
-        dem/contact/local's error)."""
+        number), ``rank``. InputError where there are none: before the first run, or at the set-up of the first
+        run after read_restart, which gives the atoms the forces saved in the file (compute dem/contact/local's
+        error)."""
         lmp = self.lmp
         rows = self._rows()
         nall = lmp.extract_setting("nall")

@@ -3,13 +3,12 @@ called by the plugin's C++ pair style through a C function pointer (a numba ``cf
 
 The pair style walks LAMMPS's neighbour list, finds the touching pairs and their history rows, and hands them
 over in one canonical order (the atom with the lower id is body 1) with the law's inputs it gathered for each
-pair (the normal, the overlap, the slip velocity with the full radii,
-relative spin, the spin of the contact frame). This kernel gives atoms not of their type's size their
-per-contact R* and m*, runs the tangential family's batch loop (``dem.contact3d.batch_loop``, every law of the
-table inlined), and returns per contact the force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular
-models), the overlap, the tangential force, the normal and the friction coefficient (and with ``energy yes`` the
-work of the contact's forces, ``account_work``), or adds the forces and torques to LAMMPS's itself, with the
-virial.
+pair (the normal, the overlap, the slip velocity with the full radii, the relative spin, the spin of the contact
+frame). This kernel gives atoms not of their type's size their per-contact R* and m*, runs the tangential
+family's batch loop (``dem.contact3d.batch_loop``, every law of the table inlined), and returns per contact the
+force on body 1, the torques on both bodies (arm R - delta/2, as LAMMPS's granular models), the overlap, the
+tangential force, the normal and the friction coefficient (and with ``energy yes`` the work of the contact's
+forces, ``account_work``), or adds the forces and torques to LAMMPS's itself, with the virial.
 
 ``attach`` is what the plugin calls (from its embedded or the running Python interpreter) when a table file is
 named by ``pair_coeff``: it reads the table (``dem.pairs.PairTable.load``), compiles the step for the table's
@@ -121,20 +120,20 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
           with_virial, virial, energy):
     """The n contacts of the pairs ``pairs`` (int64[n, 2], body 1 the lower atom id) with the H rows ``hrow``
     (advanced in place; the caller passes copies where nothing may advance), and the law's inputs the pair style
-    gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (the unit normal from
-    body 1 to body 2, the overlap, the slip velocity with the full radii, the mean spin about the normal), spins float64[n, 3] (the
+    gathered: normals, velocities float64[n, 3], overlaps, wn float64[n] (the unit normal from body 1 to body 2,
+    the overlap, the slip velocity with the full radii, the mean spin about the normal), spins float64[n, 3] (the
     relative spins, where the table has twist or rolling laws; else [0, 3]) and prow int64[n] (each pair's
     parameter row). The tangential family's loop (``loop``, bound per family), then what the pair style asks:
     ``out`` float64[n, N_OUT] (``write_out``), and (``scatter``) the forces and torques added to f, torque
     float64[nall, 3] of the local atoms to[k] (int64[n, 2], per body: the local atom that takes its force, the
-    atom itself or, for a periodic image of a local atom evaluated once, that atom; -1: none), with the
-    virial's six components added to ``virial`` (``with_virial``). forces, tforces float64[n, 3], torques float64[n, 3] (where spins has n rows, else
-    [0, 3]): scratch for the law's outputs; pc float64[n_rows + n, N_PARAMS] (only where
-    ``sized``: atoms not of their type's size get their own rows there, prow pointing at them); ``energy``: the
-    rows carry N_EXTRA values after the law's history, the work of the contact's forces (``account_work``).
-    Returns the number of contacts whose force or torques are not finite. (Nothing here allocates: it is
-    compiled without numba's runtime, so that no reference counting runs in its loops, and it also runs
-    compiled ahead of time, ``aot``.)"""
+    atom itself or, for a periodic image of a local atom evaluated once, that atom; -1: none), with the virial's
+    six components added to ``virial`` (``with_virial``). forces, tforces float64[n, 3], torques float64[n, 3]
+    (where spins has n rows, else [0, 3]): scratch for the law's outputs; pc float64[n_rows + n, N_PARAMS] (only
+    where ``sized``: atoms not of their type's size get their own rows there, prow pointing at them);
+    ``energy``: the rows carry N_EXTRA values after the law's history, the work of the contact's forces
+    (``account_work``). Returns the number of contacts whose force or torques are not finite. (Nothing here
+    allocates: it is compiled without numba's runtime, so that no reference counting runs in its loops, and it
+    also runs compiled ahead of time, ``aot``.)"""
     nid = int(params[0, P_NORMAL_LAW]) - 1
     tid = int(params[0, P_TANGENTIAL_LAW]) - 1
     turning = spins.shape[0] > 0

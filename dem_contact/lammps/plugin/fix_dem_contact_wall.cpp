@@ -196,6 +196,12 @@ void FixDemContactWall::evaluate(bool setup)
     clock_last = t;
     has_clock = 1;
   }
+  // (a set-up that reapplies the last step's forces keeps that step's contacts, which a compute reads at it)
+  if (setup) {
+    kept_out = out;
+    kept_atoms = out_atoms;
+    kept_n = n_out;
+  }
   n_out = 0;
   // A run's set-up advances nothing (the law works on copies of the histories, with no time passing) and
   // reapplies the forces saved at the last step of the run before to the atoms whose state is unchanged; the
@@ -209,8 +215,10 @@ void FixDemContactWall::evaluate(bool setup)
     box[3 + d] = domain->periodicity[d] && !domain->triclinic ? 1.0 : 0.0;
   }
   box[6] = pair->speed_limit();
-  // (every contact has one of the atoms' rows; at the first set-up, the contacts' overlaps are checked)
-  const int64_t cap = keep_out || (setup && !deep_checked) ? (int64_t) nlocal * kernel.slots : 0;
+  // (every contact has one of the atoms' rows; kept where a compute reads them or a run ends, which a compute
+  // defined between runs reads; at the first set-up, the contacts' overlaps are checked)
+  const bool last = !setup && update->ntimestep == update->laststep;
+  const int64_t cap = keep_out || last || (setup && !deep_checked) ? (int64_t) nlocal * kernel.slots : 0;
   if ((int64_t) out_atoms.size() < cap + 1) {
     out.resize((size_t) PairDemContact::N_OUT * (cap + 1));
     out_atoms.resize(cap + 1);
@@ -223,16 +231,23 @@ void FixDemContactWall::evaluate(bool setup)
              history->hist, kernel.slots, row_size, history->saved[0], history->dissipated,
              setup ? 0.0 : update->dt, flags,
              (double) update->ntimestep, box, atom->f[0], atom->torque[0], report, out.data(), out_atoms.data(), cap);
+  static_assert(sizeof(report) / sizeof(report[0]) == N_REPORT, "report: wall_kernel.N_REPORT values");
   n_out = std::min(m, cap);
   if (setup && !deep_checked) {
     check_deep();
     deep_checked = true;
   }
-  // the contacts of this step: a run's step, or a set-up that applied the forces it computed to every atom (a
-  // set-up that reapplied the last step's forces to any atom, on any rank, has no contacts of its own)
+  // the contacts of this step: a run's step, or a set-up that applied the forces it computed to every atom; a
+  // set-up that reapplied the last step's forces to any atom, on any rank, keeps that step's
   int reapplied = setup && report[R_REAPPLIED] > 0.0, any = 0;
   if (setup) MPI_Allreduce(&reapplied, &any, 1, MPI_INT, MPI_MAX, world);
-  evaluated_step = any ? -1 : update->ntimestep;
+  if (!any) {
+    evaluated_step = update->ntimestep;
+  } else {
+    out.swap(kept_out);
+    out_atoms.swap(kept_atoms);
+    n_out = kept_n;
+  }
   tagint *tag = atom->tag;
   if (report[R_BEHIND] > 0)
     error->one(FLERR,

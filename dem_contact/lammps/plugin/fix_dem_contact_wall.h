@@ -92,6 +92,10 @@ class FixDemContactWall : public Fix {
   int row_size;    // the values of a contact row: the law's history (+ N_EXTRA with pair_style ... energy yes)
   std::vector<double> out;
   std::vector<int64_t> out_atoms;
+  // (the last step's contacts, kept through a set-up that reapplies its forces)
+  std::vector<double> kept_out;
+  std::vector<int64_t> kept_atoms;
+  int64_t kept_n = 0;
   // the wall's clock: LAMMPS's time plus offset (0 when the fix is defined); the clock at the last step evaluated
   // (has_clock)
   double clock_offset, clock_last;

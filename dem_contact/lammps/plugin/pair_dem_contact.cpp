@@ -538,6 +538,10 @@ void PairDemContact::find_twins(int nlocal, int nall)
 {
   const int inum = list->inum;
   entry_local.assign(entry_start[inum], -1);
+  // (only along a periodic direction that this rank spans alone)
+  bool spanned = false;
+  for (int d = 0; d < 3; d++) spanned = spanned || (domain->periodicity[d] && comm->procgrid[d] == 1);
+  if (!spanned) return;
   int *ilist = list->ilist, *numneigh = list->numneigh, **firstneigh = list->firstneigh;
   tagint *tag = atom->tag;
   // the local atom of each ghost's id, if any: by LAMMPS's atom map (which points at the local copy of an id), or
@@ -713,6 +717,13 @@ void PairDemContact::compute(int eflag, int vflag)
   double **f = atom->f, **torque = atom->torque;
   double *special_lj = force->special_lj;
   const bool reapply = setup && reapply_saved();
+  // (a set-up that reapplies the last step's forces keeps that step's contacts, which a compute reads at it: the
+  // set-up's own evaluation is set aside at the end)
+  if (reapply) {
+    kept_pairs = pairs;
+    kept_out = out;
+    kept_n = n_contacts;
+  }
 
   if (setup) check_ids(nlocal);
   fix->setup_only = setup;
@@ -790,9 +801,9 @@ void PairDemContact::compute(int eflag, int vflag)
       to_at[2 * n + 1] = b < nlocal ? b : loc[jj];
       row_at[n] = at[jj];
       prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
-      // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full radii v = v_a - v_b + (R_a w_a + R_b
-      // w_b) x n, the relative spin w_a - w_b, and the mean spin of the two bodies about the normal
-      // (frame_spin no: 0)
+      // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full
+      // radii v = v_a - v_b + (R_a w_a + R_b w_b) x n, the relative spin w_a - w_b, and the mean spin of the two
+      // bodies about the normal (frame_spin no: 0)
       // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
       // for 0; the same r2)
       const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;
@@ -866,7 +877,8 @@ void PairDemContact::compute(int eflag, int vflag)
   int64_t bad = n ? step(n, pairs.data(), rows, H, h_rows, hs, in, in + 9 * cap, in + 3 * cap, in + 6 * cap,
                          in + 10 * cap, kernel.turning, x[0], radius, atom->rmass, atom->type, nall, kernel.params,
                          kernel.n_rows, kernel.rowinfo, kernel.type_size, kernel.n_types, sized, dt, out.data(),
-                         work.data(), work.data() + 3 * n, work.data() + 6 * n, prow.data(), sized ? pc.data() : const_cast<double *>(kernel.params), to.data(),
+                         work.data(), work.data() + 3 * n, work.data() + 6 * n, prow.data(),
+                         sized ? pc.data() : const_cast<double *>(kernel.params), to.data(),
                          f[0], torque[0], flags, vsum)
                   : 0;
 #ifdef DEM_CONTACT_AOT
@@ -884,10 +896,12 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
-  // the contacts of this step: a run's step, or a set-up that applies the forces it computed (a set-up that
-  // reapplies the last step's forces has no contacts of its own)
-  evaluated_step = reapply ? -1 : update->ntimestep;
-  if (!reapply && keep_out) atoms_key = atoms_now();
+  // the contacts of this step: a run's step, or a set-up that applies the forces it computed; and the atoms they
+  // point into, where a compute reads them or a run ends (a compute defined between runs reads the last step's)
+  if (!reapply) {
+    evaluated_step = update->ntimestep;
+    if (keep_out || last) atoms_key = atoms_now();
+  }
   if (setup && !deep_checked) {
     check_deep(n);
     deep_checked = true;
@@ -928,6 +942,12 @@ void PairDemContact::compute(int eflag, int vflag)
   }
   // (the forces a next run's set-up reapplies: at a run's last step)
   if (last) save_forces(nlocal);
+  if (reapply) {
+    pairs.swap(kept_pairs);
+    out.swap(kept_out);
+    n_contacts = kept_n;
+    if (pairs.size() < 2 * (size_t) cap) pairs.resize(2 * cap);
+  }
 }
 
 // whether any of the nall atoms (local and ghost) has not its type's radius and mass (to 1e-12, as the kernel)
@@ -945,6 +965,7 @@ double PairDemContact::memory_usage()
 {
   return (double) (entry_row.capacity() + pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
       (double) entry_local.capacity() * sizeof(int) +
-      (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity()) * sizeof(double) +
+      (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity() +
+                kept_out.capacity()) * sizeof(double) +
       (double) pairing.capacity() * sizeof(Pairing);
 }

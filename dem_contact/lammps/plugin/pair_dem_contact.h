@@ -99,9 +99,10 @@ class PairDemContact : public Pair, public RowKeeper {
   // largest ratio here)
   static void tell_deep(class LAMMPS *lmp, const std::string &who, int count, double worst, double vmax);
 
-  // the contacts of the last step evaluated (a run's step, or a set-up that applied the forces it computed: not
-  // one that reapplied the last step's): its number (-1: none), the contacts' atoms (local indices, body 1 the
-  // lower id; valid until atoms move between ranks or are sorted) and their rows of N_OUT values
+  // the contacts of the last step evaluated (a run's step, or a set-up that applied the forces it computed; a
+  // set-up that reapplied the last step's forces keeps that step's): its number (-1: none), the contacts' atoms
+  // (local indices, body 1 the lower id; valid until atoms move between ranks or are sorted) and their rows of
+  // N_OUT values
   bigint evaluated_step;
   int64_t contact_count() const { return n_contacts; }
   const int64_t *contact_atoms() const { return pairs.data(); }
@@ -149,6 +150,10 @@ class PairDemContact : public Pair, public RowKeeper {
   enum { N_INPUTS = 11 };
   std::vector<int64_t> pairs, hrow, scratch_rows, prow, to;
   std::vector<double> inputs, out, scratch, acc, work, pc;
+  // the last step's contacts, kept through a set-up that reapplies its forces (pairs, out, n_contacts)
+  std::vector<int64_t> kept_pairs;
+  std::vector<double> kept_out;
+  int64_t kept_n = 0;
   int64_t n_contacts, cap;
   int loaded_nlocal;    // the local atoms when the pool was loaded (store_rows writes theirs)
 
