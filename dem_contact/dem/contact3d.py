@@ -395,7 +395,7 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
 
 
 def _loops_of(tangential, name):
-    return (njit(**JIT)(renamed(_loop, f"serial_{name}", tangential=tangential, loop_range=range)),
+    return (njit(_nrt=False, **JIT)(renamed(_loop, f"serial_{name}", tangential=tangential, loop_range=range)),
             njit(parallel=True, **JIT)(renamed(_loop, f"parallel_{name}", tangential=tangential, loop_range=prange)))
 
 

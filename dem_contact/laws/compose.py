@@ -31,7 +31,7 @@ def kinematics(nx, ny, nz, vx, vy, vz, wn, dt):
     return vel, (vx - vel * nx) * dt, (vy - vel * ny) * dt, (vz - vel * nz) * dt, cs, sn
 
 
-@njit(**JIT)
+@njit(_nrt=False, **JIT)
 def torque_laws(nid, qid, rid, params, row, H, c, N, a, nx, ny, nz, wx, wy, wz, dt):
     """The torques on body 1 of the twist law ``qid`` and the rolling law ``rid`` (their states after the
     normal law's), not inlined: one compiled function that every step calls, only for rows that name such

@@ -223,10 +223,9 @@ static inline void radial(double *u1, double *u2, double umax) {
 static void mdr_cells(const double *p, double *h, int k0, int n, double dx, double N, double a, double a_old,
                       double d1, double d2, double *T1o, double *T2o) {
     double GM = 4.0 * p[P_GSTAR];
-    double cc = 3.0 * N / (4.0 * p[P_ESTAR] * a * a * a);
-    double umax_per_w = p[P_MU] * p[P_ESTAR] * cc / GM;
+    double umax_per_w = 3.0 * p[P_MU] * N / (16.0 * p[P_GSTAR] * a * a * a);
     double a2 = a * a, da = a - a_old;
-    double qa = a / dx, qo = a_old / dx;
+    double idx = 1.0 / dx, qa = a * idx, qo = a_old * idx;
     int m1 = ncells_q(a, qa, n), m2 = ncells_q(a_old, qo, n);
     int m = m1 > m2 ? m1 : m2;
     int full = (int)fmin(qa, qo);
@@ -297,8 +296,9 @@ static void mdr_cells(const double *p, double *h, int k0, int n, double dx, doub
         if (l_new > l_old) {
             double xm = x0 + 0.5 * (l_old + l_new);
             double f = (a - xm) / da * (l_new - l_old);
-            u1 = (u1 * l_old + d1 * f) / l_new;
-            u2 = (u2 * l_old + d2 * f) / l_new;
+            double il = 1.0 / l_new;
+            u1 = (u1 * l_old + d1 * f) * il;
+            u2 = (u2 * l_old + d2 * f) * il;
         }
         double x1 = x0 + l_new;
         radial(&u1, &u2, umax_per_w * (a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0));
@@ -349,13 +349,14 @@ static void mdr_split(double *h, int k0, int n, double dx, double r) {
 }
 
 static void mdr_shrink_edge(double *h, int k0, int n, double dx, double a, double a_old) {
-    int i = (int)(a / dx);   /* (the numba kernel reuses a / dx of the cell counts) */
+    int i = (int)(a * (1.0 / dx));   /* (the numba kernel reuses a / dx of the cell counts) */
     if (i >= n) return;
     double x0 = i * dx, l_new = a - x0, l_old = fmin(a_old - x0, dx);
     if (l_new > 0.0 && l_old > l_new) {
-        double w_old = wbar(a_old, x0, x0 + l_old);
+        double x1 = x0 + l_old;
+        double w_old = 3.0 * a_old * a_old - (x0 * x0 + x0 * x1 + x1 * x1);
         if (w_old > 0.0) {
-            double f = wbar(a_old, x0, a) / w_old;
+            double f = (3.0 * a_old * a_old - (x0 * x0 + x0 * a + a * a)) / w_old;
             h[k0 + 2 * i] *= f; h[k0 + 2 * i + 1] *= f;
         }
     }
@@ -388,7 +389,7 @@ static void mdr_adaptive(const double *p, double *h, double N, double a, double 
     double fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
     double d1 = ddx * ex + ddy * ey + ddz * ez, d2 = ddx * fx + ddy * fy + ddz * fz;
     int lazy = (int)h[B + R_LAZY];
-    if (lazy > 0 && (a > n * dx || 4.0 * a < n * dx || fmin(a, a_old) / dx < lazy)) {
+    if (lazy > 0 && (a > n * dx || 4.0 * a < n * dx || fmin(a, a_old) < lazy * dx)) {
         double D1 = h[B + R_D1], D2 = h[B + R_D2];   /* the zone's cells take u = v + D first */
         for (int i = 0; i < lazy; i++) { h[k0 + 2 * i] += D1; h[k0 + 2 * i + 1] += D2; }
         for (int j = R_LAZY; j < R_CELLS; j++) h[B + j] = 0.0;

@@ -200,9 +200,11 @@ def truncation(profile, p_y, fstar, N, a, E, R):
 def coulomb_per_w(mu, E, G, R, N, a, k):
     """Coulomb limit of a cell per unit of w: |u| <= mu q / G_M with q = E* c w (G_M = 4 G*). Untruncated
     (k >= 1): c = 3 N / (4 E* a^3), the Hertz shape scaled to N; truncated (k < 1): c = 1/R* and w is
-    the integral of ``truncated_integral`` per unit length."""
-    c = 3.0 * N / (4.0 * E * a * a * a) if k >= 1.0 else 1.0 / R
-    return mu * E * c / (4.0 * G)
+    the integral of ``truncated_integral`` per unit length. (Written with one division: mu E* c / G_M is
+    3 mu N / (16 G* a^3) untruncated, mu E* / (4 G* R*) truncated.)"""
+    if k >= 1.0:
+        return 3.0 * mu * N / (16.0 * G * a * a * a)
+    return mu * E / (4.0 * G * R)
 
 
 @njit(cache=True)
@@ -426,13 +428,14 @@ def cells_q(r, q, n):
 @njit(inline="always", **JIT)
 def shrink_factor(x0, dx, a, a_old):
     """The factor of ``shrink_edge`` for the cell [x0, x0 + dx] that the new edge a < a_old cuts
-    (x0 = int(a / dx) dx), the same arithmetic; 1 where the cell keeps its value."""
+    (x0 = int(a / dx) dx), the ratio of the same means, both times 3 (one division); 1 where the cell keeps its
+    value."""
     l_new = a - x0
     l_old = min(a_old - x0, dx)
     if l_new > 0.0 and l_old > l_new:
-        w_old = a_old * a_old - (x0 * x0 + x0 * (x0 + l_old) + (x0 + l_old) * (x0 + l_old)) / 3.0
+        w_old = 3.0 * a_old * a_old - (x0 * x0 + x0 * (x0 + l_old) + (x0 + l_old) * (x0 + l_old))
         if w_old > 0.0:
-            return (a_old * a_old - (x0 * x0 + x0 * a + a * a) / 3.0) / w_old
+            return (3.0 * a_old * a_old - (x0 * x0 + x0 * a + a * a)) / w_old
     return 1.0
 
 
@@ -690,8 +693,9 @@ def _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, T1, T2,
         if l_new > l_old:
             xm = x0 + 0.5 * (l_old + l_new)
             f = (a - xm) / da * (l_new - l_old)
-            u1 = (u1 * l_old + d1 * f) / l_new
-            u2 = (u2 * l_old + d2 * f) / l_new
+            il = 1.0 / l_new
+            u1 = (u1 * l_old + d1 * f) * il
+            u2 = (u2 * l_old + d2 * f) * il
         x1 = x0 + l_new
         if kt < 1.0:
             Q1 = truncated_integral_vector(x1, a, kt)
@@ -761,14 +765,15 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
         lazy = 0
         if ADAPTIVE:
             lazy = int(H[c, b + R_LAZY])
-            if lazy > 0 and (kt < 1.0 or a > n * dx or 4.0 * a < n * dx or min(a, a_old) / dx < lazy):
+            if lazy > 0 and (kt < 1.0 or a > n * dx or 4.0 * a < n * dx or min(a, a_old) < lazy * dx):
                 # the cells of the sticking zone take their displacement u = v + D before anything else acts
                 _zone_dissolved(H, c, b, k0, lazy, H[c, b + R_D1], H[c, b + R_D2])
                 lazy = 0
             dx, a_old = _regrid(H, c, b, k0, n, dx, a, a_old, R)
         # cells in contact: qa = a / dx and qo = a_old / dx give the cell counts and the cut cell
-        qa = a / dx
-        qo = a_old / dx
+        idx = 1.0 / dx
+        qa = a * idx
+        qo = a_old * idx
         m = max(cells_q(a, qa, n), cells_q(a_old, qo, n))
         full = min(int(min(qa, qo)), m)
         if ADAPTIVE and a < a_old:
