@@ -26,7 +26,7 @@ from ..dem.pairs import PairTable
 from ..laws.slots import P_MU
 from ..walls import MeshWall, pack
 from . import mesh_file, network, plugin_build, table_file
-from .session import gather_rows, lammps_warnings, pass_on_warnings, sum_ranks
+from .session import gather_rows, lammps_warnings, pass_on_warnings, sum_ranks, without_location
 from .wall_kernel import fix_words
 
 #: A contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the laws cap |Ft| at mu N, to rounding), as compute
@@ -58,7 +58,7 @@ def _lammps_error(e: Exception) -> Exception:
     """The exception a LAMMPS error of the plugin's styles stands for: NumericalError where a law or a step
     failed, InputError else (the message as LAMMPS gave it, without its prefix and location)."""
     text = re.sub(r"^ERROR( on proc \d+)?:\s*", "", str(e).strip().strip("'\"")).split("\nLast input line")[0]
-    text = re.sub(r" \([^()]*\.(cpp|h):\d+\)$", "", text)
+    text = without_location(text)
     failed = ("not finite" in text or "failed" in text) and "cannot be reached" not in text
     return (NumericalError if failed else InputError)(text)
 

@@ -30,12 +30,12 @@ from ..laws.vector import V_N, W_WORK, renamed
 from . import contact_terms as T
 
 #: the layout version of ``Attach`` (the plugin refuses another)
-ABI = 7
+ABI = 8
 
 #: columns of the per-contact output: force on body 1 (3), torque on body 1 (3), torque on body 2 (3), overlap,
 #: tangential force on body 1 (3), unit normal from body 1 to body 2 (3), friction coefficient, the work the
 #: normal force and the tangential force have done on the contact since it began [J] (``X_WORK_N``, the law's
-#: ``W_WORK``)
+#: ``W_WORK``), the torque of the twist and rolling laws on body 1 (3)
 OUT_F = 0
 OUT_TA = 3
 OUT_TB = 6
@@ -45,7 +45,8 @@ OUT_N = 13
 OUT_MU = 16
 OUT_WORK_N = 17
 OUT_WORK_T = 18
-N_OUT = 19
+OUT_Q = 19
+N_OUT = 22
 
 #: values the plugin keeps after the law's history in each contact row where it accounts the work of the
 #: contact forces (then a row is history_size + N_EXTRA long):
@@ -205,6 +206,9 @@ def _step(n, pairs, hrow, H, normals, overlaps, velocities, spins, wn, x, radius
                 out[k, OUT_FT + d] = tforces[k, d]
                 out[k, OUT_N + d] = normals[k, d]
             out[k, OUT_MU] = rows[prow[k], P_MU]
+            out[k, OUT_Q] = qx
+            out[k, OUT_Q + 1] = qy
+            out[k, OUT_Q + 2] = qz
             if energy:
                 x0 = H.shape[1] - N_EXTRA
                 out[k, OUT_WORK_N] = H[hrow[k], x0 + X_WORK_N]

@@ -182,10 +182,15 @@ def lammps_warnings(lmp) -> list:
     return warnings_in(new_log_text(lmp))
 
 
+def without_location(text: str) -> str:
+    """A LAMMPS message without the source file and line it ends with ("... (src/pair.cpp:123)")."""
+    return re.sub(r" \([^()]*\.(cpp|h):\d+\)$", "", text)
+
+
 def pass_on_warnings(lines):
     """Each of LAMMPS's WARNING lines as a RuntimeWarning "LAMMPS: ..." (without the source file it names)."""
     for line in lines:
-        text = re.sub(r" \([^()]*\.(cpp|h):\d+\)$", "", line.removeprefix("WARNING:").strip())
+        text = without_location(line.removeprefix("WARNING:").strip())
         warnings.warn(f"LAMMPS: {text}", RuntimeWarning, stacklevel=3)
 
 

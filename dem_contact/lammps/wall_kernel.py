@@ -47,7 +47,7 @@ from . import contact_terms as T
 from . import pair_kernel as PK
 
 #: the layout version of ``WallAttach`` (the plugin refuses another)
-ABI = 4
+ABI = 5
 
 #: what the fix asks of a step (its flags argument, bits): advance the histories (not a run's set-up), save
 #: the atoms' wall forces with their state (a run's last step), reapply the saved forces of the atoms whose
@@ -265,6 +265,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                 out[k, PK.OUT_TB + d] = 0.0
                 out[k, PK.OUT_FT + d] = tforces[k, d]
                 out[k, PK.OUT_N + d] = normals[k, d]
+                out[k, PK.OUT_Q + d] = torques[k, d]
             out[k, PK.OUT_DELTA] = overlaps[k]
             out[k, PK.OUT_MU] = pc[prow[k], P_MU]
             if energy:

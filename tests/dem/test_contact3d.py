@@ -835,3 +835,15 @@ def test_pair_table_refuses_a_friction_coefficient_that_is_not_finite(mu):
     """A NaN friction is named as such (not as an asymmetric table), before any row is built."""
     with pytest.raises(InputError, match=r"^mu \(friction coefficient\) must be finite"):
         pair_table([Sphere(1e-3, STEEL), Sphere(2e-3, STEEL)], mu=mu)
+
+
+def test_the_batch_loops_are_one_compiled_variant_whoever_calls_them_first():
+    """A jitted function called from another inherits its caller's choice of numba's runtime (reference counting)
+    unless it sets its own, and numba's cache keeps the first variant compiled under one key: the default law's
+    serial loop ran 39 or 52 ns a contact depending on whether the plugin's step (compiled without the runtime) or
+    a Python call compiled it first. The serial loops and the twist and rolling step set it (without: they
+    allocate nothing), so every caller gets the same code."""
+    from dem_contact.laws.compose import torque_laws
+    for serial, _ in C3._LOOPS:
+        assert serial.targetoptions.get("_nrt") is False, serial.py_func.__name__
+    assert torque_laws.targetoptions.get("_nrt") is False

@@ -419,6 +419,72 @@ def test_contacts_at_a_run_s_set_up():
     lc.run(5)
 
 
+def test_contacts_at_the_steps_a_dump_reads(tmp_path):
+    """The pair style and the wall fixes record the contacts at the steps LAMMPS invokes compute dem/contact/local
+    at (here a dump local every 3 steps, which a dump custom of the atoms matches), not at every step: at each of
+    those steps of a run, the overlaps dumped are the ones of the atoms' positions dumped at that step (the two
+    spheres pressed 0.1 mm together push apart, the lower one sinks into the floor), to rounding; and the run's
+    last step (not one the dump reads) is the one contacts() gives."""
+    lmp = _box()                                  # spheres of radius 1 mm at z = 0 and z = 1.9 mm
+    z_floor = -0.999e-3
+    lc = LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, z_floor), (0.0, 0.0, 1.0))], v_max=1.0)
+    lmp.command(f"dump rows all local 3 {tmp_path}/rows.* index c_dc_local[1] c_dc_local[2] c_dc_local[12] "
+                "c_dc_local[14]")
+    lmp.command(f"dump atoms all custom 3 {tmp_path}/atoms.* id z radius")
+    for dump in ("rows", "atoms"):
+        lmp.command(f"dump_modify {dump} format float %.17g")
+    with pytest.warns(RuntimeWarning, match="deeper than a head-on impact"):      # (the spheres' 0.1 mm)
+        lc.run(10)
+
+    def table(path):
+        lines = path.read_text().splitlines()
+        start = next(k for k, line in enumerate(lines) if line.startswith("ITEM: ENTRIES") or
+                     line.startswith("ITEM: ATOMS")) + 1
+        return np.array([[float(v) for v in line.split()] for line in lines[start:]])
+
+    steps = [0, 3, 6, 9]
+    assert sorted(int(p.name.split(".")[1]) for p in tmp_path.glob("rows.*")) == steps
+    overlaps = []
+    for step in steps:
+        atoms = {int(r[0]): (r[1], r[2]) for r in table(tmp_path / f"atoms.{step}")}
+        rows = table(tmp_path / f"rows.{step}")
+        assert sorted(rows[:, 4]) == [0.0, 1.0]
+        for _, id1, id2, overlap, wall in rows:
+            (z1, r1) = atoms[int(id1)]
+            expected = (r1 - (z1 - z_floor) if wall else r1 + atoms[int(id2)][1] - abs(atoms[int(id2)][0] - z1))
+            assert overlap == pytest.approx(expected, rel=1e-9, abs=1e-18)
+        overlaps.append(sorted(rows[:, 3]))
+    assert len({tuple(o) for o in overlaps}) == len(steps)       # (the contacts change from step to step)
+    last = lc.contacts()
+    z = dict(zip(lmp.numpy.extract_atom("id")[:2].tolist(), lmp.numpy.extract_atom("x")[:2, 2].tolist()))
+    pair = last["wall"] < 0
+    assert last["overlap"][pair][0] == pytest.approx(2e-3 - abs(z[2] - z[1]), rel=1e-9)
+
+
+def test_the_torque_column_is_the_twist_and_rolling_laws_torque():
+    """contacts()' torque (the compute's tx ty tz) is the torque of the twist and rolling laws on atom id1: for two
+    spheres alone, spinning against each other, the atom's whole torque less the moment of the tangential force
+    about its centre, (r1 - delta/2) n x Ft (arm as LAMMPS's granular models), after a run; not zero (the laws
+    act)."""
+    lmp = _box()                                  # spheres of radius 1 mm at z = 0 and z = 1.9 mm
+    lmp.command("set atom 1 omega 3 -2 40")
+    lmp.command("set atom 2 omega -1 5 -30")
+    tab = pair_table([Sphere(1e-3, GLASS)], [Wall(GLASS)], mu=0.3, tangential="mindlin_total", twist="sds",
+                     k_twist=1e-3, gamma_twist=1e-9, mu_twist=1e-4, rolling="sds", k_roll=1e4, gamma_roll=1e-3,
+                     mu_roll=0.1)
+    lc = LammpsContacts(lmp, tab, v_max=1.0)
+    with pytest.warns(RuntimeWarning, match="deeper than a head-on impact"):      # (the spheres' 0.1 mm)
+        lc.run(20)
+    got = lc.contacts()
+    assert list(got["id1"]) == [1] and list(got["id2"]) == [2]
+    k = {int(t): j for j, t in enumerate(lmp.numpy.extract_atom("id")[:2])}[1]
+    whole = np.array(lmp.numpy.extract_atom("torque")[k])
+    arm = 1e-3 - 0.5 * got["overlap"][0]
+    law = whole - arm * np.cross(got["normal"][0], got["tangential_force"][0])
+    assert np.abs(law).max() > 0.0
+    assert np.abs(got["torque"][0] - law).max() <= 1e-9 * np.abs(whole).max()
+
+
 def test_an_atom_started_deep_in_a_wall_or_a_sphere_is_reported():
     """A sphere placed 80% of its radius into the floor, or into another sphere (before: nothing said), overlaps
     it far more than an impact at v_max presses: LAMMPS's warning at the set-up of the first run, which run()

@@ -33,6 +33,7 @@ ComputeDemContactLocal::ComputeDemContactLocal(LAMMPS *lmp, int narg, char **arg
     error->all(FLERR, "compute dem/contact/local takes one keyword, work: compute ID all dem/contact/local [work]");
   work = narg == 4;
   local_flag = 1;
+  timeflag = 1;    // (the pair style and the wall fixes record the contacts at the steps LAMMPS invokes it at)
   size_local_cols = N_COLUMNS + (work ? N_WORK_COLUMNS : 0);
   size_local_rows = 0;
 }
@@ -55,9 +56,10 @@ void ComputeDemContactLocal::compute_local()
   if (!pair) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
   if (pair->evaluated_step != update->ntimestep)
     error->all(FLERR,
-               "compute dem/contact/local: the pair style has no contacts of step {}: use it at a run's steps or "
-               "set-up, but not at the set-up of the first run after read_restart (which gives the atoms the forces "
-               "saved in the file and computes none): run 1 first",
+               "compute dem/contact/local: the pair style has no contacts of step {}: they are recorded at a run's "
+               "set-up (but not the first after read_restart, which gives the atoms the forces saved in the file and "
+               "computes none: run 1 first), its last step, and the steps a dump, thermo or fix invokes this compute "
+               "at; read it at those steps (a variable or Python reading it at other steps of a run cannot)",
                update->ntimestep);
   // (the contacts name their atoms by index: the atoms of that step, in the same places)
   int moved = pair->atoms_key != pair->atoms_now(), any = 0;
@@ -72,9 +74,9 @@ void ComputeDemContactLocal::compute_local()
   for (auto f : modify->get_fix_by_style("^dem/contact/wall$")) {
     auto w = dynamic_cast<FixDemContactWall *>(f);
     if (w->evaluated_step != update->ntimestep)
-      error->all(FLERR, "compute dem/contact/local: fix {} has no contacts of step {}: use it at a run's steps or "
-                 "set-up, but not at the set-up of the first run after read_restart: run 1 first", w->id,
-                 update->ntimestep);
+      error->all(FLERR, "compute dem/contact/local: fix {} has no contacts of step {}: they are recorded at a run's "
+                 "set-up (but not the first after read_restart: run 1 first), its last step, and the steps a dump, "
+                 "thermo or fix invokes this compute at; read it at those steps", w->id, update->ntimestep);
     walls.push_back(w);
   }
   const int nlocal = atom->nlocal;
@@ -96,21 +98,18 @@ void ComputeDemContactLocal::compute_local()
   for (int64_t k = 0; k < n; k++) {
     const int a = (int) ab[2 * k], b = (int) ab[2 * k + 1];
     if (a >= nlocal) continue;
-    fill(rows[m++], tag[a], tag[b], 0, atom->radius[a], pair->contact_values() + PairDemContact::N_OUT * k);
+    fill(rows[m++], tag[a], tag[b], 0, pair->contact_values() + PairDemContact::N_OUT * k);
   }
   for (size_t w = 0; w < walls.size(); w++) {
     const int64_t *atoms = walls[w]->contact_atoms();
     for (int64_t k = 0; k < walls[w]->contact_count(); k++)
-      fill(rows[m++], tag[atoms[k]], 0, (int) w + 1, atom->radius[atoms[k]],
-           walls[w]->contact_values() + PairDemContact::N_OUT * k);
+      fill(rows[m++], tag[atoms[k]], 0, (int) w + 1, walls[w]->contact_values() + PairDemContact::N_OUT * k);
   }
 }
 
 // a row: ids, the force on atom id1 and its tangential part, the normal, the overlap, sliding, the wall, the torque
-// of the twist and rolling laws on atom id1 (its whole torque less the moment of the tangential force, applied at
-// r1 - overlap/2 along the normal for a pair and r1 for a wall, as the step applies it), the work of the normal
-// and tangential forces
-void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, double r1, const double *o)
+// of the twist and rolling laws on atom id1 (as the step gives it), the work of the normal and tangential forces
+void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, const double *o)
 {
   r[0] = id1;
   r[1] = id2;
@@ -127,11 +126,7 @@ void ComputeDemContactLocal::fill(double *r, tagint id1, tagint id2, int wall, d
   }
   r[12] = (N > 0.0 && std::sqrt(ft) >= (1.0 - SLIDING_TOL) * o[PairDemContact::OUT_MU] * N) ? 1.0 : 0.0;
   r[13] = wall;
-  const double arm = wall ? r1 : r1 - 0.5 * r[11];
-  const double *n = r + 8, *t = r + 5, *ta = o + PairDemContact::OUT_TA;
-  r[14] = ta[0] - arm * (n[1] * t[2] - n[2] * t[1]);
-  r[15] = ta[1] - arm * (n[2] * t[0] - n[0] * t[2]);
-  r[16] = ta[2] - arm * (n[0] * t[1] - n[1] * t[0]);
+  for (int d = 0; d < 3; d++) r[14 + d] = o[PairDemContact::OUT_Q + d];
   if (work) {
     r[17] = o[PairDemContact::OUT_WORK_N];
     r[18] = o[PairDemContact::OUT_WORK_T];

@@ -37,7 +37,7 @@ class ComputeDemContactLocal : public Compute {
   int nmax;
   double **rows;
   bool work;
-  void fill(double *row, tagint id1, tagint id2, int wall, double r1, const double *values);
+  void fill(double *row, tagint id1, tagint id2, int wall, const double *values);
 };
 
 }    // namespace LAMMPS_NS

@@ -31,7 +31,7 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               double *f, double *torque,
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
-const int ABI = 4;
+const int ABI = 5;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
        R_FAST_ATOM = 13, R_REAPPLIED = 14, N_REPORT = 15 };
@@ -131,7 +131,7 @@ void FixDemContactWall::init()
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "fix dem/contact/wall needs atoms with radius, per-atom mass, spin and torque: use "
                       "atom_style sphere");
-  // the per-contact output at every step where a compute reads it
+  // the per-contact output at the steps where a compute reads it
   keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
   check_time_step();
 }
@@ -215,10 +215,11 @@ void FixDemContactWall::evaluate(bool setup)
     box[3 + d] = domain->periodicity[d] && !domain->triclinic ? 1.0 : 0.0;
   }
   box[6] = pair->speed_limit();
-  // (every contact has one of the atoms' rows; kept where a compute reads them or a run ends, which a compute
-  // defined between runs reads; at the first set-up, the contacts' overlaps are checked)
+  // (every contact has one of the atoms' rows; recorded at a set-up, where the contacts' overlaps are checked, a
+  // run's last step, which a compute defined between runs reads, and the steps a compute reads them)
   const bool last = !setup && update->ntimestep == update->laststep;
-  const int64_t cap = keep_out || last || (setup && !deep_checked) ? (int64_t) nlocal * kernel.slots : 0;
+  const bool record = setup || last || (keep_out && pair->output_due());
+  const int64_t cap = record ? (int64_t) nlocal * kernel.slots : 0;
   if ((int64_t) out_atoms.size() < cap + 1) {
     out.resize((size_t) PairDemContact::N_OUT * (cap + 1));
     out_atoms.resize(cap + 1);
@@ -242,7 +243,7 @@ void FixDemContactWall::evaluate(bool setup)
   int reapplied = setup && report[R_REAPPLIED] > 0.0, any = 0;
   if (setup) MPI_Allreduce(&reapplied, &any, 1, MPI_INT, MPI_MAX, world);
   if (!any) {
-    evaluated_step = update->ntimestep;
+    if (record) evaluated_step = update->ntimestep;
   } else {
     out.swap(kept_out);
     out_atoms.swap(kept_atoms);

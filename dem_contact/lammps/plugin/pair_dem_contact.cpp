@@ -8,6 +8,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "compute.h"
 #include "domain.h"
 #include "error.h"
 #include "fix.h"
@@ -41,7 +42,7 @@ const int N_WORK = 9;
 const int N_PARAMS = 43;    // laws.slots.N_PARAMS
 // contact_terms.RI_...: columns of the table's per-row information (at 1 m/s)
 const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
-const int ABI = 7;       // pair_kernel.ABI
+const int ABI = 8;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // entry_row of a periodic twin's entry that is not evaluated (pair_dem_contact.h)
 const int64_t TWIN = -2;
@@ -207,8 +208,9 @@ void PairDemContact::init_style()
   neighbor->add_request(this, (radii_change ? 0 : NeighConst::REQ_SIZE) | NeighConst::REQ_NEWTON_OFF);
   history_fix();
 
-  // the per-contact output at every step where a compute reads it
-  keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
+  // the per-contact output at the steps where a compute reads it
+  readers = modify->get_compute_by_style("^dem/contact/local$");
+  keep_out = !readers.empty();
   check_atoms();
   check_time_step();
 }
@@ -706,6 +708,13 @@ void PairDemContact::save_forces(int nlocal)
   }
 }
 
+bool PairDemContact::output_due() const
+{
+  for (auto c : readers)
+    if (c->matchstep(update->ntimestep)) return true;
+  return false;
+}
+
 void PairDemContact::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -865,11 +874,13 @@ void PairDemContact::compute(int eflag, int vflag)
   if ((int64_t) work.size() < N_WORK * n + 1) work.resize(2 * N_WORK * n + 64);
   if (sized && (int64_t) pc.size() < (kernel.n_rows + n) * N_PARAMS) pc.resize((kernel.n_rows + 2 * n + 16) * N_PARAMS);
   // An ordinary step: the kernel adds the forces, torques and global virial to LAMMPS's. A run's set-up (whose
-  // forces may be the saved ones), its last step (whose forces are saved), a per-atom virial or energy, or a
-  // compute dem/contact/local: the per-contact output, added here.
+  // forces may be the saved ones), its last step (whose forces are saved), a per-atom virial or energy: the
+  // per-contact output, added here. The contacts are recorded at a set-up, a last step and where a compute
+  // dem/contact/local is invoked (the per-contact output, and the forces added by the kernel).
   const bool last = !setup && update->ntimestep == update->laststep;
   const bool direct = !setup && !last && !vflag_atom && !eflag_atom && !cvflag_atom;
-  int64_t flags = (direct ? SCATTER : WRITE_OUT) | (keep_out ? WRITE_OUT : 0) | (direct && vflag_global ? VIRIAL : 0) |
+  const bool record = setup || last || (keep_out && output_due());
+  int64_t flags = (direct ? SCATTER : WRITE_OUT) | (record ? WRITE_OUT : 0) | (direct && vflag_global ? VIRIAL : 0) |
       (energy ? ENERGY : 0);
   double vsum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   auto step = (StepFn) kernel.step;
@@ -896,11 +907,12 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
-  // the contacts of this step: a run's step, or a set-up that applies the forces it computed; and the atoms they
-  // point into, where a compute reads them or a run ends (a compute defined between runs reads the last step's)
-  if (!reapply) {
+  // the contacts of this step, recorded (a set-up that applies the forces it computed, a run's last step, a step
+  // where a compute reads them), and the atoms they point into (a compute defined between runs reads the last
+  // step's)
+  if (record && !reapply) {
     evaluated_step = update->ntimestep;
-    if (keep_out || last) atoms_key = atoms_now();
+    atoms_key = atoms_now();
   }
   if (setup && !deep_checked) {
     check_deep(n);

@@ -69,7 +69,8 @@ class PairDemContact : public Pair, public RowKeeper {
     OUT_MU = 16,
     OUT_WORK_N = 17,
     OUT_WORK_T = 18,
-    N_OUT = 19
+    OUT_Q = 19,
+    N_OUT = 22
   };
   // the plugin's values after the law's history in a contact row (pair_kernel.X_..., N_EXTRA): X_WORK, the work
   // the contact's forces have done on it since it began, is the energy it dissipated when it ends
@@ -99,11 +100,14 @@ class PairDemContact : public Pair, public RowKeeper {
   // largest ratio here)
   static void tell_deep(class LAMMPS *lmp, const std::string &who, int count, double worst, double vmax);
 
-  // the contacts of the last step evaluated (a run's step, or a set-up that applied the forces it computed; a
-  // set-up that reapplied the last step's forces keeps that step's): its number (-1: none), the contacts' atoms
-  // (local indices, body 1 the lower id; valid until atoms move between ranks or are sorted) and their rows of
-  // N_OUT values
+  // the contacts of the last step recorded: a run's set-up (one that applied the forces it computed; one that
+  // reapplied the last step's forces keeps that step's), its last step, and the steps LAMMPS invokes a compute
+  // dem/contact/local at (output_due): its number (-1: none), the contacts' atoms (local indices, body 1 the lower
+  // id; valid until atoms move between ranks or are sorted) and their rows of N_OUT values
   bigint evaluated_step;
+  // whether a compute dem/contact/local is invoked at this step: one that a dump, thermo or fix invokes (LAMMPS
+  // schedules its steps, Compute::matchstep)
+  bool output_due() const;
   int64_t contact_count() const { return n_contacts; }
   const int64_t *contact_atoms() const { return pairs.data(); }
   // the atoms' ids by index (hashed) now, and at evaluated_step (where a compute reads the contacts)
@@ -129,6 +133,7 @@ class PairDemContact : public Pair, public RowKeeper {
   int energy, row_size;    // energy yes|no; the values of a contact row: the law's history (+ N_EXTRA)
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
+  std::vector<class Compute *> readers;    // the computes dem/contact/local
   // Between list builds the contacts' histories live in a pool (live: rows of row_size values), one row per
   // contact, found by the neighbour-list entry of its pair (entry_row[entry_start[ii] + jj]: -1, none; TWIN:
   // an entry not evaluated, its pair's twin is); per pool row its atoms (i local, j local or -1 for a ghost of
