@@ -18,7 +18,6 @@ from numba import njit, prange
 from numba.core.errors import NumbaPerformanceWarning
 
 from dem_contact.laws import closed_forms as cf
-from dem_contact.laws import table
 from dem_contact.dem.contact3d import (batch_loop, check_contacts, contact_force, contact_forces,
                                        contact_forces_batch, contact_forces_serial, history_size, new_histories,
                                        peek_force, reset_contact, rotate_history, swap_bodies, tangential_work)
@@ -28,7 +27,7 @@ from dem_contact.impacts.impact import body_inertia
 from dem_contact.impacts.integrator import N_OUT, N_SERIES, O_STATUS, O_VN, O_VT, O_W1, integrate_impact
 from dem_contact.laws.normal_impact import TOUCH_OVERLAP
 from dem_contact.laws.contact import normal_force, normal_gap
-from dem_contact.laws.slots import P_ESTAR, P_MU, P_NORMAL_LAW, P_NSPRING, P_RSTAR, P_TANGENTIAL_LAW
+from dem_contact.laws.slots import P_ESTAR, P_MU, P_NORMAL_LAW, P_RSTAR, P_TANGENTIAL_LAW
 from dem_contact.laws.compose import LEAVES
 from dem_contact.laws.dispatch import tangential_base
 from dem_contact.laws.vector import V_N
