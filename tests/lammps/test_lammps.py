@@ -423,8 +423,9 @@ def test_contacts_at_the_steps_a_dump_reads(tmp_path):
     """The pair style and the wall fixes record the contacts at the steps LAMMPS invokes compute dem/contact/local
     at (here a dump local every 3 steps, which a dump custom of the atoms matches), not at every step: at each of
     those steps of a run, the overlaps dumped are the ones of the atoms' positions dumped at that step (the two
-    spheres pressed 0.1 mm together push apart, the lower one sinks into the floor), to rounding; and the run's
-    last step (not one the dump reads) is the one contacts() gives."""
+    spheres pressed 0.1 mm together push apart, the lower one sinks into the floor), to rounding, and a thermo
+    output of the compute's global vector at those steps counts them and gives their largest overlap; the run's
+    last step (not one the dump reads) is the one contacts() and stats() give."""
     lmp = _box()                                  # spheres of radius 1 mm at z = 0 and z = 1.9 mm
     z_floor = -0.999e-3
     lc = LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, z_floor), (0.0, 0.0, 1.0))], v_max=1.0)
@@ -433,6 +434,9 @@ def test_contacts_at_the_steps_a_dump_reads(tmp_path):
     lmp.command(f"dump atoms all custom 3 {tmp_path}/atoms.* id z radius")
     for dump in ("rows", "atoms"):
         lmp.command(f"dump_modify {dump} format float %.17g")
+    lmp.command("thermo 3")
+    lmp.command("thermo_style custom step c_dc_local[1] c_dc_local[2] c_dc_local[3]")
+    lmp.command("thermo_modify format float %.17g")
     with pytest.warns(RuntimeWarning, match="deeper than a head-on impact"):      # (the spheres' 0.1 mm)
         lc.run(10)
 
@@ -443,6 +447,13 @@ def test_contacts_at_the_steps_a_dump_reads(tmp_path):
         return np.array([[float(v) for v in line.split()] for line in lines[start:]])
 
     steps = [0, 3, 6, 9]
+    from dem_contact.lammps.session import log_path
+    thermo = {}
+    for line in Path(log_path(lmp)).read_text().splitlines():
+        words = line.split()
+        if len(words) == 4 and words[0].isdigit():
+            thermo[int(words[0])] = [float(w) for w in words[1:]]
+    assert sorted(thermo) == steps + [10]
     assert sorted(int(p.name.split(".")[1]) for p in tmp_path.glob("rows.*")) == steps
     overlaps = []
     for step in steps:
@@ -454,11 +465,15 @@ def test_contacts_at_the_steps_a_dump_reads(tmp_path):
             expected = (r1 - (z1 - z_floor) if wall else r1 + atoms[int(id2)][1] - abs(atoms[int(id2)][0] - z1))
             assert overlap == pytest.approx(expected, rel=1e-9, abs=1e-18)
         overlaps.append(sorted(rows[:, 3]))
+        # thermo at the same steps: the compute's global vector (contacts over the ranks, the largest overlap)
+        assert thermo[step] == [1.0, 1.0, rows[:, 3].max()]
     assert len({tuple(o) for o in overlaps}) == len(steps)       # (the contacts change from step to step)
     last = lc.contacts()
     z = dict(zip(lmp.numpy.extract_atom("id")[:2].tolist(), lmp.numpy.extract_atom("x")[:2, 2].tolist()))
     pair = last["wall"] < 0
     assert last["overlap"][pair][0] == pytest.approx(2e-3 - abs(z[2] - z[1]), rel=1e-9)
+    assert lc.stats() == {"pair_contacts": 1, "wall_contacts": 1, "contacts": 2,
+                          "max_overlap": float(last["overlap"].max())}
 
 
 def test_the_torque_column_is_the_twist_and_rolling_laws_torque():

@@ -10,6 +10,7 @@
 #include "modify.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -33,6 +34,10 @@ ComputeDemContactLocal::ComputeDemContactLocal(LAMMPS *lmp, int narg, char **arg
     error->all(FLERR, "compute dem/contact/local takes one keyword, work: compute ID all dem/contact/local [work]");
   work = narg == 4;
   local_flag = 1;
+  vector_flag = 1;
+  size_vector = 3;
+  extvector = 0;
+  vector = values;
   timeflag = 1;    // (the pair style and the wall fixes record the contacts at the steps LAMMPS invokes it at)
   size_local_cols = N_COLUMNS + (work ? N_WORK_COLUMNS : 0);
   size_local_rows = 0;
@@ -49,10 +54,10 @@ void ComputeDemContactLocal::init()
                       "dem/contact ... energy yes");
 }
 
-void ComputeDemContactLocal::compute_local()
+// the pair style and the wall fixes, checked to have the contacts of this step
+std::vector<FixDemContactWall *> ComputeDemContactLocal::current(PairDemContact *&pair)
 {
-  invoked_local = update->ntimestep;
-  PairDemContact *pair = our_pair(lmp);
+  pair = our_pair(lmp);
   if (!pair) error->all(FLERR, "compute dem/contact/local needs pair_style dem/contact");
   if (pair->evaluated_step != update->ntimestep)
     error->all(FLERR,
@@ -79,6 +84,39 @@ void ComputeDemContactLocal::compute_local()
                  "thermo or fix invokes this compute at; read it at those steps", w->id, update->ntimestep);
     walls.push_back(w);
   }
+  return walls;
+}
+
+// the global vector: the sphere contacts, the wall contacts and the largest overlap [m] over the ranks
+void ComputeDemContactLocal::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  PairDemContact *pair;
+  const std::vector<FixDemContactWall *> walls = current(pair);
+  const int nlocal = atom->nlocal;
+  double mine[2] = {0.0, 0.0}, all[2], deepest = 0.0;
+  const int64_t *ab = pair->contact_atoms();
+  for (int64_t k = 0; k < pair->contact_count(); k++)
+    if (ab[2 * k] < nlocal) {
+      mine[0] += 1.0;
+      deepest = std::max(deepest, pair->contact_values()[PairDemContact::N_OUT * k + PairDemContact::OUT_DELTA]);
+    }
+  for (auto w : walls)
+    for (int64_t k = 0; k < w->contact_count(); k++) {
+      mine[1] += 1.0;
+      deepest = std::max(deepest, w->contact_values()[PairDemContact::N_OUT * k + PairDemContact::OUT_DELTA]);
+    }
+  MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  vector[0] = all[0];
+  vector[1] = all[1];
+  MPI_Allreduce(&deepest, &vector[2], 1, MPI_DOUBLE, MPI_MAX, world);
+}
+
+void ComputeDemContactLocal::compute_local()
+{
+  invoked_local = update->ntimestep;
+  PairDemContact *pair;
+  const std::vector<FixDemContactWall *> walls = current(pair);
   const int nlocal = atom->nlocal;
   const int64_t n = pair->contact_count();
   const int64_t *ab = pair->contact_atoms();

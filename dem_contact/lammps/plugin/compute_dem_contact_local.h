@@ -15,13 +15,18 @@
    dem/contact ... energy yes), work_n, work_t: the work
    the normal and the tangential force have done on the contact since it began [J] (trapezoid sums of N d(delta)
    and Ft . d(slip)): what it absorbed, stored elastically while it lasts; when it ends, their sum is the energy
-   it dissipated, added to its atoms' (the per-atom vector of the history fixes, FixDemContactHistory). */
+   it dissipated, added to its atoms' (the per-atom vector of the history fixes, FixDemContactHistory).
+
+   Its global vector (c_ID[1], c_ID[2], c_ID[3]): the sphere contacts and the wall contacts at the step, summed over
+   the ranks, and the largest overlap of them [m]. */
 #ifdef COMPUTE_CLASS
 #else
 #ifndef DEM_CONTACT_COMPUTE_LOCAL_H
 #define DEM_CONTACT_COMPUTE_LOCAL_H
 
 #include "compute.h"
+
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -31,12 +36,15 @@ class ComputeDemContactLocal : public Compute {
   ~ComputeDemContactLocal() override;
   void init() override;
   void compute_local() override;
+  void compute_vector() override;
   double memory_usage() override;
 
  private:
   int nmax;
   double **rows;
+  double values[3];
   bool work;
+  std::vector<class FixDemContactWall *> current(class PairDemContact *&pair);
   void fill(double *row, tagint id1, tagint id2, int wall, const double *values);
 };
 
