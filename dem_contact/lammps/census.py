@@ -79,17 +79,17 @@ _AHEAD = np.array([[1, -1], [1, 0], [1, 1], [0, 1]], dtype=np.int64)
 
 @njit(cache=True)
 def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
-    """Verlet lists of the local atoms: sphere pairs (i local; j local with a higher atom id, or ghost) closer
-    than r_i + r_j + skin, in the order of i, and wall pairs (i, w, element e) whose surface is closer to
-    the centre than r_i + skin (``walls.search.near_elements``: a mesh's triangles binned into cells). walls: the packed rows (``walls.table.pack``). Valid while no atom has moved
-    more than skin / 2 and the local and ghost atoms keep their indices. Returns (pairs int64[m, 2],
-    wall_pairs int64[k, 3]).
+    """The pairs of ``census`` (``skin`` 0) or closer than a skin: sphere pairs (i local; j another local atom,
+    the pair once, or a ghost that is not an image of i) closer than r_i + r_j + skin, and wall pairs (i, w,
+    element e) whose surface is closer to the centre than r_i + skin (``walls.search.near_elements``: a mesh's
+    triangles binned into cells, in the order of i, w, e). walls: the packed rows (``walls.table.pack``). Returns
+    (pairs int64[m, 2], wall_pairs int64[k, 3]).
 
     Cell lists of side 2 r_max + skin (Allen & Tildesley, Computer Simulation of Liquids, 1987, sec. 5.3.2),
     local atoms and ghosts in separate lists on one grid: a pair of local atoms is found once, from the
     cell of the first in cell order, in the half of the 27-cell stencil ahead of it (the rest of its cell
     and the next along z, and the four (x, y) columns ahead, three cells each); a local atom's ghost
-    partners in the whole stencil. The pairs are then put in the order of i (counting sort)."""
+    partners in the whole stencil."""
     lo, dims, cell = _grid(x, nall, 2.0 * rmax + skin)
     d0 = dims[0]
     d1 = dims[1]
@@ -134,11 +134,8 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
                     rs = (ri + xs[q, 3]) + skin
                     if dx * dx + dy * dy + dz * dz < rs * rs:
                         if m < cap:
-                            j = order[q]
-                            # the lower atom id first
-                            lower = tag[j] < ti
-                            first[m] = j if lower else i
-                            second[m] = i if lower else j
+                            first[m] = i
+                            second[m] = order[q]
                         m += 1
             if ng > 0:
                 for ax in range(max(cx - 1, 0), min(cx + 2, d0)):
@@ -159,18 +156,10 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
         if m <= cap:
             break
         cap = m
-    # in the order of i
-    fill = np.zeros(nlocal + 1, dtype=np.int64)
-    for c in range(m):
-        fill[first[c] + 1] += 1
-    for i in range(nlocal):
-        fill[i + 1] += fill[i]
     pairs = np.empty((m, 2), dtype=np.int64)
     for c in range(m):
-        q = fill[first[c]]
-        fill[first[c]] = q + 1
-        pairs[q, 0] = first[c]
-        pairs[q, 1] = second[c]
+        pairs[c, 0] = first[c]
+        pairs[c, 1] = second[c]
     return pairs, near_elements(nlocal, x, radius, walls, skin)
 
 

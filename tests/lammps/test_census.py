@@ -10,24 +10,22 @@ def _points(n, seed, box=1.0):
     return rng.uniform(0.0, box, (n, 3)), rng.uniform(0.02, 0.05, n)
 
 
-def test_candidates_are_every_close_pair_once_lower_id_first():
+def test_candidates_are_every_close_pair_once():
     nall, nlocal, skin = 400, 300, 0.01
     x, radius = _points(nall, 1)
     tag = np.random.default_rng(2).permutation(nall).astype(np.int32) + 1     # ids unrelated to indices (LAMMPS's int32)
     planes = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0, 0.0, -1.0]])
     walls, _ = pack([PlaneWall(tuple(p[:3]), tuple(p[3:])) for p in planes])
     pairs, wall_pairs = K.candidates(nlocal, nall, x, radius, tag, walls, radius.max(), skin)
-    got = {(int(i), int(j)) for i, j in pairs}
+    assert np.all(pairs[:, 0] < nlocal)                             # (i local)
+    got = {frozenset((int(i), int(j))) for i, j in pairs}
     assert len(got) == len(pairs)                                   # no pair twice
     want = set()
     for i in range(nlocal):
         for j in range(nall):
-            if j == i or np.linalg.norm(x[j] - x[i]) >= radius[i] + radius[j] + skin:
-                continue
-            if j >= nlocal or tag[i] < tag[j]:                         # local pairs from the lower id
-                want.add((i, j))
+            if j != i and np.linalg.norm(x[j] - x[i]) < radius[i] + radius[j] + skin:
+                want.add(frozenset((i, j)))
     assert got == want
-    assert np.all(np.diff(pairs[:, 0]) >= 0)                        # in the order of i
     gap = np.stack([(x[:nlocal] - p[:3]) @ p[3:] for p in planes], axis=1)
     want_w = {(i, w, 0) for i in range(nlocal) for w in range(2) if gap[i, w] < radius[i] + skin}
     assert {(int(i), int(w), int(e)) for i, w, e in wall_pairs} == want_w     # (a plane: one element, 0)
