@@ -84,12 +84,10 @@ N_BOX = 7
 
 
 @njit(inline="always", cache=True)
-def _release(keys, H, i, r):
-    """Free slot r of atom i: key and history zeroed."""
+def _release(keys, i, r):
+    """Free slot r of atom i: its key zeroed (taking a slot zeroes its row: an atom from another rank brings only
+    its filled rows)."""
     keys[i, r] = 0.0
-    row = i * keys.shape[1] + r
-    for q in range(H.shape[1]):
-        H[row, q] = 0.0
 
 
 def _find_row(keys, i, key):
@@ -225,7 +223,7 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
                                 gap = W.contact_of(walls, 0, 0, x[i, 0], x[i, 1], x[i, 2], radius[i])[0]
                                 delta_end = min(radius[i] - gap, 0.0)
                             dissipated[i] += PK.ended_work(H, i * slots + s, delta_end)
-                        _release(keys, H, i, s)
+                        _release(keys, i, s)
     if uses_rate(nid):
         # dashpots see the normal velocity predicted at the end of the step (as the impact integrator)
         for k in range(m):
