@@ -1,5 +1,5 @@
 """The cost of a contact update in LAMMPS's Pair section: ``[mpirun -np N] python tests/lammps/plugin_bench.py
-SCENE N STEPS [--tangential LAW] [--energy] [--repeat R]``, run by test_bench_plugin.py (and by hand). Prints one
+SCENE N STEPS [--tangential LAW] [--energy] [--frame-spin] [--record-every K] [--repeat R]``, run by test_bench_plugin.py (and by hand). Prints one
 JSON object (rank 0): per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair
 granular hertz/material + mindlin) the Pair section's time, averaged over the ranks, of STEPS steps after a warm-up
 run (the fastest of R runs, the engines taking turns), the sphere-sphere contacts, and ns_per_update: the Pair
@@ -79,8 +79,13 @@ def run(engine, args, log):
         t = pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential)
         path = table_file.save(t, os.path.join(args.dir, f"bench_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
-        lmp.command(f"pair_style dem/contact vmax 1.0 frame_spin no energy {'yes' if args.energy else 'no'}")
+        lmp.command(f"pair_style dem/contact vmax 1.0 frame_spin {'yes' if args.frame_spin else 'no'} "
+                    f"energy {'yes' if args.energy else 'no'}")
         lmp.command(f"pair_coeff * * {path}")
+        if args.record_every:
+            # (every contact's row written out at those steps: a dump local of compute dem/contact/local)
+            lmp.command("compute contacts all dem/contact/local")
+            lmp.command(f"dump rows all local {args.record_every} {os.devnull} c_contacts[1] c_contacts[12]")
     lmp.command(f"run {20 if args.scene == 'pack' else 500}")       # (not timed: the contacts of the pour form)
     lmp.command(f"run {args.steps}")
     contacts = count_contacts(lmp)
@@ -129,6 +134,10 @@ def main():
     p.add_argument("--tangential", default="mindlin_total")
     p.add_argument("--engines", default="native,plugin")
     p.add_argument("--energy", action="store_true", help="the plugin accounts the work of the contact forces")
+    p.add_argument("--frame-spin", action="store_true", help="the plugin's frame_spin yes (the tangential history "
+                   "turns with the contact, LammpsContacts' default; else no, as LAMMPS's granular models)")
+    p.add_argument("--record-every", type=int, default=0, metavar="K",
+                   help="the plugin records the contacts every K steps (a dump local of compute dem/contact/local)")
     p.add_argument("--dir", default=tempfile.gettempdir())
     p.add_argument("--repeat", type=int, default=1, help="runs of each engine, taking turns; the fastest counts")
     args = p.parse_args()
