@@ -517,6 +517,8 @@ _TANGENTIAL_NAMES = ", ".join(f"{i} {name}" for i, name in enumerate(TANGENTIAL_
 _TWIST_NAMES = ", ".join(f"{i} {m.NAME}" for i, m in enumerate(table.FAMILIES["twist"]))
 _ROLLING_NAMES = ", ".join(f"{i} {m.NAME}" for i, m in enumerate(table.FAMILIES["rolling"]))
 UNIT_TOL = 1e-6
+#: the largest turn of a contact in one step that ``check_contacts`` takes [rad]
+MAX_TURN = 1.0
 
 
 def _law_id(name, value, valid, names):
@@ -660,14 +662,20 @@ def _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities,
     return nid, tid
 
 
+def _length(v):
+    """The lengths of the rows of v float64[n, 3] (without overflowing their squares)."""
+    return np.hypot(np.hypot(v[:, 0], v[:, 1]), v[:, 2])
+
+
 def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces=None,
                    tforces=None, history_rows=None, *, spins=None, torques=None):
     """Check the arguments of ``contact_forces_batch`` / ``contact_forces_serial`` (and so of every
     ``contact_force`` call that uses the same arrays): law ids, a table built for them, dtypes, shapes,
     C-contiguity, writeable H (and forces, tforces), row indices in range (``history_rows`` distinct rows
     of H), history rows long enough for the laws, spins and torques given for the table's twist and
-    rolling laws, unit normals (within 1e-6), dt > 0, finite inputs and
-    overlaps below the pair's R*.
+    rolling laws, unit normals (within 1e-6), dt > 0, finite inputs,
+    overlaps and the distance the bodies move in one step (|v| dt) below the pair's R*, and turns in one step
+    (|wn| dt, |spins| dt) below MAX_TURN.
     Raises ``InputError`` naming the first bad array and contact. Call it once per set of arrays (and
     again when they are reallocated); the jitted kernels themselves do not check."""
     _check_layout(nid, tid, params, pair_rows, H, normals, overlaps, velocities, wn, dt, forces, tforces,
@@ -688,9 +696,22 @@ def check_contacts(nid, tid, params, pair_rows, H, normals, overlaps, velocities
                lambda c: f"= {overlaps[c]:.6g} m is not below the pair's effective radius R* = {r_star[c]:.6g} m "
                          f"(the contact laws hold for overlaps far below it)")
     _first_bad("velocities", ~np.all(np.isfinite(velocities), axis=1), lambda c: "is not finite")
+    # (a step that moves the bodies by more than R*, or turns them by a radian or more, resolves nothing of the
+    # contact; beyond it the squares of the slip overflow, and the laws return no friction at all)
+    moved = dt * _length(velocities)
+    _first_bad("velocities", ~(moved < r_star),
+               lambda c: f"moves the bodies {moved[c]:.6g} m in one step (|v| dt), not below the pair's effective "
+                         f"radius R* = {r_star[c]:.6g} m: a time step too long for this speed")
     _first_bad("wn", ~np.isfinite(wn), lambda c: "is not finite")
+    _first_bad("wn", ~(np.abs(wn) * dt < MAX_TURN),
+               lambda c: f"turns the contact frame by {abs(wn[c]) * dt:.6g} rad in one step (|wn| dt), not below "
+                         f"{MAX_TURN:g} rad: a time step too long for this spin")
     if spins is not None:
         _first_bad("spins", ~np.all(np.isfinite(spins), axis=1), lambda c: "is not finite")
+        turned = dt * _length(spins)
+        _first_bad("spins", ~(turned < MAX_TURN),
+                   lambda c: f"turns the bodies by {turned[c]:.6g} rad against each other in one step (|w| dt), not "
+                             f"below {MAX_TURN:g} rad: a time step too long for this spin")
 
 
 @njit(boundscheck=True, **JIT)

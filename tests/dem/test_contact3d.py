@@ -580,6 +580,8 @@ def test_checked_entry_refuses_what_would_corrupt_memory_or_results(debug):
     long_n = args["normals"].copy()
     long_n[1] *= 2.0
     bad_rows = np.array([0, 5, 0])
+    fast_v = args["velocities"].copy()
+    fast_v[0] = (1e300, 0.0, 0.0)
     cases = [
         (dict(H=new_histories(1, tab.history_size)), r"^H must have shape"),          # one row, 3 contacts
         (dict(H=new_histories(3, 3)), r"^H has rows of length 3"),
@@ -595,6 +597,9 @@ def test_checked_entry_refuses_what_would_corrupt_memory_or_results(debug):
         (dict(velocities=nan_v), r"^velocities\[2\] is not finite"),
         (dict(overlaps=np.array([1e-6, np.inf, 1e-6])), r"^overlaps\[1\] is not finite"),
         (dict(wn=np.array([0.0, 0.0, np.nan])), r"^wn\[2\] is not finite"),
+        # (before: a slip of 1e294 m in the step overflowed its square and gave no friction, without a word)
+        (dict(velocities=fast_v), r"^velocities\[0\] moves the bodies 1e\+293 m in one step"),
+        (dict(wn=np.array([0.0, 1e300, 0.0])), r"^wn\[1\] turns the contact frame by 1e\+293 rad"),
         (dict(pair_rows=np.zeros(3, dtype=np.int32)), r"^pair_rows must have dtype int64"),
         (dict(normals=np.asfortranarray(args["normals"])), r"^normals must be C-contiguous"),
         (dict(forces=np.zeros((3, 2))), r"^forces must have shape"),

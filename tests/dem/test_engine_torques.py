@@ -166,7 +166,8 @@ def test_engine_model_settings_are_checked():
 @pytest.mark.parametrize("laws, law", [(DERESIEWICZ, "twist law deresiewicz"), (ROLLING, "rolling law sds")])
 def test_a_torque_law_needs_spins_and_torques(laws, law):
     """Without spins a twist or rolling law never acts, without torques its moment is lost: every checked
-    batch entry refuses the table (InputError naming the argument and the law) and writes nothing."""
+    batch entry refuses the table (InputError naming the argument and the law) and writes nothing; nor do spins
+    that turn the bodies a radian in one step."""
     tab = _table(**laws)
     one = lambda x: np.ascontiguousarray(np.asarray(x, dtype=float).reshape(1, 3))
     H = new_histories(1, tab.history_size)
@@ -179,3 +180,6 @@ def test_a_torque_law_needs_spins_and_torques(laws, law):
             with pytest.raises(InputError, match=rf"^{name} is required: params\[0\] has the {law}"):
                 entry(*args, **kw)
     assert not H.any() and not f.any()
+    # spins that turn the bodies by 1 rad or more in a step are refused where the values are checked
+    with pytest.raises(InputError, match=r"^spins\[0\] turns the bodies by 1\.5 rad against each other in one step"):
+        contact_forces(*args, spins=one([0.0, 0.0, 1.5e7]), torques=np.zeros((1, 3)))
