@@ -223,8 +223,8 @@ class LammpsContacts:
 
     def contacts(self) -> dict:
         """The contacts of this MPI rank at the last step or set-up (``run(0)``) of the last run (every rank calls
-        it: the compute's checks are collective), each once over the ranks: a sphere pair is reported by the rank that owns its atom of
-        lower id (body 1), a wall contact by the rank of its atom (compute dem/contact/local). A dict of numpy
+        it: the compute's checks are collective), each once over the ranks: a sphere pair is reported by the rank that owned its atom of
+        lower id (body 1) at that step, a wall contact by the rank of its atom then (compute dem/contact/local). A dict of numpy
         arrays, one entry per contact (k):
 
         ``id1`` int64[k] atom id of body 1 (the lower id of a pair; the sphere of a wall contact); ``id2`` int64[k]
@@ -304,8 +304,9 @@ class LammpsContacts:
         return len(rows)
 
     def stats(self) -> dict:
-        """Global contact counts and the largest overlap at the last step of the last run (collective; the global
-        vector of compute dem/contact/local): pair_contacts, wall_contacts, contacts, max_overlap [m]."""
+        """Global contact counts and the largest overlap at the last step or set-up (``run(0)``) of the last run
+        (collective; the global vector of compute dem/contact/local): pair_contacts, wall_contacts, contacts,
+        max_overlap [m]."""
         from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
         self._attached()
         try:

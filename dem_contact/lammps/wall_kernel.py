@@ -47,7 +47,7 @@ from . import contact_terms as T
 from . import pair_kernel as PK
 
 #: the layout version of ``WallAttach`` (the plugin refuses another)
-ABI = 5
+ABI = 6
 
 #: what the fix asks of a step (its flags argument, bits): advance the histories (not a run's set-up), save
 #: the atoms' wall forces with their state (a run's last step), reapply the saved forces of the atoms whose
@@ -66,8 +66,7 @@ SF_F, SF_T, SF_X, SF_V, SF_W, SF_R, SF_M, SF_STEP, SF_ID, N_SAVED = 0, 3, 6, 9, 
 #: centre 3 [N m], power given to the spheres [W]), the number of contacts, of contacts whose force is not
 #: finite, the local index + 1 of an atom with more contacts than rows, of an atom whose centre is behind an
 #: unbounded wall, the largest normal speed a contact began at above v_max [m/s], the fewest steps per
-#: contact time at it and the local index + 1 of its atom, the number of atoms given their saved forces again
-#: (REAPPLY)
+#: contact time at it and the local index + 1 of its atom
 R_LOAD = 0
 R_CONTACTS = 7
 R_BAD = 8
@@ -76,8 +75,7 @@ R_BEHIND = 10
 R_FAST_V = 11
 R_FAST_STEPS = 12
 R_FAST_ATOM = 13
-R_REAPPLIED = 14
-N_REPORT = 15
+N_REPORT = 14
 
 #: the box facts a step takes (float64[N_BOX]): the periods (3), whether periodic (3), v_max [m/s]
 N_BOX = 7
@@ -277,7 +275,6 @@ def _wall_step(nlocal, x, v, omega, radius, rmass, typ, mask, groupbit, walls, t
         if reapply and _unchanged(saved, i, x, v, omega, radius, rmass, step_no, box):
             for d in range(6):
                 acc[i, d] = saved[i, d]
-            report[R_REAPPLIED] += 1.0
         finite = True
         for d in range(6):
             finite = finite and math.isfinite(acc[i, d])

@@ -476,6 +476,51 @@ def test_contacts_at_the_steps_a_dump_reads(tmp_path):
                           "max_overlap": float(last["overlap"].max())}
 
 
+def test_contacts_at_the_set_ups_of_runs_that_go_on_in_a_sorted_periodic_pack():
+    """A set-up that gives the atoms the last step's forces again keeps that step's contacts, named by their atoms'
+    ids: LAMMPS sorts the atoms and builds the ghosts anew at every set-up, which moved them in memory (before:
+    thermo reading the compute over consecutive runs stopped at the second run's set-up, "atoms were added,
+    removed or moved", and a wall's kept rows named the atoms by their old indices). A periodic pack of 125
+    spheres 1% closer than touching, with a floor under it and random velocities, sorted every step: at the
+    set-ups of runs that go on, contacts() gives the last step's rows, and each row's overlap is the one of its
+    atoms' positions (minimum image over the periodic x and y; the floor's for a wall row)."""
+    k, s = 5, 2e-3 * 0.99
+    L = k * s
+    lmp = new_lammps()
+    for c in ("units si", "atom_style sphere", "boundary p p f", "atom_modify map array sort 1 0.0",
+              f"region box block 0 {L!r} 0 {L!r} {-0.5 * s!r} {L!r}", "create_box 1 box", f"lattice sc {s!r}",
+              f"region fill block 0 {L!r} 0 {L!r} 0 {L - 0.1 * s!r} units box", "create_atoms 1 region fill",
+              f"set type 1 diameter {2e-3!r}", f"set type 1 density {GLASS.rho!r}", "timestep 1e-6",
+              "fix nve all nve/sphere", "velocity all create 1e-12 4928 loop geom"):
+        lmp.command(c)
+    n = lmp.extract_setting("nlocal")
+    lmp.numpy.extract_atom("v")[:n] = np.random.default_rng(3).normal(0.0, 0.02, (n, 3))
+    z_floor = -0.99e-3                                            # 10 um into the bottom layer
+    lc = LammpsContacts(lmp, _table(), [PlaneWall((0.0, 0.0, z_floor), (0.0, 0.0, 1.0))], v_max=1.0)
+    lmp.command("thermo_style custom step c_dc_local[1] c_dc_local[2] c_dc_local[3]")
+    lmp.command("thermo 10")
+    lc.run(20)
+    lc.run(20)
+    last = lc.contacts()
+    lc.run(0)
+    again = lc.contacts()
+    for key in ("id1", "id2", "wall", "overlap", "force", "tangential_force"):
+        assert np.array_equal(again[key], last[key]), key
+    assert np.count_nonzero(again["wall"] < 0) == 3 * k * k * (k - 1) + 2 * k * k    # (x, y periodic, z not)
+    assert np.count_nonzero(again["wall"] == 0) == k * k
+    ids = lmp.numpy.extract_atom("id")[:n]
+    x = dict(zip(ids.tolist(), lmp.numpy.extract_atom("x")[:n].copy()))
+    for id1, id2, wall, overlap in zip(again["id1"], again["id2"], again["wall"], again["overlap"]):
+        if wall >= 0:
+            expected = 1e-3 - (x[id1][2] - z_floor)
+        else:
+            d = x[id2] - x[id1]
+            d[:2] -= L * np.round(d[:2] / L)
+            expected = 2e-3 - np.linalg.norm(d)
+        assert overlap == pytest.approx(expected, rel=1e-9)
+    lc.run(5)
+
+
 def test_the_torque_column_is_the_twist_and_rolling_laws_torque():
     """contacts()' torque (the compute's tx ty tz) is the torque of the twist and rolling laws on atom id1: for two
     spheres alone, spinning against each other, the atom's whole torque less the moment of the tangential force

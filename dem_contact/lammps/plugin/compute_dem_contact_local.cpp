@@ -66,15 +66,7 @@ std::vector<FixDemContactWall *> ComputeDemContactLocal::current(PairDemContact 
                "computes none: run 1 first), its last step, and the steps a dump, thermo or fix invokes this compute "
                "at; read it at those steps (a variable or Python reading it at other steps of a run cannot)",
                update->ntimestep);
-  // (the contacts name their atoms by index: the atoms of that step, in the same places)
-  int moved = pair->atoms_key != pair->atoms_now(), any = 0;
-  MPI_Allreduce(&moved, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR,
-               "compute dem/contact/local: atoms were added, removed or moved in memory or between ranks since step "
-               "{}, whose contacts the pair style has: use it at the steps of a run (run 1 first)",
-               update->ntimestep);
-  // the pair style's contacts (a pair: reported by the rank that owns atom a), then each wall's
+  // the pair style's contacts (a pair: reported by the rank that owned its atom id1 then), then each wall's
   std::vector<FixDemContactWall *> walls;
   for (auto f : modify->get_fix_by_style("^dem/contact/wall$")) {
     auto w = dynamic_cast<FixDemContactWall *>(f);
@@ -93,11 +85,10 @@ void ComputeDemContactLocal::compute_vector()
   invoked_vector = update->ntimestep;
   PairDemContact *pair;
   const std::vector<FixDemContactWall *> walls = current(pair);
-  const int nlocal = atom->nlocal;
   double mine[2] = {0.0, 0.0}, all[2], deepest = 0.0;
-  const int64_t *ab = pair->contact_atoms();
+  const tagint *ids = pair->contact_ids();
   for (int64_t k = 0; k < pair->contact_count(); k++)
-    if (ab[2 * k] < nlocal) {
+    if (ids[3 * k + 2]) {
       mine[0] += 1.0;
       deepest = std::max(deepest, pair->contact_values()[PairDemContact::N_OUT * k + PairDemContact::OUT_DELTA]);
     }
@@ -117,12 +108,11 @@ void ComputeDemContactLocal::compute_local()
   invoked_local = update->ntimestep;
   PairDemContact *pair;
   const std::vector<FixDemContactWall *> walls = current(pair);
-  const int nlocal = atom->nlocal;
   const int64_t n = pair->contact_count();
-  const int64_t *ab = pair->contact_atoms();
+  const tagint *ids = pair->contact_ids();
   int m = 0;
   for (int64_t k = 0; k < n; k++)
-    if (ab[2 * k] < nlocal) m++;
+    if (ids[3 * k + 2]) m++;
   for (auto w : walls) m += (int) w->contact_count();
   if (m > nmax) {
     memory->destroy(rows);
@@ -132,16 +122,13 @@ void ComputeDemContactLocal::compute_local()
   }
   size_local_rows = m;
   m = 0;
-  tagint *tag = atom->tag;
-  for (int64_t k = 0; k < n; k++) {
-    const int a = (int) ab[2 * k], b = (int) ab[2 * k + 1];
-    if (a >= nlocal) continue;
-    fill(rows[m++], tag[a], tag[b], 0, pair->contact_values() + PairDemContact::N_OUT * k);
-  }
+  for (int64_t k = 0; k < n; k++)
+    if (ids[3 * k + 2])
+      fill(rows[m++], ids[3 * k], ids[3 * k + 1], 0, pair->contact_values() + PairDemContact::N_OUT * k);
   for (size_t w = 0; w < walls.size(); w++) {
-    const int64_t *atoms = walls[w]->contact_atoms();
+    const tagint *atoms = walls[w]->contact_ids();
     for (int64_t k = 0; k < walls[w]->contact_count(); k++)
-      fill(rows[m++], tag[atoms[k]], 0, (int) w + 1, walls[w]->contact_values() + PairDemContact::N_OUT * k);
+      fill(rows[m++], atoms[k], 0, (int) w + 1, walls[w]->contact_values() + PairDemContact::N_OUT * k);
   }
 }
 

@@ -1,5 +1,5 @@
 /* compute ID all dem/contact/local: the contacts of pair_style dem/contact and of every fix dem/contact/wall at
-   the step, one row each (each contact once over the ranks: a pair by the rank that owns its atom of lower id, a
+   the step, one row each (each contact once over the ranks: a pair by the rank that owned its atom of lower id, a
    wall contact by the rank of its atom), for dump local:
 
      compute ID all dem/contact/local [work]

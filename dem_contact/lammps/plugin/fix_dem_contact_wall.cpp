@@ -31,10 +31,10 @@ typedef int64_t (*WallStepFn)(int64_t nlocal, double *x, double *v, double *omeg
                               double *f, double *torque,
                               double *report, double *out, int64_t *out_atoms, int64_t out_cap);
 // wall_kernel: ABI, the flags of a step, the report's columns, the box facts
-const int ABI = 5;
+const int ABI = 6;
 const int64_t ADVANCE = 1, SAVE = 2, REAPPLY = 4, FRAME_SPIN = 8, ENERGY = 16;
 enum { R_LOAD = 0, R_CONTACTS = 7, R_BAD = 8, R_OVERFLOW = 9, R_BEHIND = 10, R_FAST_V = 11, R_FAST_STEPS = 12,
-       R_FAST_ATOM = 13, R_REAPPLIED = 14, N_REPORT = 15 };
+       R_FAST_ATOM = 13, N_REPORT = 14 };
 // contact_terms.RI_...: columns of the table's per-row information
 const int RI_Q = 1, RI_TC = 2, RI_ALPHA = 3, RI_CURV = 5, N_ROWINFO = 7;
 // as pair dem/contact: the fewest time steps per contact time
@@ -44,7 +44,7 @@ const double MIN_STEPS_PER_CONTACT = 10.0;
 
 FixDemContactWall::FixDemContactWall(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), evaluated_step(-1), history(nullptr), pair(nullptr), load_summed(false),
-    warned_onset(false), keep_out(false), deep_checked(false), n_out(0), clock_offset(0.0), clock_last(0.0),
+    warned_onset(false), deep_checked(false), n_out(0), clock_offset(0.0), clock_last(0.0),
     has_clock(0)
 {
   for (int k = 3; k < narg; k++) words += (k > 3 ? "\n" : "") + std::string(arg[k]);
@@ -131,8 +131,6 @@ void FixDemContactWall::init()
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
     error->all(FLERR, "fix dem/contact/wall needs atoms with radius, per-atom mass, spin and torque: use "
                       "atom_style sphere");
-  // the per-contact output at the steps where a compute reads it
-  keep_out = !modify->get_compute_by_style("^dem/contact/local$").empty();
   check_time_step();
 }
 
@@ -196,12 +194,6 @@ void FixDemContactWall::evaluate(bool setup)
     clock_last = t;
     has_clock = 1;
   }
-  // (a set-up that reapplies the last step's forces keeps that step's contacts, which a compute reads at it)
-  if (setup) {
-    kept_out = out;
-    kept_atoms = out_atoms;
-    kept_n = n_out;
-  }
   n_out = 0;
   // A run's set-up advances nothing (the law works on copies of the histories, with no time passing) and
   // reapplies the forces saved at the last step of the run before to the atoms whose state is unchanged; the
@@ -218,7 +210,7 @@ void FixDemContactWall::evaluate(bool setup)
   // (every contact has one of the atoms' rows; recorded at a set-up, where the contacts' overlaps are checked, a
   // run's last step, which a compute defined between runs reads, and the steps a compute reads them)
   const bool last = !setup && update->ntimestep == update->laststep;
-  const bool record = setup || last || (keep_out && pair->output_due());
+  const bool record = setup || last || pair->output_due();
   const int64_t cap = record ? (int64_t) nlocal * kernel.slots : 0;
   if ((int64_t) out_atoms.size() < cap + 1) {
     out.resize((size_t) PairDemContact::N_OUT * (cap + 1));
@@ -238,18 +230,16 @@ void FixDemContactWall::evaluate(bool setup)
     check_deep();
     deep_checked = true;
   }
-  // the contacts of this step: a run's step, or a set-up that applied the forces it computed to every atom; a
-  // set-up that reapplied the last step's forces to any atom, on any rank, keeps that step's
-  int reapplied = setup && report[R_REAPPLIED] > 0.0, any = 0;
-  if (setup) MPI_Allreduce(&reapplied, &any, 1, MPI_INT, MPI_MAX, world);
-  if (!any) {
-    if (record) evaluated_step = update->ntimestep;
-  } else {
-    out.swap(kept_out);
-    out_atoms.swap(kept_atoms);
-    n_out = kept_n;
-  }
+  // the contacts of this step, recorded by their atoms' ids; a set-up where the pair style gave the atoms the last
+  // step's forces again keeps that step's, as the pair style does
   tagint *tag = atom->tag;
+  if (record && !(setup && pair->kept_last())) {
+    evaluated_step = update->ntimestep;
+    rec_n = n_out;
+    rec_ids.resize(n_out + 1);
+    for (int64_t k = 0; k < n_out; k++) rec_ids[k] = tag[out_atoms[k]];
+    rec_out.assign(out.begin(), out.begin() + PairDemContact::N_OUT * n_out);
+  }
   if (report[R_BEHIND] > 0)
     error->one(FLERR,
                "fix {} dem/contact/wall: the centre of atom {} is behind the wall at step {} (placed there, or it "

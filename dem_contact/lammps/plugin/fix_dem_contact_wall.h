@@ -69,13 +69,13 @@ class FixDemContactWall : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // the wall's contacts of the last step evaluated (a run's step, or a set-up that applied the forces it computed)
-  // where a compute dem/contact/local reads them: the step (-1: none), their number, atoms (local indices) and
-  // rows of PairDemContact::N_OUT values
+  // the wall's contacts recorded where a compute dem/contact/local reads them (the steps of the pair style's
+  // PairDemContact::evaluated_step): the step (-1: none), their number, the ids of their atoms and their rows of
+  // PairDemContact::N_OUT values
   bigint evaluated_step;
-  int64_t contact_count() const { return n_out; }
-  const int64_t *contact_atoms() const { return out_atoms.data(); }
-  const double *contact_values() const { return out.data(); }
+  int64_t contact_count() const { return rec_n; }
+  const tagint *contact_ids() const { return rec_ids.data(); }
+  const double *contact_values() const { return rec_out.data(); }
 
  private:
   DemContactWallAttach kernel;
@@ -85,17 +85,19 @@ class FixDemContactWall : public Fix {
   std::string words, table_path, history_id;
   FixDemContactHistory *history;
   PairDemContact *pair;
-  double report[15], load_all[7];    // (wall_kernel.N_REPORT)
-  bool load_summed, warned_onset, keep_out, deep_checked;
+  double report[14], load_all[7];    // (wall_kernel.N_REPORT)
+  bool load_summed, warned_onset, deep_checked;
   int64_t n_out;
   int energy;      // pair_style dem/contact ... energy yes when the fix was defined
   int row_size;    // the values of a contact row: the law's history (+ N_EXTRA with pair_style ... energy yes)
   std::vector<double> out;
   std::vector<int64_t> out_atoms;
   // (the last step's contacts, kept through a set-up that reapplies its forces)
-  std::vector<double> kept_out;
-  std::vector<int64_t> kept_atoms;
-  int64_t kept_n = 0;
+  // the contacts recorded at evaluated_step: their atoms' ids and rows (kept through a set-up that reapplies the
+  // last step's forces)
+  std::vector<tagint> rec_ids;
+  std::vector<double> rec_out;
+  int64_t rec_n = 0;
   // the wall's clock: LAMMPS's time plus offset (0 when the fix is defined); the clock at the last step evaluated
   // (has_clock)
   double clock_offset, clock_last;

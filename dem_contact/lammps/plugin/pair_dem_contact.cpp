@@ -55,8 +55,8 @@ const double SIZE_TOL = 1e-9;
 
 PairDemContact::PairDemContact(LAMMPS *lmp) :
     Pair(lmp), evaluated_step(-1), vmax(0.0), rmax(0.0), slots(12), frame_spin(1), attached(false),
-    warned_onset(false), sized(false), keep_out(false), deep_checked(false), radii_change(false), energy(0),
-    row_size(0), fix(nullptr), n_contacts(0), cap(0), loaded_nlocal(0)
+    warned_onset(false), sized(false), deep_checked(false), radii_change(false), reapplied(false), energy(0),
+    row_size(0), fix(nullptr), cap(0), loaded_nlocal(0)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -210,7 +210,6 @@ void PairDemContact::init_style()
 
   // the per-contact output at the steps where a compute reads it
   readers = modify->get_compute_by_style("^dem/contact/local$");
-  keep_out = !readers.empty();
   check_atoms();
   check_time_step();
 }
@@ -680,16 +679,6 @@ void PairDemContact::check_ids(int nlocal)
                any);
 }
 
-// the local and ghost atoms' ids in the order of their indices, hashed: what the contacts' atom indices of a step
-// point into (atoms added, removed, or moved in memory or between ranks change it)
-uint64_t PairDemContact::atoms_now() const
-{
-  const int nall = atom->nlocal + atom->nghost;
-  uint64_t h = (uint64_t) atom->nlocal * 1000003u + (uint64_t) nall;
-  for (int i = 0; i < nall; i++) h = h * 6364136223846793005ULL + (uint64_t) atom->tag[i];
-  return h;
-}
-
 void PairDemContact::save_forces(int nlocal)
 {
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
@@ -726,13 +715,9 @@ void PairDemContact::compute(int eflag, int vflag)
   double **f = atom->f, **torque = atom->torque;
   double *special_lj = force->special_lj;
   const bool reapply = setup && reapply_saved();
-  // (a set-up that reapplies the last step's forces keeps that step's contacts, which a compute reads at it: the
-  // set-up's own evaluation is set aside at the end)
-  if (reapply) {
-    kept_pairs = pairs;
-    kept_out = out;
-    kept_n = n_contacts;
-  }
+  // (a set-up that reapplies the last step's forces keeps that step's recorded contacts, which a compute reads at
+  // it)
+  reapplied = reapply;
 
   if (setup) check_ids(nlocal);
   fix->setup_only = setup;
@@ -845,7 +830,6 @@ void PairDemContact::compute(int eflag, int vflag)
 
   if (!setup && fastest > vmax) check_onset(fastest, fastest_a, fastest_b);
 
-  n_contacts = n;
   out.resize((size_t) N_OUT * n + 1);
   double *H = live.data();
   int64_t h_rows = (int64_t) pairing.size();
@@ -875,11 +859,12 @@ void PairDemContact::compute(int eflag, int vflag)
   if (sized && (int64_t) pc.size() < (kernel.n_rows + n) * N_PARAMS) pc.resize((kernel.n_rows + 2 * n + 16) * N_PARAMS);
   // An ordinary step: the kernel adds the forces, torques and global virial to LAMMPS's. A run's set-up (whose
   // forces may be the saved ones), its last step (whose forces are saved), a per-atom virial or energy: the
-  // per-contact output, added here. The contacts are recorded at a set-up, a last step and where a compute
-  // dem/contact/local is invoked (the per-contact output, and the forces added by the kernel).
+  // per-contact output, added here. The contacts are recorded at a set-up (but one that reapplies the last
+  // step's forces keeps that step's), a last step and where a compute dem/contact/local is invoked (the
+  // per-contact output, and the forces added by the kernel).
   const bool last = !setup && update->ntimestep == update->laststep;
   const bool direct = !setup && !last && !vflag_atom && !eflag_atom && !cvflag_atom;
-  const bool record = setup || last || (keep_out && output_due());
+  const bool record = setup || last || output_due();
   int64_t flags = (direct ? SCATTER : WRITE_OUT) | (record ? WRITE_OUT : 0) | (direct && vflag_global ? VIRIAL : 0) |
       (energy ? ENERGY : 0);
   double vsum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -907,12 +892,19 @@ void PairDemContact::compute(int eflag, int vflag)
                "pair dem/contact: {} contact forces are not finite at step {} (an overlap beyond the law's range, "
                "a time step too long for the contacts, or atoms placed inside each other)",
                bad, update->ntimestep);
-  // the contacts of this step, recorded (a set-up that applies the forces it computed, a run's last step, a step
-  // where a compute reads them), and the atoms they point into (a compute defined between runs reads the last
-  // step's)
+  // the contacts of this step, recorded by their atoms' ids (a set-up that applies the forces it computed, a run's
+  // last step, which a compute defined between runs reads, a step where a compute reads them)
   if (record && !reapply) {
     evaluated_step = update->ntimestep;
-    atoms_key = atoms_now();
+    rec_n = n;
+    rec_ids.resize(3 * (size_t) n + 1);
+    for (int64_t k = 0; k < n; k++) {
+      const int64_t a = pairs[2 * k];
+      rec_ids[3 * k] = tag[a];
+      rec_ids[3 * k + 1] = tag[pairs[2 * k + 1]];
+      rec_ids[3 * k + 2] = a < nlocal;
+    }
+    rec_out.assign(out.begin(), out.begin() + N_OUT * n);
   }
   if (setup && !deep_checked) {
     check_deep(n);
@@ -954,12 +946,6 @@ void PairDemContact::compute(int eflag, int vflag)
   }
   // (the forces a next run's set-up reapplies: at a run's last step)
   if (last) save_forces(nlocal);
-  if (reapply) {
-    pairs.swap(kept_pairs);
-    out.swap(kept_out);
-    n_contacts = kept_n;
-    if (pairs.size() < 2 * (size_t) cap) pairs.resize(2 * cap);
-  }
 }
 
 // whether any of the nall atoms (local and ghost) has not its type's radius and mass (to 1e-12, as the kernel)
@@ -978,6 +964,6 @@ double PairDemContact::memory_usage()
   return (double) (entry_row.capacity() + pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
       (double) entry_local.capacity() * sizeof(int) +
       (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity() +
-                kept_out.capacity()) * sizeof(double) +
-      (double) pairing.capacity() * sizeof(Pairing);
+                rec_out.capacity()) * sizeof(double) +
+      (double) pairing.capacity() * sizeof(Pairing) + (double) rec_ids.capacity() * sizeof(tagint);
 }

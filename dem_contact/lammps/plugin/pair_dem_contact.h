@@ -108,12 +108,14 @@ class PairDemContact : public Pair, public RowKeeper {
   // whether a compute dem/contact/local is invoked at this step: one that a dump, thermo or fix invokes (LAMMPS
   // schedules its steps, Compute::matchstep)
   bool output_due() const;
-  int64_t contact_count() const { return n_contacts; }
-  const int64_t *contact_atoms() const { return pairs.data(); }
-  // the atoms' ids by index (hashed) now, and at evaluated_step (where a compute reads the contacts)
-  uint64_t atoms_now() const;
-  uint64_t atoms_key = 0;
-  const double *contact_values() const { return out.data(); }
+  // whether this step is a set-up that gave the atoms the last step's forces again (which keeps that step's
+  // contacts, the wall fixes' too)
+  bool kept_last() const { return reapplied; }
+  // the recorded contacts: their number, per contact the ids of its atoms (body 1 the lower) and whether this
+  // rank owned atom id1 (3 values), and their rows of N_OUT values
+  int64_t contact_count() const { return rec_n; }
+  const tagint *contact_ids() const { return rec_ids.data(); }
+  const double *contact_values() const { return rec_out.data(); }
   // what fix dem/contact/wall takes from the pair style: its table file, vmax and frame_spin
   const std::string &table_file() const { return table_path; }
   double speed_limit() const { return vmax; }
@@ -129,7 +131,7 @@ class PairDemContact : public Pair, public RowKeeper {
 #ifdef DEM_CONTACT_AOT
   DemContactAotTable aot_table;    // (the table file's arrays, read without Python)
 #endif
-  bool attached, warned_onset, sized, keep_out, deep_checked, radii_change;
+  bool attached, warned_onset, sized, deep_checked, radii_change, reapplied;
   int energy, row_size;    // energy yes|no; the values of a contact row: the law's history (+ N_EXTRA)
   FixDemContactHistory *fix;
   std::vector<double> type_rmax;
@@ -155,11 +157,11 @@ class PairDemContact : public Pair, public RowKeeper {
   enum { N_INPUTS = 11 };
   std::vector<int64_t> pairs, hrow, scratch_rows, prow, to;
   std::vector<double> inputs, out, scratch, acc, work, pc;
-  // the last step's contacts, kept through a set-up that reapplies its forces (pairs, out, n_contacts)
-  std::vector<int64_t> kept_pairs;
-  std::vector<double> kept_out;
-  int64_t kept_n = 0;
-  int64_t n_contacts, cap;
+  // the contacts recorded at evaluated_step (kept through a set-up that reapplies the last step's forces)
+  std::vector<tagint> rec_ids;
+  std::vector<double> rec_out;
+  int64_t rec_n = 0;
+  int64_t cap;
   int loaded_nlocal;    // the local atoms when the pool was loaded (store_rows writes theirs)
 
   void allocate();
