@@ -100,8 +100,7 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
     ng = nall - nlocal
     cap = 8 * nlocal + 16
     while True:
-        first = np.empty(cap, dtype=np.int64)
-        second = np.empty(cap, dtype=np.int64)
+        pairs = np.empty((cap, 2), dtype=np.int64)
         m = 0
         for p in range(nlocal):
             i = order[p]
@@ -134,8 +133,8 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
                     rs = (ri + xs[q, 3]) + skin
                     if dx * dx + dy * dy + dz * dz < rs * rs:
                         if m < cap:
-                            first[m] = i
-                            second[m] = order[q]
+                            pairs[m, 0] = i
+                            pairs[m, 1] = order[q]
                         m += 1
             if ng > 0:
                 for ax in range(max(cx - 1, 0), min(cx + 2, d0)):
@@ -150,17 +149,13 @@ def candidates(nlocal, nall, x, radius, tag, walls, rmax, skin):
                             # (a ghost with the atom's own id is its periodic image)
                             if dx * dx + dy * dy + dz * dz < rs * rs and tag[j] != ti:
                                 if m < cap:
-                                    first[m] = i
-                                    second[m] = j
+                                    pairs[m, 0] = i
+                                    pairs[m, 1] = j
                                 m += 1
         if m <= cap:
             break
         cap = m
-    pairs = np.empty((m, 2), dtype=np.int64)
-    for c in range(m):
-        pairs[c, 0] = first[c]
-        pairs[c, 1] = second[c]
-    return pairs, near_elements(nlocal, x, radius, walls, skin)
+    return pairs[:m], near_elements(nlocal, x, radius, walls, skin)
 
 
 @njit(inline="always", cache=True)

