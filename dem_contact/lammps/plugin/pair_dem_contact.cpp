@@ -45,7 +45,7 @@ const int RI_Q = 1, RI_DEEPEST = 4, RI_DEEP_ALPHA = 6, N_ROWINFO = 7;
 const int ABI = 8;       // pair_kernel.ABI
 const char *FIX_ID = "DEM_CONTACT_HISTORY";
 // entry_row of a periodic twin's entry that is not evaluated (pair_dem_contact.h)
-const int64_t TWIN = -2;
+const int32_t TWIN = -2;
 // the time step must give at least this many steps per elastic contact time of the stiffest pair
 const double MIN_STEPS_PER_CONTACT = 10.0;
 // tolerance on an atom's radius and mass against its type's (relative)
@@ -418,28 +418,30 @@ int PairDemContact::row_of(int i, double key) const
 // a row of the pool for a contact of atoms i (local) and j (j_local: j, or the local atom a ghost j is the
 // image of, or -1) that begins or is read from the atoms' rows: a free one, else a new one (the pool may move:
 // rows are addressed by their index)
-int64_t PairDemContact::take_row(int i, int j, int j_local)
+int32_t PairDemContact::take_row(int i, int j, int j_local)
 {
-  int64_t r;
+  int32_t r;
   if (!free_rows.empty()) {
     r = free_rows.back();
     free_rows.pop_back();
   } else {
-    r = (int64_t) pairing.size();
+    if (pairing.size() >= (size_t) INT32_MAX)
+      error->one(FLERR, "pair dem/contact: more than {} contacts on one rank: run on more ranks", INT32_MAX);
+    r = (int32_t) pairing.size();
     pairing.emplace_back();
     if (live.size() < pairing.size() * row_size) live.resize(2 * pairing.size() * row_size + 64 * row_size);
   }
-  std::memset(live.data() + r * row_size, 0, sizeof(double) * row_size);
+  std::memset(live.data() + (size_t) r * row_size, 0, sizeof(double) * row_size);
   pairing[r] = {i, j_local, atom->tag[i], atom->tag[j]};
   return r;
 }
 
 // the contact of pool row r ended at overlap delta_end (a gap, <= 0): the energy it dissipated given half to
 // each of its local atoms (the rank of a partner that is a ghost here gives it the other half), the row freed
-void PairDemContact::end_row(int64_t r, double delta_end)
+void PairDemContact::end_row(int32_t r, double delta_end)
 {
   if (energy) {
-    const double half = 0.5 * ended_work(live.data() + r * row_size, row_size, delta_end);
+    const double half = 0.5 * ended_work(live.data() + (size_t) r * row_size, row_size, delta_end);
     fix->dissipated[pairing[r].i] += half;
     if (pairing[r].j >= 0) fix->dissipated[pairing[r].j] += half;
   }
@@ -504,8 +506,8 @@ void PairDemContact::load_rows()
         const int t = row_of(other, (double) tag[owner]);
         if (t >= 0) claimed[(size_t) other * slots + t] = 1;
       }
-      const int64_t r = take_row(i, j, jl);
-      std::memcpy(live.data() + r * row_size, fix->hist + ((size_t) owner * slots + s) * row_size,
+      const int32_t r = take_row(i, j, jl);
+      std::memcpy(live.data() + (size_t) r * row_size, fix->hist + ((size_t) owner * slots + s) * row_size,
                   sizeof(double) * row_size);
       entry_row[e] = r;
     }
@@ -704,6 +706,42 @@ bool PairDemContact::output_due() const
   return false;
 }
 
+// The entries of LAMMPS's half list whose pairs touch (tc[0, returned)), and those of contacts that ended, whose
+// pairs are apart now (tc[q, entries), q set, in the list's reverse order): a lean pass, as most entries of a
+// loose scene are apart (x0: the positions, one block of 3 per atom, as LAMMPS keeps them; a function of its own,
+// whose few values stay in registers)
+__attribute__((noinline)) int64_t PairDemContact::find_touching(int inum, const int *ilist, const int *numneigh, int *const *firstneigh,
+                                      const int64_t *entry_start, const int32_t *entry_row, const double *x0,
+                                      const double *radius, const double *special_lj, Touch *tc, int64_t &q)
+{
+  int64_t m = 0;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    const int64_t e0 = entry_start[ii];
+    const int32_t *at = entry_row + e0;
+    const double xi = x0[3 * i], yi = x0[3 * i + 1], zi = x0[3 * i + 2], ri = radius[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int32_t e = at[jj];
+      if (e == TWIN) continue;    // (its twin entry evaluates the pair)
+      int j = jlist[jj];
+      if (j & ~NEIGHMASK) {
+        if (special_lj[j >> SBBITS & 3] == 0.0) continue;    // excluded pairs (special_bonds lj 0), as pair granular
+        j &= NEIGHMASK;
+      }
+      const double dx = x0[3 * j] - xi, dy = x0[3 * j + 1] - yi, dz = x0[3 * j + 2] - zi;
+      const double rs = ri + radius[j], r2 = dx * dx + dy * dy + dz * dz;
+      // (written whether the pair touches or not, kept where it does: no branch to mispredict)
+      const int touch = r2 < rs * rs;
+      tc[m] = {i, j, e0 + jj};
+      m += touch;
+      if ((e >= 0) & !touch) tc[--q] = {i, j, e0 + jj};
+    }
+  }
+  return m;
+}
+
 void PairDemContact::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -740,8 +778,8 @@ void PairDemContact::compute(int eflag, int vflag)
     prow.resize(cap);
     inputs.resize(N_INPUTS * cap);
   }
-  int64_t *pair_at = pairs.data(), *to_at = to.data(), *row_at = hrow.data(), *entry_at = entry_row.data(),
-          *prow_at = prow.data();
+  int64_t *pair_at = pairs.data(), *to_at = to.data(), *row_at = hrow.data(), *prow_at = prow.data();
+  int32_t *entry_at = entry_row.data();
   // the law's inputs, blocks of cap contacts: normals, slip velocities and relative spins (3 each), overlaps,
   // spins of the contact frame about the normal
   double *normals = inputs.data(), *velocities = normals + 3 * cap, *spins = velocities + 3 * cap;
@@ -750,77 +788,75 @@ void PairDemContact::compute(int eflag, int vflag)
   const int *type = atom->type;
   const int64_t ntypes = kernel.n_types;
   const bool turning = kernel.turning != 0;
+  // The pairs that touch, and the entries of contacts that ended
+  if ((int64_t) touching.size() < entries + 1) touching.resize(entries + entries / 4 + 16);
+  Touch *tc = touching.data();
+  int64_t q = entries;
+  const double *x0 = inum ? x[0] : nullptr;    // (LAMMPS keeps the positions in one block, 3 per atom)
+  const int64_t m = find_touching(inum, ilist, numneigh, firstneigh, entry_start.data(), entry_at, x0, radius,
+                                  special_lj, tc, q);
+  // (contacts that ended, in the list's order: their energy accounted at the gap now)
+  for (int64_t k = entries - 1; k >= q; k--) {
+    const int i = tc[k].i, j = tc[k].j;
+    const double dx = x0[3 * j] - x0[3 * i], dy = x0[3 * j + 1] - x0[3 * i + 1], dz = x0[3 * j + 2] - x0[3 * i + 2];
+    end_row(entry_at[tc[k].e], radius[i] + radius[j] - std::sqrt(dx * dx + dy * dy + dz * dz));
+    entry_at[tc[k].e] = -1;
+  }
   int64_t n = 0;
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    int64_t *at = entry_at + entry_start[ii];
-    const int *loc = entry_local.data() + entry_start[ii];
-    for (int jj = 0; jj < jnum; jj++) {
-      if (at[jj] == TWIN) continue;    // (its twin entry evaluates the pair)
-      int j = jlist[jj];
-      if (special_lj[sbmask(j)] == 0.0) continue;    // excluded pairs (special_bonds lj 0), as pair granular
-      j &= NEIGHMASK;
-      const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-      const double rs = radius[i] + radius[j], r2 = dx * dx + dy * dy + dz * dz;
-      if (r2 >= rs * rs) {
-        // (a contact that ended: its energy accounted at the gap now)
-        if (at[jj] >= 0) {
-          end_row(at[jj], rs - std::sqrt(r2));
-          at[jj] = -1;
-        }
-        continue;
-      }
-      if (tag[i] == tag[j]) {
-        self_image = tag[i];
-        continue;
-      }
-      const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
-      if (at[jj] < 0) {
-        at[jj] = take_row(i, j, j < nlocal ? j : loc[jj]);
-        // the normal speed a contact begins at (approach > 0)
-        const double vn =
-            ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / std::sqrt(r2);
-        if (vn > fastest) {
-          fastest = vn;
-          fastest_a = a;
-          fastest_b = b;
-        }
-      }
-      pair_at[2 * n] = a;
-      pair_at[2 * n + 1] = b;
-      // (the local atoms that take the forces: a ghost's none, or for a periodic twin the atom it is the image of)
-      to_at[2 * n] = a < nlocal ? a : loc[jj];
-      to_at[2 * n + 1] = b < nlocal ? b : loc[jj];
-      row_at[n] = at[jj];
-      prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
-      // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full
-      // radii v = v_a - v_b + (R_a w_a + R_b w_b) x n, the relative spin w_a - w_b, and the mean spin of the two
-      // bodies about the normal (frame_spin no: 0)
-      // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
-      // for 0; the same r2)
-      const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;
-      const double r = std::sqrt(r2), rinv = 1.0 / r;
-      const double nx = ex * rinv, ny = ey * rinv, nz = ez * rinv;
-      const double ra = radius[a], rb = radius[b];
-      const double wx = ra * omega[a][0] + rb * omega[b][0], wy = ra * omega[a][1] + rb * omega[b][1],
-                   wz = ra * omega[a][2] + rb * omega[b][2];
-      double *nk = normals + 3 * n, *vk = velocities + 3 * n;
-      nk[0] = nx;
-      nk[1] = ny;
-      nk[2] = nz;
-      overlaps[n] = (ra + rb) - r;
-      vk[0] = v[a][0] - v[b][0] + (wy * nz - wz * ny);
-      vk[1] = v[a][1] - v[b][1] + (wz * nx - wx * nz);
-      vk[2] = v[a][2] - v[b][2] + (wx * ny - wy * nx);
-      if (turning)
-        for (int d = 0; d < 3; d++) spins[3 * n + d] = omega[a][d] - omega[b][d];
-      wn[n] = frame_spin ? 0.5 * ((omega[a][0] + omega[b][0]) * nx + (omega[a][1] + omega[b][1]) * ny +
-                                  (omega[a][2] + omega[b][2]) * nz)
-                         : 0.0;
-      n++;
+  for (int64_t k = 0; k < m; k++) {
+    const int i = tc[k].i, j = tc[k].j;
+    int32_t &row = entry_at[tc[k].e];
+    const int jl = j < nlocal ? j : entry_local[tc[k].e];    // (the local atom of j: itself, a twin's or -1)
+    const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (tag[i] == tag[j]) {
+      self_image = tag[i];
+      continue;
     }
+    const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
+    if (row < 0) {
+      row = take_row(i, j, jl);
+      // the normal speed a contact begins at (approach > 0)
+      const double vn =
+          ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / std::sqrt(r2);
+      if (vn > fastest) {
+        fastest = vn;
+        fastest_a = a;
+        fastest_b = b;
+      }
+    }
+    pair_at[2 * n] = a;
+    pair_at[2 * n + 1] = b;
+    // (the local atoms that take the forces: a ghost's none, or for a periodic twin the atom it is the image of)
+    to_at[2 * n] = a < nlocal ? a : jl;
+    to_at[2 * n + 1] = b < nlocal ? b : jl;
+    row_at[n] = row;
+    prow_at[n] = kernel.sphere_row[(type[a] - 1) * ntypes + type[b] - 1];
+    // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full
+    // radii v = v_a - v_b + (R_a w_a + R_b w_b) x n, the relative spin w_a - w_b, and the mean spin of the two
+    // bodies about the normal (frame_spin no: 0)
+    // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
+    // for 0; the same r2)
+    const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;
+    const double r = std::sqrt(r2), rinv = 1.0 / r;
+    const double nx = ex * rinv, ny = ey * rinv, nz = ez * rinv;
+    const double ra = radius[a], rb = radius[b];
+    const double wx = ra * omega[a][0] + rb * omega[b][0], wy = ra * omega[a][1] + rb * omega[b][1],
+                 wz = ra * omega[a][2] + rb * omega[b][2];
+    double *nk = normals + 3 * n, *vk = velocities + 3 * n;
+    nk[0] = nx;
+    nk[1] = ny;
+    nk[2] = nz;
+    overlaps[n] = (ra + rb) - r;
+    vk[0] = v[a][0] - v[b][0] + (wy * nz - wz * ny);
+    vk[1] = v[a][1] - v[b][1] + (wz * nx - wx * nz);
+    vk[2] = v[a][2] - v[b][2] + (wx * ny - wy * nx);
+    if (turning)
+      for (int d = 0; d < 3; d++) spins[3 * n + d] = omega[a][d] - omega[b][d];
+    wn[n] = frame_spin ? 0.5 * ((omega[a][0] + omega[b][0]) * nx + (omega[a][1] + omega[b][1]) * ny +
+                                (omega[a][2] + omega[b][2]) * nz)
+                       : 0.0;
+    n++;
   }
   if (self_image)
     error->one(FLERR,
@@ -961,7 +997,7 @@ bool PairDemContact::any_resized(int nall)
 
 double PairDemContact::memory_usage()
 {
-  return (double) (entry_row.capacity() + pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
+  return (double) (entry_row.capacity() / 2 + pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
       (double) entry_local.capacity() * sizeof(int) +
       (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity() +
                 rec_out.capacity()) * sizeof(double) +

@@ -149,13 +149,19 @@ class PairDemContact : public Pair, public RowKeeper {
   };
   std::vector<double> live;
   std::vector<Pairing> pairing;
-  std::vector<int64_t> entry_start, entry_row, free_rows;
+  std::vector<int64_t> entry_start;
+  std::vector<int32_t> entry_row, free_rows;
   std::vector<int> entry_local;
   std::vector<char> claimed;
   std::vector<int> fill;
   // the step's contacts (room for cap): atoms, pool rows, parameter rows, and the law's inputs (N_INPUTS blocks)
   enum { N_INPUTS = 11 };
   std::vector<int64_t> pairs, hrow, scratch_rows, prow, to;
+  struct Touch {    // a list entry whose pair touches: its atoms and the entry's index
+    int i, j;
+    int64_t e;
+  };
+  std::vector<Touch> touching;
   std::vector<double> inputs, out, scratch, acc, work, pc;
   // the contacts recorded at evaluated_step (kept through a set-up that reapplies the last step's forces)
   std::vector<tagint> rec_ids;
@@ -169,9 +175,12 @@ class PairDemContact : public Pair, public RowKeeper {
   void check_atoms();
   void check_time_step();
   int row_of(int i, double key) const;
-  int64_t take_row(int i, int j, int j_local);
+  int32_t take_row(int i, int j, int j_local);
   void find_twins(int nlocal, int nall);
-  void end_row(int64_t r, double delta_end);
+  static int64_t find_touching(int inum, const int *ilist, const int *numneigh, int *const *firstneigh,
+                               const int64_t *entry_start, const int32_t *entry_row, const double *x0,
+                               const double *radius, const double *special_lj, Touch *tc, int64_t &q);
+  void end_row(int32_t r, double delta_end);
   void load_rows();
   double contact_time(int a, int b, double vn);
   void check_onset(double vn, int a, int b);
