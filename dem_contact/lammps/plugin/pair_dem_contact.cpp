@@ -807,18 +807,19 @@ void PairDemContact::compute(int eflag, int vflag)
     const int i = tc[k].i, j = tc[k].j;
     int32_t &row = entry_at[tc[k].e];
     const int jl = j < nlocal ? j : entry_local[tc[k].e];    // (the local atom of j: itself, a twin's or -1)
-    const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
-    const double r2 = dx * dx + dy * dy + dz * dz;
     if (tag[i] == tag[j]) {
       self_image = tag[i];
       continue;
     }
     const int a = tag[i] < tag[j] ? i : j, b = tag[i] < tag[j] ? j : i;
+    // (x_b - x_a, from the atoms in their canonical order: no branch on which of i, j is body 1)
+    const double ex = x[b][0] - x[a][0], ey = x[b][1] - x[a][1], ez = x[b][2] - x[a][2];
+    const double r2 = ex * ex + ey * ey + ez * ez;
     if (row < 0) {
       row = take_row(i, j, jl);
       // the normal speed a contact begins at (approach > 0)
       const double vn =
-          ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz) / std::sqrt(r2);
+          ((v[a][0] - v[b][0]) * ex + (v[a][1] - v[b][1]) * ey + (v[a][2] - v[b][2]) * ez) / std::sqrt(r2);
       if (vn > fastest) {
         fastest = vn;
         fastest_a = a;
@@ -835,9 +836,6 @@ void PairDemContact::compute(int eflag, int vflag)
     // The law's inputs, body 1 a: the unit normal from a to b, the overlap, the slip velocity with the full
     // radii v = v_a - v_b + (R_a w_a + R_b w_b) x n, the relative spin w_a - w_b, and the mean spin of the two
     // bodies about the normal (frame_spin no: 0)
-    // (x_b - x_a: the separation from i to j, or its opposite, as the subtraction the other way gives it, +0
-    // for 0; the same r2)
-    const double ex = a == i ? dx : 0.0 - dx, ey = a == i ? dy : 0.0 - dy, ez = a == i ? dz : 0.0 - dz;
     const double r = std::sqrt(r2), rinv = 1.0 / r;
     const double nx = ex * rinv, ny = ey * rinv, nz = ez * rinv;
     const double ra = radius[a], rb = radius[b];
