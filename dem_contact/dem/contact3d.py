@@ -337,9 +337,20 @@ def _prefetch_row(H, r):
     _prefetch(H, r, H.shape[1] - 1)
 
 
+@njit(inline="always", **JIT)
+def _prefetch_head(H, r):
+    """Prefetch the first 16 values of row r of H (the laws' states and the tangential law's header; an MDR
+    row's cells follow, of which a step reads the few at the contact's edge)."""
+    _prefetch(H, r, 0)
+    _prefetch(H, r, min(8, H.shape[1] - 1))
+
+
 # The batch loops of each tangential law, the law's step inlined: contact c has history row rows[c] of H,
 # prefetched AHEAD contacts before it is used (scattered rows would otherwise stall the law on every
-# contact). One source, compiled serial and parallel (prange is range in a serial build).
+# contact); a row that follows the one before it in memory (rows in order, as a pool filled in the contacts'
+# order) only its head: the CPU streams such rows by itself, and fetching all of an MDR row's cells, of which a
+# step reads a few, would evict what the next steps read. One source, compiled serial and parallel (prange is
+# range in a serial build).
 
 def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, spins, wn, dt, forces, tforces,
           torques):
@@ -357,7 +368,11 @@ def _loop(nid, tid, params, pair_rows, H, rows, normals, overlaps, velocities, s
     b0 = twist_base(nid)
     for k in loop_range(n):  # noqa: F821
         if k + AHEAD < n:
-            _prefetch_row(H, rows[k + AHEAD])
+            r_ahead = rows[k + AHEAD]
+            if r_ahead == rows[k + AHEAD - 1] + 1:
+                _prefetch_head(H, r_ahead)
+            else:
+                _prefetch_row(H, r_ahead)
         row = pair_rows[k]
         c = rows[k]
         nx = normals[k, 0]

@@ -31,9 +31,23 @@
 #include "aot.h"
 #endif
 
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <string>
 #include <vector>
+
+// an allocator of memory that starts at a cache line (64 bytes): a pool whose rows are a whole number of lines
+// then gives each row its own lines
+template <class T> struct CacheLineAllocator {
+  using value_type = T;
+  CacheLineAllocator() = default;
+  template <class U> CacheLineAllocator(const CacheLineAllocator<U> &) {}
+  T *allocate(std::size_t n) { return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  void deallocate(T *p, std::size_t) { ::operator delete(p, std::align_val_t(64)); }
+  template <class U> bool operator==(const CacheLineAllocator<U> &) const { return true; }
+  template <class U> bool operator!=(const CacheLineAllocator<U> &) const { return false; }
+};
 
 // what dem_contact.lammps.pair_kernel.attach writes (its class Attach, field for field)
 struct DemContactAttach {
@@ -147,7 +161,7 @@ class PairDemContact : public Pair, public RowKeeper {
     int i, j;
     tagint ti, tj;
   };
-  std::vector<double> live;
+  std::vector<double, CacheLineAllocator<double>> live;
   std::vector<Pairing> pairing;
   std::vector<int64_t> entry_start;
   std::vector<int32_t> entry_row, free_rows;
