@@ -708,11 +708,12 @@ bool PairDemContact::output_due() const
 
 // The entries of LAMMPS's half list whose pairs touch (tc[0, returned)), and those of contacts that ended, whose
 // pairs are apart now (tc[q, entries), q set, in the list's reverse order): a lean pass, as most entries of a
-// loose scene are apart (x0: the positions, one block of 3 per atom, as LAMMPS keeps them; a function of its own,
-// whose few values stay in registers)
-__attribute__((noinline)) int64_t PairDemContact::find_touching(int inum, const int *ilist, const int *numneigh, int *const *firstneigh,
-                                      const int64_t *entry_start, const int32_t *entry_row, const double *x0,
-                                      const double *radius, const double *special_lj, Touch *tc, int64_t &q)
+// loose scene are apart (a function of its own, whose few values stay in registers)
+__attribute__((noinline)) int64_t PairDemContact::find_touching(int inum, const int *ilist, const int *numneigh,
+                                                                int *const *firstneigh, const int64_t *entry_start,
+                                                                const int32_t *entry_row, double *const *x,
+                                                                const double *radius, const double *special_lj,
+                                                                Touch *tc, int64_t &q)
 {
   int64_t m = 0;
   for (int ii = 0; ii < inum; ii++) {
@@ -721,7 +722,7 @@ __attribute__((noinline)) int64_t PairDemContact::find_touching(int inum, const 
     const int jnum = numneigh[i];
     const int64_t e0 = entry_start[ii];
     const int32_t *at = entry_row + e0;
-    const double xi = x0[3 * i], yi = x0[3 * i + 1], zi = x0[3 * i + 2], ri = radius[i];
+    const double xi = x[i][0], yi = x[i][1], zi = x[i][2], ri = radius[i];
     for (int jj = 0; jj < jnum; jj++) {
       const int32_t e = at[jj];
       if (e == TWIN) continue;    // (its twin entry evaluates the pair)
@@ -730,7 +731,7 @@ __attribute__((noinline)) int64_t PairDemContact::find_touching(int inum, const 
         if (special_lj[j >> SBBITS & 3] == 0.0) continue;    // excluded pairs (special_bonds lj 0), as pair granular
         j &= NEIGHMASK;
       }
-      const double dx = x0[3 * j] - xi, dy = x0[3 * j + 1] - yi, dz = x0[3 * j + 2] - zi;
+      const double dx = x[j][0] - xi, dy = x[j][1] - yi, dz = x[j][2] - zi;
       const double rs = ri + radius[j], r2 = dx * dx + dy * dy + dz * dz;
       // (written whether the pair touches or not, kept where it does: no branch to mispredict)
       const int touch = r2 < rs * rs;
@@ -792,13 +793,12 @@ void PairDemContact::compute(int eflag, int vflag)
   if ((int64_t) touching.size() < entries + 1) touching.resize(entries + entries / 4 + 16);
   Touch *tc = touching.data();
   int64_t q = entries;
-  const double *x0 = inum ? x[0] : nullptr;    // (LAMMPS keeps the positions in one block, 3 per atom)
-  const int64_t m = find_touching(inum, ilist, numneigh, firstneigh, entry_start.data(), entry_at, x0, radius,
+  const int64_t m = find_touching(inum, ilist, numneigh, firstneigh, entry_start.data(), entry_at, x, radius,
                                   special_lj, tc, q);
   // (contacts that ended, in the list's order: their energy accounted at the gap now)
   for (int64_t k = entries - 1; k >= q; k--) {
     const int i = tc[k].i, j = tc[k].j;
-    const double dx = x0[3 * j] - x0[3 * i], dy = x0[3 * j + 1] - x0[3 * i + 1], dz = x0[3 * j + 2] - x0[3 * i + 2];
+    const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1], dz = x[j][2] - x[i][2];
     end_row(entry_at[tc[k].e], radius[i] + radius[j] - std::sqrt(dx * dx + dy * dy + dz * dz));
     entry_at[tc[k].e] = -1;
   }

@@ -192,7 +192,7 @@ class PairDemContact : public Pair, public RowKeeper {
   int32_t take_row(int i, int j, int j_local);
   void find_twins(int nlocal, int nall);
   static int64_t find_touching(int inum, const int *ilist, const int *numneigh, int *const *firstneigh,
-                               const int64_t *entry_start, const int32_t *entry_row, const double *x0,
+                               const int64_t *entry_start, const int32_t *entry_row, double *const *x,
                                const double *radius, const double *special_lj, Touch *tc, int64_t &q);
   void end_row(int32_t r, double delta_end);
   void load_rows();
