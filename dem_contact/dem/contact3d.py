@@ -339,8 +339,9 @@ def _prefetch_row(H, r):
 
 @njit(inline="always", **JIT)
 def _prefetch_head(H, r):
-    """Prefetch the first 16 values of row r of H (the laws' states and the tangential law's header; an MDR
-    row's cells follow, of which a step reads the few at the contact's edge)."""
+    """Prefetch the first 16 values of row r of H (the normal law's state and, in a row of the default law
+    without twist or rolling laws, the tangential law's header; an MDR row's cells follow, of which a step on a
+    lasting contact reads the few at its edge)."""
     _prefetch(H, r, 0)
     _prefetch(H, r, min(8, H.shape[1] - 1))
 

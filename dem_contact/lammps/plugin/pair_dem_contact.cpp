@@ -995,8 +995,9 @@ bool PairDemContact::any_resized(int nall)
 
 double PairDemContact::memory_usage()
 {
-  return (double) (entry_row.capacity() / 2 + pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
-      (double) entry_local.capacity() * sizeof(int) +
+  return (double) (pairs.capacity() + to.capacity() + hrow.capacity()) * sizeof(int64_t) +
+      (double) (entry_row.capacity() + free_rows.capacity()) * sizeof(int32_t) +
+      (double) entry_local.capacity() * sizeof(int) + (double) touching.capacity() * sizeof(Touch) +
       (double) (inputs.capacity() + out.capacity() + scratch.capacity() + acc.capacity() + live.capacity() +
                 rec_out.capacity()) * sizeof(double) +
       (double) pairing.capacity() * sizeof(Pairing) + (double) rec_ids.capacity() * sizeof(tagint);

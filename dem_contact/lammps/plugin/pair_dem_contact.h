@@ -171,7 +171,7 @@ class PairDemContact : public Pair, public RowKeeper {
   // the step's contacts (room for cap): atoms, pool rows, parameter rows, and the law's inputs (N_INPUTS blocks)
   enum { N_INPUTS = 11 };
   std::vector<int64_t> pairs, hrow, scratch_rows, prow, to;
-  struct Touch {    // a list entry whose pair touches: its atoms and the entry's index
+  struct Touch {    // a list entry whose pair touches, or whose contact ended: its atoms and the entry's index
     int i, j;
     int64_t e;
   };
