@@ -1,6 +1,6 @@
 """The cost of a contact update in LAMMPS's Pair section: ``[mpirun -np N] python tests/lammps/plugin_bench.py
-SCENE N STEPS [--tangential LAW] [--energy] [--frame-spin] [--record-every K] [--repeat R]``, run by test_bench_plugin.py (and by hand). Prints one
-JSON object (rank 0): per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair
+SCENE N STEPS [--tangential LAW] [--energy] [--frame-spin] [--record-every K] [--repeat R]``, run by
+test_bench_plugin.py (and by hand). Prints one JSON object (rank 0): per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair
 granular hertz/material + mindlin) the Pair section's time, averaged over the ranks, of STEPS steps after a warm-up
 run (the fastest of R runs, the engines taking turns), the sphere-sphere contacts, and ns_per_update: the Pair
 time of all ranks over STEPS x contacts.

@@ -16,8 +16,9 @@
    their laws. This class walks LAMMPS's half neighbour list (newton off: a pair across two ranks is evaluated by
    both, in one canonical order, body 1 the lower atom id, from the same inputs, so both copies of its history
    stay equal and no history is communicated; a pair across a periodic boundary within one rank, listed twice,
-   is evaluated once), keeps each contact's history by neighbour-list entry between list
-   builds and in the per-atom rows of its fix (FixDemContactHistory) when atoms move, and hands the touching pairs to the package's compiled step once per step
+   is evaluated once), keeps each contact's history by neighbour-list entry between list builds and in the
+   per-atom rows of its fix (FixDemContactHistory) when atoms move, finds the touching pairs in a lean pass over
+   the list (find_touching) and hands them to the package's compiled step once per step
    (dem_contact/lammps/pair_kernel.py), reached through Python (python_link.h). It adds the returned forces and
    torques to the local atoms and tallies the virial. */
 #ifdef PAIR_CLASS
