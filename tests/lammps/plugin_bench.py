@@ -1,9 +1,9 @@
 """The cost of a contact update in LAMMPS's Pair section: ``[mpirun -np N] python tests/lammps/plugin_bench.py
-SCENE N STEPS [--tangential LAW] [--energy] [--frame-spin] [--record-every K] [--repeat R]``, run by
-test_bench_plugin.py (and by hand). Prints one JSON object (rank 0): per engine (``plugin``: pair_style dem/contact with the law; ``native``: LAMMPS's own pair
-granular hertz/material + mindlin) the Pair section's time, averaged over the ranks, of STEPS steps after a warm-up
-run (the fastest of R runs, the engines taking turns), the sphere-sphere contacts, and ns_per_update: the Pair
-time of all ranks over STEPS x contacts.
+SCENE N STEPS [--tangential LAW] [--mdr-springs N] [--energy] [--frame-spin] [--record-every K] [--repeat R]``,
+run by test_bench_plugin.py (and by hand). Prints one JSON object (rank 0): per engine (``plugin``: pair_style
+dem/contact with the law; ``native``: LAMMPS's own pair granular hertz/material + mindlin) the Pair section's time,
+averaged over the ranks, of STEPS steps after a warm-up run (the fastest of R runs, the engines taking turns), the
+sphere-sphere contacts, and ns_per_update: the Pair time of all ranks over STEPS x contacts.
 
 Scenes: ``pack``, N spheres on a cubic lattice 1% closer than touching, periodic, with small random velocities and
 spins (three contacts per sphere, lasting); ``pour``, N spheres on a loose lattice with random velocities falling
@@ -76,7 +76,8 @@ def run(engine, args, log):
         lmp.command(f"pair_coeff * * hertz/material {GLASS.E!r} 0.0 {GLASS.nu!r} tangential mindlin NULL 0.0 {MU!r} "
                     f"damping viscoelastic")
     else:
-        t = pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential)
+        cells = {} if args.mdr_springs is None else dict(mdr_springs=args.mdr_springs)
+        t = pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential, **cells)
         path = table_file.save(t, os.path.join(args.dir, f"bench_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
         lmp.command(f"pair_style dem/contact vmax 1.0 frame_spin {'yes' if args.frame_spin else 'no'} "
@@ -132,6 +133,7 @@ def main():
     p.add_argument("n", type=int)
     p.add_argument("steps", type=int)
     p.add_argument("--tangential", default="mindlin_total")
+    p.add_argument("--mdr-springs", type=int, help="cells of the MDR laws (mdr_adaptive: even; default: the law's)")
     p.add_argument("--engines", default="native,plugin")
     p.add_argument("--energy", action="store_true", help="the plugin accounts the work of the contact forces")
     p.add_argument("--frame-spin", action="store_true", help="the plugin's frame_spin yes (the tangential history "
