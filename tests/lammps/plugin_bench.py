@@ -1,5 +1,5 @@
 """The cost of a contact update in LAMMPS's Pair section: ``[mpirun -np N] python tests/lammps/plugin_bench.py
-SCENE N STEPS [--tangential LAW] [--mdr-springs N] [--energy] [--frame-spin] [--record-every K] [--repeat R]``,
+SCENE N STEPS [--tangential LAW] [--mdr-springs CELLS] [--energy] [--frame-spin] [--record-every K] [--repeat R]``,
 run by test_bench_plugin.py (and by hand). Prints one JSON object (rank 0): per engine (``plugin``: pair_style
 dem/contact with the law; ``native``: LAMMPS's own pair granular hertz/material + mindlin) the Pair section's time,
 averaged over the ranks, of STEPS steps after a warm-up run (the fastest of R runs, the engines taking turns), the
@@ -18,6 +18,7 @@ import tempfile
 import numpy as np
 
 from dem_contact.dem.pairs import pair_table
+from dem_contact.errors import InputError
 from dem_contact.lammps import new_lammps, plugin_build, table_file
 from dem_contact.materials import Material, Sphere
 
@@ -65,6 +66,12 @@ def setup(lmp, scene, n, rng):
     lmp.numpy.extract_atom("v")[:nlocal] = v
 
 
+def bench_table(args):
+    """The plugin's table: one sphere type, the law and cell count of the arguments."""
+    cells = {} if args.mdr_springs is None else dict(mdr_springs=args.mdr_springs)
+    return pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential, **cells)
+
+
 def run(engine, args, log):
     rng = np.random.default_rng(5)
     lmp = new_lammps("-log", log, "-screen", "none", "-nocite")
@@ -76,8 +83,7 @@ def run(engine, args, log):
         lmp.command(f"pair_coeff * * hertz/material {GLASS.E!r} 0.0 {GLASS.nu!r} tangential mindlin NULL 0.0 {MU!r} "
                     f"damping viscoelastic")
     else:
-        cells = {} if args.mdr_springs is None else dict(mdr_springs=args.mdr_springs)
-        t = pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential, **cells)
+        t = bench_table(args)
         path = table_file.save(t, os.path.join(args.dir, f"bench_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
         lmp.command(f"pair_style dem/contact vmax 1.0 frame_spin {'yes' if args.frame_spin else 'no'} "
@@ -133,7 +139,8 @@ def main():
     p.add_argument("n", type=int)
     p.add_argument("steps", type=int)
     p.add_argument("--tangential", default="mindlin_total")
-    p.add_argument("--mdr-springs", type=int, help="cells of the MDR laws (mdr_adaptive: even; default: the law's)")
+    p.add_argument("--mdr-springs", type=int, metavar="CELLS",
+                   help="cells of the MDR laws (mdr_adaptive: even; default: the law's)")
     p.add_argument("--engines", default="native,plugin")
     p.add_argument("--energy", action="store_true", help="the plugin accounts the work of the contact forces")
     p.add_argument("--frame-spin", action="store_true", help="the plugin's frame_spin yes (the tangential history "
@@ -143,6 +150,10 @@ def main():
     p.add_argument("--dir", default=tempfile.gettempdir())
     p.add_argument("--repeat", type=int, default=1, help="runs of each engine, taking turns; the fastest counts")
     args = p.parse_args()
+    try:
+        bench_table(args)       # (a law or cell count the table refuses: refused before any run)
+    except InputError as e:
+        p.error(str(e))
     out = {}
     for _ in range(args.repeat):
         for engine in args.engines.split(","):
