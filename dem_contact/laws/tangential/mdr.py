@@ -47,7 +47,7 @@ from ...materials import check_finite
 from ..declare import ESTAR, GSTAR, MU, RSTAR, V_REF, Option, Param
 from ..slots import (H_FSTAR, H_T, H_TANG_EXTRA, P_DX, P_ESTAR, P_GSTAR, P_MDR_PROFILE, P_MU, P_NSPRING, P_PY,
                      P_RSTAR)
-from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, carry_unit, renamed
+from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, at, carry_unit, put, renamed
 
 NAME, FAMILY = "mdr", "tangential"
 SOURCE = "exact reference: method of dimensionality reduction (Popov & Hess), springs on a half-line"
@@ -493,19 +493,19 @@ def _released(H, c, b, k0, a, a_old, dx, n):
     """The contact is over: its cells, frame, force and work (the slots b + W_X ... k0 - 1) cleared."""
     if dx > 0.0:
         for j in range(2 * max(cells(a, dx, n), cells(a_old, dx, n))):
-            H[c, k0 + j] = 0.0
+            put(H, c, k0 + j, 0.0)
     for j in range(b + W_X, k0):
-        H[c, j] = 0.0
+        put(H, c, j, 0.0)
 
 
 @njit(inline="always", **JIT)
 def _zone_dissolved(H, c, b, k0, lazy, D1, D2):
     """The sticking zone's cells take their displacement u = v + D, and the zone is cleared."""
     for i in range(lazy):
-        H[c, k0 + 2 * i] += D1
-        H[c, k0 + 2 * i + 1] += D2
+        put(H, c, k0 + 2 * i, at(H, c, k0 + 2 * i) + D1)
+        put(H, c, k0 + 2 * i + 1, at(H, c, k0 + 2 * i + 1) + D2)
     for j in range(R_LAZY, R_CELLS_ADAPTIVE):
-        H[c, b + j] = 0.0
+        put(H, c, b + j, 0.0)
 
 
 @njit(inline="always", **JIT)
@@ -515,32 +515,32 @@ def _regrid(H, c, b, k0, n, dx, a, a_old, R):
     (0 for a new grid)."""
     if dx <= 0.0 or a_old <= 0.0:
         for j in range(2 * n):
-            H[c, k0 + j] = 0.0
+            put(H, c, k0 + j, 0.0)
         a_old = 0.0
         dx = initial_width_ldexp(a, n, R)
-        H[c, b + R_DX] = dx
+        put(H, c, b + R_DX, dx)
     if a > n * dx or (4.0 * a < n * dx and 4.0 * a_old < n * dx):
         while a > n * dx:
             for j in range(n // 2):
                 x0 = 2 * j * dx
-                u1 = merged(H[c, k0 + 4 * j], H[c, k0 + 4 * j + 2], a_old, x0, dx)
-                u2 = merged(H[c, k0 + 4 * j + 1], H[c, k0 + 4 * j + 3], a_old, x0, dx)
-                H[c, k0 + 2 * j] = u1
-                H[c, k0 + 2 * j + 1] = u2
+                u1 = merged(at(H, c, k0 + 4 * j), at(H, c, k0 + 4 * j + 2), a_old, x0, dx)
+                u2 = merged(at(H, c, k0 + 4 * j + 1), at(H, c, k0 + 4 * j + 3), a_old, x0, dx)
+                put(H, c, k0 + 2 * j, u1)
+                put(H, c, k0 + 2 * j + 1, u2)
             for j in range(2 * (n // 2), 2 * n):
-                H[c, k0 + j] = 0.0
+                put(H, c, k0 + j, 0.0)
             dx *= 2.0
         while 4.0 * a < n * dx and 4.0 * a_old < n * dx:
             hdx = 0.5 * dx
             for j in range(n // 2 - 1, -1, -1):
-                u10, u11 = halves(H[c, k0 + 2 * j], a_old, j * dx, hdx)
-                u20, u21 = halves(H[c, k0 + 2 * j + 1], a_old, j * dx, hdx)
-                H[c, k0 + 4 * j] = u10
-                H[c, k0 + 4 * j + 1] = u20
-                H[c, k0 + 4 * j + 2] = u11
-                H[c, k0 + 4 * j + 3] = u21
+                u10, u11 = halves(at(H, c, k0 + 2 * j), a_old, j * dx, hdx)
+                u20, u21 = halves(at(H, c, k0 + 2 * j + 1), a_old, j * dx, hdx)
+                put(H, c, k0 + 4 * j, u10)
+                put(H, c, k0 + 4 * j + 1, u20)
+                put(H, c, k0 + 4 * j + 2, u11)
+                put(H, c, k0 + 4 * j + 3, u21)
             dx *= 0.5
-        H[c, b + R_DX] = dx
+        put(H, c, b + R_DX, dx)
     return dx, a_old
 
 
@@ -557,9 +557,9 @@ def _truncated_cells(H, c, k0, full, dx, a, kt, umax_per_w, d1, d2):
         Q1 = truncated_integral_vector((i + 1) * dx, a, kt)
         umax = umax_per_w * (Q1 - Q0) / dx
         Q0 = Q1
-        u1, u2 = radial(H[c, k] + d1, H[c, k + 1] + d2, umax)
-        H[c, k] = u1
-        H[c, k + 1] = u2
+        u1, u2 = radial(at(H, c, k) + d1, at(H, c, k + 1) + d2, umax)
+        put(H, c, k, u1)
+        put(H, c, k + 1, u2)
         S1 += u1
         S2 += u2
     return S1, S2, Q0
@@ -571,18 +571,18 @@ def _zone_step(H, c, b, k0, lazy, umax_per_w, a2, dx2, d1, d2):
     ``_vector``), else dissolved: (lazy, L1, L2), the zone's cells now and the sums of their u (0 if none)."""
     L1 = 0.0
     L2 = 0.0
-    D1 = H[c, b + R_D1] + d1
-    D2 = H[c, b + R_D2] + d2
-    Ks = H[c, b + R_KS]
-    G0 = H[c, b + R_G0]
+    D1 = at(H, c, b + R_D1) + d1
+    D2 = at(H, c, b + R_D2) + d2
+    Ks = at(H, c, b + R_KS)
+    G0 = at(H, c, b + R_G0)
     wl = 3.0 * (lazy - 1) * lazy + 1.0
     e = min(QNEAR * umax_per_w * (a2 - dx2) - G0 + Ks * dx2,
             QNEAR * umax_per_w * (a2 - dx2 * wl) - G0 + Ks * dx2 * wl)
     if e >= 0.0 and e * e >= D1 * D1 + D2 * D2:
-        H[c, b + R_D1] = D1
-        H[c, b + R_D2] = D2
-        L1 = H[c, b + R_SV1] + lazy * D1
-        L2 = H[c, b + R_SV2] + lazy * D2
+        put(H, c, b + R_D1, D1)
+        put(H, c, b + R_D2, D2)
+        L1 = at(H, c, b + R_SV1) + lazy * D1
+        L2 = at(H, c, b + R_SV2) + lazy * D2
     else:
         _zone_dissolved(H, c, b, k0, lazy, D1 - d1, D2 - d2)
         lazy = 0
@@ -607,10 +607,10 @@ def _sticking_cells(H, c, k0, lazy, full, umax_per_w, a2, dx2, d1, d2):
         umax = umax_per_w * (a2 - dx2 * w3)
         w3 += step
         step += 6.0
-        u1 = H[c, k] + d1
-        u2 = H[c, k + 1] + d2
-        H[c, k] = u1
-        H[c, k + 1] = u2
+        u1 = at(H, c, k) + d1
+        u2 = at(H, c, k + 1) + d2
+        put(H, c, k, u1)
+        put(H, c, k + 1, u2)
         S1 += u1
         S2 += u2
         near |= u1 * u1 + u2 * u2 > NEAR * (umax * umax)
@@ -622,8 +622,8 @@ def _sticking_cells(H, c, k0, lazy, full, umax_per_w, a2, dx2, d1, d2):
         i0 = lazy
         while i0 < full:
             k = k0 + 2 * i0
-            u1 = H[c, k]
-            u2 = H[c, k + 1]
+            u1 = at(H, c, k)
+            u2 = at(H, c, k + 1)
             umax = umax_per_w * (a2 - dx2 * w3)
             if u1 * u1 + u2 * u2 > NEAR * (umax * umax):
                 break
@@ -637,9 +637,9 @@ def _sticking_cells(H, c, k0, lazy, full, umax_per_w, a2, dx2, d1, d2):
             umax = umax_per_w * (a2 - dx2 * w3)
             w3 += step
             step += 6.0
-            u1, u2 = radial(H[c, k], H[c, k + 1], umax)
-            H[c, k] = u1
-            H[c, k + 1] = u2
+            u1, u2 = radial(at(H, c, k), at(H, c, k + 1), umax)
+            put(H, c, k, u1)
+            put(H, c, k + 1, u2)
             S1 += u1
             S2 += u2
     return S1, S2, i0
@@ -658,18 +658,18 @@ def _new_zone(H, c, b, k0, i0, umax_per_w, a2, dx2):
         umax = umax_per_w * (a2 - dx2 * w3)
         w3 += step
         step += 6.0
-        u1 = H[c, k]
-        u2 = H[c, k + 1]
+        u1 = at(H, c, k)
+        u2 = at(H, c, k + 1)
         V1 += u1
         V2 += u2
         smin = min(smin, umax - math.sqrt(u1 * u1 + u2 * u2))
-    H[c, b + R_LAZY] = i0
-    H[c, b + R_D1] = 0.0
-    H[c, b + R_D2] = 0.0
-    H[c, b + R_SV1] = V1
-    H[c, b + R_SV2] = V2
-    H[c, b + R_KS] = umax_per_w
-    H[c, b + R_G0] = umax_per_w * a2 - smin
+    put(H, c, b + R_LAZY, i0)
+    put(H, c, b + R_D1, 0.0)
+    put(H, c, b + R_D2, 0.0)
+    put(H, c, b + R_SV1, V1)
+    put(H, c, b + R_SV2, V2)
+    put(H, c, b + R_KS, umax_per_w)
+    put(H, c, b + R_G0, umax_per_w * a2 - smin)
 
 
 @njit(inline="always", **JIT)
@@ -684,12 +684,12 @@ def _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, T1, T2,
         x0 = i * dx
         l_new = min(max(a - x0, 0.0), dx)
         if l_new <= 0.0:
-            H[c, k] = 0.0
-            H[c, k + 1] = 0.0
+            put(H, c, k, 0.0)
+            put(H, c, k + 1, 0.0)
             continue
         l_old = min(max(a_old - x0, 0.0), dx)
-        u1 = H[c, k] + d1
-        u2 = H[c, k + 1] + d2
+        u1 = at(H, c, k) + d1
+        u2 = at(H, c, k + 1) + d2
         if l_new > l_old:
             xm = x0 + 0.5 * (l_old + l_new)
             f = (a - xm) / da * (l_new - l_old)
@@ -704,8 +704,8 @@ def _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, T1, T2,
         else:
             wbar = a2 - (x0 * x0 + x0 * x1 + x1 * x1) / 3.0
         u1, u2 = radial(u1, u2, umax_per_w * wbar)
-        H[c, k] = u1
-        H[c, k + 1] = u2
+        put(H, c, k, u1)
+        put(H, c, k + 1, u2)
         T1 += u1 * l_new
         T2 += u2 * l_new
     return T1, T2
@@ -713,8 +713,8 @@ def _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, T1, T2,
 
 def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     """Vector MDR (Popov & Hess 2015 with a displacement vector per cell), on the fixed grid of ``mdr`` or
-    (the global ADAPTIVE, bound by ``vector_form``) the grid that follows the contact. Returns T (tx, ty, tz): NaN where the contact outgrows
-    the fixed grid.
+    (the global ADAPTIVE, bound by ``vector_form``) the grid that follows the contact. Returns T (tx, ty, tz):
+    NaN where the contact outgrows the fixed grid.
 
     The cells hold 2D displacements in a frame (e1, e2 = n x e1) of the tangent plane (``mdr_frame``).
     The slip increment in the frame, (dd . e1, dd . e2), is added to every cell in contact, with the entry
@@ -736,7 +736,8 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     is dissolved. In a dense packing most cells stick at most steps: they cost nothing then."""
     # Every parameter is read first and the history row last, on every path: numba's reference-count
     # pruning then removes the increments of the two arrays (which would cost two atomic operations per
-    # contact); so the law has one exit and calls only inlined functions.
+    # contact); so the law has one exit and calls only inlined functions. The row is read and written through
+    # ``at`` and ``put`` (every index here is >= 0: no handling of negative ones in the cell loops).
     E = params[row, P_ESTAR]
     R = params[row, P_RSTAR]
     G = params[row, P_GSTAR]
@@ -745,10 +746,10 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     profile = params[row, P_MDR_PROFILE]
     n = int(params[row, P_NSPRING])
     dx = params[row, P_DX]
-    a_old = H[c, V_A]
+    a_old = at(H, c, V_A)
     k0 = b + R_CELLS
     if ADAPTIVE:
-        dx = H[c, b + R_DX]
+        dx = at(H, c, b + R_DX)
     tx = 0.0
     ty = 0.0
     tz = 0.0
@@ -759,15 +760,15 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
         ty = math.nan
         tz = math.nan
     else:
-        ex, ey, ez, fx, fy, fz, d1, d2 = mdr_frame(H[c, b + W_X], H[c, b + W_Y], H[c, b + W_Z], nx, ny, nz,
-                                                     ddx, ddy, ddz, cs, sn)
+        ex, ey, ez, fx, fy, fz, d1, d2 = mdr_frame(at(H, c, b + W_X), at(H, c, b + W_Y), at(H, c, b + W_Z),
+                                                   nx, ny, nz, ddx, ddy, ddz, cs, sn)
         kt = truncation(profile, p_y, fstar, Np, a, E, R)
         lazy = 0
         if ADAPTIVE:
-            lazy = int(H[c, b + R_LAZY])
+            lazy = min(max(int(at(H, c, b + R_LAZY)), 0), n)     # (in [0, n] unless the row was corrupted)
             if lazy > 0 and (kt < 1.0 or a > n * dx or 4.0 * a < n * dx or min(a, a_old) < lazy * dx):
                 # the cells of the sticking zone take their displacement u = v + D before anything else acts
-                _zone_dissolved(H, c, b, k0, lazy, H[c, b + R_D1], H[c, b + R_D2])
+                _zone_dissolved(H, c, b, k0, lazy, at(H, c, b + R_D1), at(H, c, b + R_D2))
                 lazy = 0
             dx, a_old = _regrid(H, c, b, k0, n, dx, a, a_old, R)
         # cells in contact: qa = a / dx and qo = a_old / dx give the cell counts and the cut cell
@@ -782,8 +783,8 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
             if i < n:
                 f = shrink_factor(i * dx, dx, a, a_old)
                 if f != 1.0:
-                    H[c, k0 + 2 * i] *= f
-                    H[c, k0 + 2 * i + 1] *= f
+                    put(H, c, k0 + 2 * i, at(H, c, k0 + 2 * i) * f)
+                    put(H, c, k0 + 2 * i + 1, at(H, c, k0 + 2 * i + 1) * f)
         # the cells: the arithmetic of mdr._advance with a 2D displacement per cell and radial return
         GM = 4.0 * G
         umax_per_w = coulomb_per_w(mu, E, G, R, Np, a, kt)
@@ -805,12 +806,13 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
         T1, T2 = _edge_cells(H, c, k0, full, m, dx, a, a_old, kt, umax_per_w, d1, d2, S1 * dx, S2 * dx, Q0)
         T1 *= 2.0 * GM
         T2 *= 2.0 * GM
-        H[c, b + W_WORK] += 0.5 * ((H[c, b + R_T1] + T1) * d1 + (H[c, b + R_T2] + T2) * d2)
-        H[c, b + W_X] = ex
-        H[c, b + W_Y] = ey
-        H[c, b + W_Z] = ez
-        H[c, b + R_T1] = T1
-        H[c, b + R_T2] = T2
+        work = 0.5 * ((at(H, c, b + R_T1) + T1) * d1 + (at(H, c, b + R_T2) + T2) * d2)
+        put(H, c, b + W_WORK, at(H, c, b + W_WORK) + work)
+        put(H, c, b + W_X, ex)
+        put(H, c, b + W_Y, ey)
+        put(H, c, b + W_Z, ez)
+        put(H, c, b + R_T1, T1)
+        put(H, c, b + R_T2, T2)
         tx = T1 * ex + T2 * fx
         ty = T1 * ey + T2 * fy
         tz = T1 * ez + T2 * fz

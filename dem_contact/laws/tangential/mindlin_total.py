@@ -5,7 +5,7 @@ from numba import njit
 
 from ..declare import GSTAR, MU
 from ..slots import H_T, H_XI, P_GSTAR, P_MU
-from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, cap_vector, carry, renamed
+from ..vector import JIT, V_A, W_WORK, W_X, W_Y, W_Z, at, cap_vector, carry, put, renamed
 from .common import cap, release
 
 NAME, FAMILY = "mindlin_total", "tangential"
@@ -69,12 +69,12 @@ def _vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn
     g8 = 8.0 * params[row, P_GSTAR]
     if FACTOR != 1.0:
         g8 *= FACTOR
-    tx, ty, tz, x, y, z, dw = spring_total(g8, params[row, P_MU], N, a, a_old, H[c, b + W_X], H[c, b + W_Y],
-                                           H[c, b + W_Z], nx, ny, nz, ddx, ddy, ddz, cs, sn)
-    H[c, b + W_WORK] += dw
-    H[c, b + W_X] = x
-    H[c, b + W_Y] = y
-    H[c, b + W_Z] = z
+    tx, ty, tz, x, y, z, dw = spring_total(g8, params[row, P_MU], N, a, a_old, at(H, c, b + W_X), at(H, c, b + W_Y),
+                                           at(H, c, b + W_Z), nx, ny, nz, ddx, ddy, ddz, cs, sn)
+    put(H, c, b + W_WORK, at(H, c, b + W_WORK) + dw)
+    put(H, c, b + W_X, x)
+    put(H, c, b + W_Y, y)
+    put(H, c, b + W_Z, z)
     return tx, ty, tz
 
 
