@@ -93,7 +93,7 @@ def _put(typingctx, H, c, j, value):
 def at(H, c, j):
     """H[c, j] of a 2D array, both indices >= 0. Compiled, without numba's handling of negative indices: a
     compare and a select per access wherever numba cannot tell the index is >= 0, as for the slots b + k of the
-    tangential laws and the cells of the MDR laws (on every cell of their loops: about 4% of the default law's
+    tangential laws and the cells of the MDR laws (on every cell of their loops: about 3% of the default law's
     contact update in a pour). Bounds are checked where the caller is compiled with boundscheck."""
     return H[c, j]
 
