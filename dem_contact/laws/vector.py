@@ -33,6 +33,7 @@ import types
 from numba import njit
 from numba import types as nbtypes
 from numba.core import cgutils
+from numba.core.targetconfig import ConfigStack
 from numba.extending import intrinsic, overload
 
 #: numba options of every flat kernel: numpy's error model (no zero-division checks), and of fastmath only
@@ -53,48 +54,63 @@ W_Y = 2
 W_Z = 3
 
 
-def _row_pointer(context, builder, signature, args):
+def _row_pointer(context, builder, signature, args, checked):
     aryty = signature.args[0]
     ary = context.make_array(aryty)(context, builder, args[0])
     idx = [context.cast(builder, v, t, nbtypes.intp) for v, t in zip(args[1:3], signature.args[1:3])]
-    return cgutils.get_item_pointer(context, builder, aryty, ary, idx, wraparound=False,
-                                    boundscheck=context.enable_boundscheck)
+    return cgutils.get_item_pointer(context, builder, aryty, ary, idx, wraparound=False, boundscheck=checked)
 
 
-def _row_indices(H, c, j):
+def _is_row_access(H, c, j):
     return (isinstance(H, nbtypes.Array) and H.ndim == 2 and isinstance(c, nbtypes.Integer)
             and isinstance(j, nbtypes.Integer))
 
 
-@intrinsic
-def _at(typingctx, H, c, j):
-    if not _row_indices(H, c, j):
-        return None
+def _row_intrinsics(checked):
+    """The load and the store of ``at``/``put``; ``checked``: bounds checked (an IndexError)."""
 
-    def codegen(context, builder, signature, args):
-        return builder.load(_row_pointer(context, builder, signature, args))
+    @intrinsic
+    def load(typingctx, H, c, j):
+        if not _is_row_access(H, c, j):
+            return None
 
-    return H.dtype(H, c, j), codegen
+        def codegen(context, builder, signature, args):
+            return builder.load(_row_pointer(context, builder, signature, args, checked))
+
+        return H.dtype(H, c, j), codegen
+
+    @intrinsic
+    def store(typingctx, H, c, j, value):
+        if not (_is_row_access(H, c, j) and H.mutable):
+            return None
+
+        def codegen(context, builder, signature, args):
+            v = context.cast(builder, args[3], signature.args[3], signature.args[0].dtype)
+            builder.store(v, _row_pointer(context, builder, signature, args, checked))
+            return context.get_dummy_value()
+
+        return nbtypes.void(H, c, j, value), codegen
+
+    return load, store
 
 
-@intrinsic
-def _put(typingctx, H, c, j, value):
-    if not _row_indices(H, c, j):
-        return None
+_LOAD, _STORE = _row_intrinsics(False)
+_LOAD_CHECKED, _STORE_CHECKED = _row_intrinsics(True)
 
-    def codegen(context, builder, signature, args):
-        v = context.cast(builder, args[3], signature.args[3], signature.args[0].dtype)
-        builder.store(v, _row_pointer(context, builder, signature, args))
-        return context.get_dummy_value()
 
-    return nbtypes.void(H, c, j, value), codegen
+def _caller_checks_bounds() -> bool:
+    """Whether the function being compiled asked for bounds checks (``boundscheck=True``; the overloads below are
+    compiled with their own flags, so they ask the caller's)."""
+    flags = ConfigStack.top_or_none()
+    return bool(flags is not None and flags.boundscheck)
 
 
 def at(H, c, j):
     """H[c, j] of a 2D array, both indices >= 0. Compiled, without numba's handling of negative indices: a
     compare and a select per access wherever numba cannot tell the index is >= 0, as for the slots b + k of the
     tangential laws and the cells of the MDR laws (on every cell of their loops: about 3% of the default law's
-    contact update in a pour). Bounds are checked where the caller is compiled with boundscheck."""
+    contact update in a pour). Bounds are checked (an IndexError) where the function that calls it is compiled
+    with bounds checks (``boundscheck=True``, or NUMBA_BOUNDSCHECK=1), as numba's own indexing is."""
     return H[c, j]
 
 
@@ -105,14 +121,16 @@ def put(H, c, j, value):
 
 @overload(at)
 def _at_jit(H, c, j):
-    if _row_indices(H, c, j):
-        return lambda H, c, j: _at(H, c, j)
+    if _is_row_access(H, c, j):
+        load = _LOAD_CHECKED if _caller_checks_bounds() else _LOAD
+        return lambda H, c, j: load(H, c, j)
 
 
 @overload(put)
 def _put_jit(H, c, j, value):
-    if _row_indices(H, c, j):
-        return lambda H, c, j, value: _put(H, c, j, value)
+    if _is_row_access(H, c, j) and H.mutable:
+        store = _STORE_CHECKED if _caller_checks_bounds() else _STORE
+        return lambda H, c, j, value: store(H, c, j, value)
 
 
 def renamed(func, name, **bindings):

@@ -817,6 +817,32 @@ def test_debug_mode_reports_the_first_bad_contact():
         contact_forces(**args, debug=True)
 
 
+def test_row_accesses_are_bounds_checked_where_asked_and_stay_in_a_corrupted_row():
+    """The laws read and write their rows through ``laws.vector.at`` / ``put``, which skip numba's handling of
+    negative indices: in a function compiled with bounds checks an index outside the array is an IndexError, as
+    with numba's own indexing; and a corrupted row (here a negative contact radius before the step) gives the
+    law no index outside its row (it would write into another contact's row, or crash)."""
+    from numba import njit
+
+    from dem_contact.laws.vector import V_A, at, put
+    H = np.arange(6.0).reshape(2, 3)
+    checked = njit(boundscheck=True)(lambda H, c, j: at(H, c, j))
+    unchecked = njit(lambda H, c, j: at(H, c, j))
+    store = njit(boundscheck=True)(lambda H, c, j, v: put(H, c, j, v))
+    assert checked(H, 1, 2) == 5.0 and unchecked(H, 1, 0) == 3.0
+    store(H, 0, 1, 7.0)
+    assert H[0, 1] == 7.0
+    with pytest.raises(IndexError):
+        checked(H, 0, 3)
+    with pytest.raises(IndexError):
+        store(H, 2, 0, 1.0)
+    tab, args = _checked_setup("mdr")
+    contact_forces(**args, debug=True)          # (the rows now hold contacts)
+    args["H"][:, V_A] = -1.0
+    contact_forces(**args, debug=True)
+    assert np.all(np.isfinite(args["forces"]))
+
+
 def test_checked_entry_refuses_an_overlap_beyond_the_laws_and_reports_a_non_finite_force():
     """An overlap not below R* (1e300 m, or a sphere pushed through its partner) is an InputError naming the
     contact; a force that is not finite after the step (here a history carrying 1e308) is a NumericalError,

@@ -736,8 +736,9 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     is dissolved. In a dense packing most cells stick at most steps: they cost nothing then."""
     # Every parameter is read first and the history row last, on every path: numba's reference-count
     # pruning then removes the increments of the two arrays (which would cost two atomic operations per
-    # contact); so the law has one exit and calls only inlined functions. The row is read and written through
-    # ``at`` and ``put`` (every index here is >= 0: no handling of negative ones in the cell loops).
+    # contact); so the law has one exit and calls only functions that are inlined. The row is read and written
+    # through ``at`` and ``put`` (every index here is >= 0, the row's values clamped where they give one: no
+    # handling of negative ones in the cell loops).
     E = params[row, P_ESTAR]
     R = params[row, P_RSTAR]
     G = params[row, P_GSTAR]
@@ -747,6 +748,8 @@ def _vector(params, row, H, c, b, Np, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, s
     n = int(params[row, P_NSPRING])
     dx = params[row, P_DX]
     a_old = at(H, c, V_A)
+    if a_old < 0.0:     # (only in a corrupted row)
+        a_old = 0.0
     k0 = b + R_CELLS
     if ADAPTIVE:
         dx = at(H, c, b + R_DX)

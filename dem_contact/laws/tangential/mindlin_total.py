@@ -65,7 +65,7 @@ def spring_total(g8, mu, N, a, a_old, x, y, z, nx, ny, nz, ddx, ddy, ddz, cs, sn
 def _vector(params, row, H, c, b, N, a, fstar, nx, ny, nz, ddx, ddy, ddz, cs, sn):
     """One 3D step: ``spring_total`` on the slots of the row, with the global FACTOR bound by ``forms``.
     Returns T (tx, ty, tz)."""
-    a_old = H[c, V_A]
+    a_old = at(H, c, V_A)
     g8 = 8.0 * params[row, P_GSTAR]
     if FACTOR != 1.0:
         g8 *= FACTOR
