@@ -32,7 +32,7 @@ import types
 
 from numba import njit
 from numba import types as nbtypes
-from numba.core import cgutils
+from numba.core import cgutils, config
 from numba.core.targetconfig import ConfigStack
 from numba.extending import intrinsic, overload
 
@@ -81,7 +81,7 @@ def _row_intrinsics(checked):
 
     @intrinsic
     def store(typingctx, H, c, j, value):
-        if not (_is_row_access(H, c, j) and H.mutable):
+        if not _is_row_access(H, c, j):
             return None
 
         def codegen(context, builder, signature, args):
@@ -99,8 +99,11 @@ _LOAD_CHECKED, _STORE_CHECKED = _row_intrinsics(True)
 
 
 def _caller_checks_bounds() -> bool:
-    """Whether the function being compiled asked for bounds checks (``boundscheck=True``; the overloads below are
+    """Whether the function being compiled checks bounds: NUMBA_BOUNDSCHECK where it is set (it overrides every
+    function's flag, as in numba's own indexing), else the function's ``boundscheck`` (the overloads below are
     compiled with their own flags, so they ask the caller's)."""
+    if config.BOUNDSCHECK is not None:
+        return bool(config.BOUNDSCHECK)
     flags = ConfigStack.top_or_none()
     return bool(flags is not None and flags.boundscheck)
 

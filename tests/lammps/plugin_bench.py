@@ -72,7 +72,7 @@ def bench_table(args):
     return pair_table([Sphere(R, GLASS)], mu=MU, tangential=args.tangential, **cells)
 
 
-def run(engine, args, log):
+def run(engine, args, log, table):
     rng = np.random.default_rng(5)
     lmp = new_lammps("-log", log, "-screen", "none", "-nocite")
     setup(lmp, args.scene, args.n, rng)
@@ -83,8 +83,7 @@ def run(engine, args, log):
         lmp.command(f"pair_coeff * * hertz/material {GLASS.E!r} 0.0 {GLASS.nu!r} tangential mindlin NULL 0.0 {MU!r} "
                     f"damping viscoelastic")
     else:
-        t = bench_table(args)
-        path = table_file.save(t, os.path.join(args.dir, f"bench_{lmp.extract_setting('world_rank')}.json"))
+        path = table_file.save(table, os.path.join(args.dir, f"bench_{lmp.extract_setting('world_rank')}.json"))
         lmp.command(f"plugin load {plugin_build.plugin_path()}")
         lmp.command(f"pair_style dem/contact vmax 1.0 frame_spin {'yes' if args.frame_spin else 'no'} "
                     f"energy {'yes' if args.energy else 'no'}")
@@ -151,13 +150,13 @@ def main():
     p.add_argument("--repeat", type=int, default=1, help="runs of each engine, taking turns; the fastest counts")
     args = p.parse_args()
     try:
-        bench_table(args)       # (a law or cell count the table refuses: refused before any run)
-    except InputError as e:
+        table = bench_table(args)
+    except InputError as e:         # (a law or cell count the table refuses: before any run)
         p.error(str(e))
     out = {}
     for _ in range(args.repeat):
         for engine in args.engines.split(","):
-            rank, got = run(engine, args, os.path.join(args.dir, f"bench_{engine}.log"))
+            rank, got = run(engine, args, os.path.join(args.dir, f"bench_{engine}.log"), table)
             if rank == 0 and (engine not in out or got["pair_s"] < out[engine]["pair_s"]):
                 out[engine] = got
     if rank == 0:
